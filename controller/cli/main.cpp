@@ -1,0 +1,60 @@
+// cellctl: the motion-cell controller's command line. Each command group registers itself here.
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+#include <cstdio>
+#include <exception>
+
+#include "cli/commands.hpp"
+#include "cli/drive.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/logging.hpp"
+#include "config/yaml_node.hpp"
+#include "link/link_error.hpp"
+
+namespace cellctl::cli {
+std::atomic<bool> g_interrupted{false};
+}
+
+namespace {
+extern "C" void on_signal(int) { cellctl::cli::g_interrupted.store(true); }
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace cellctl::cli;
+  CLI::App app{"cellctl — controller for a motion cell (Ewellix SCU actuators, SycoTec spindle, Scancon encoder)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "cellctl 0.1.0");
+
+  Commands commands;
+  GlobalOptions& global = commands.global;
+  app.add_option("-c,--config", global.config, "Cell configuration file")->capture_default_str();
+  app.add_option("--log-level", global.log_level, "Console log level")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))
+      ->capture_default_str();
+  app.add_flag("--trace", global.trace, "Hex trace of every telegram on every device link (to stderr)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? kExitOk : kExitUsage;
+  }
+  init_logging(global.log_level, global.trace);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  int code = kExitOk;
+  try {
+    code = commands.chosen()();
+  } catch (const cellctl::config::ConfigError& e) {
+    spdlog::error("{}", e.what());
+    code = kExitConfig;
+  } catch (const cellctl::link::LinkError& e) {
+    spdlog::error("{}", e.what());
+    code = kExitLink;
+  }
+  spdlog::shutdown();
+  return code;
+}

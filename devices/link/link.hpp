@@ -1,0 +1,36 @@
+#pragma once
+// A non-blocking byte transport. read() returns what has arrived (possibly nothing) and write()
+// takes what the transport can take now; neither ever waits. Telegram boundaries are the codecs'
+// business, not the link's.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+
+namespace cellctl::link {
+
+enum class IoStatus {
+  ok,      // count bytes moved (0 is a normal answer: nothing there, or no room now)
+  closed,  // the peer went away (pty closed, USB adapter unplugged)
+  failed,  // an OS error; error_number says which
+};
+
+struct [[nodiscard]] IoResult {
+  std::size_t count = 0;
+  IoStatus status = IoStatus::ok;
+  int error_number = 0;
+
+  [[nodiscard]] bool ok() const noexcept { return status == IoStatus::ok; }
+};
+
+class Link {
+ public:
+  virtual ~Link() = default;
+  virtual IoResult read(std::span<std::uint8_t> buffer) = 0;
+  virtual IoResult write(std::span<const std::uint8_t> bytes) = 0;
+  // Where this link goes, for messages and traces ("/dev/ttyUSB0", "sim:scu").
+  [[nodiscard]] virtual std::string describe() const = 0;
+};
+
+}  // namespace cellctl::link

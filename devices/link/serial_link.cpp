@@ -1,0 +1,97 @@
+#include "link/serial_link.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/ioctl.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "link/fd_io.hpp"
+#include "link/link_error.hpp"
+
+namespace cellctl::link {
+namespace {
+
+speed_t speed_for(std::uint32_t baud) {
+  switch (baud) {
+    case 9600: return B9600;
+    case 19200: return B19200;
+    case 38400: return B38400;
+    case 57600: return B57600;
+    case 115200: return B115200;
+    case 230400: return B230400;
+    case 460800: return B460800;
+    case 500000: return B500000;
+    case 921600: return B921600;
+    case 1000000: return B1000000;
+    case 1500000: return B1500000;
+    case 2000000: return B2000000;
+    default: return 0;
+  }
+}
+
+[[noreturn]] void fail(int fd, const std::string& message) {
+  if (fd >= 0) ::close(fd);
+  throw LinkError(message);
+}
+
+std::string open_failure(const std::string& path, int err) {
+  switch (err) {
+    case ENOENT: return fmt::format("serial port {} does not exist", path);
+    case EACCES: return fmt::format("no permission to open serial port {} (is this user in group dialout?)", path);
+    case EBUSY: return fmt::format("serial port {} is in use by another process", path);
+    default: return fmt::format("cannot open serial port {}: {}", path, std::strerror(err));
+  }
+}
+
+void configure_line(int fd, const std::string& path, LineFormat format) {
+  const speed_t speed = speed_for(format.baud);
+  if (speed == 0) fail(fd, fmt::format("serial port {}: baud rate {} is not supported", path, format.baud));
+  if (format.data_bits < 5 || format.data_bits > 8 || format.stop_bits < 1 || format.stop_bits > 2)
+    fail(fd, fmt::format("serial port {}: framing {} is not supported", path, format.describe()));
+  if (!make_raw(fd)) fail(fd, fmt::format("{} is not a serial port: {}", path, std::strerror(errno)));
+
+  termios tio{};
+  tcgetattr(fd, &tio);
+  cfsetispeed(&tio, speed);
+  cfsetospeed(&tio, speed);
+  tio.c_cflag &= ~static_cast<tcflag_t>(CSIZE | PARENB | PARODD | CSTOPB);
+  static constexpr tcflag_t kSize[] = {CS5, CS6, CS7, CS8};
+  tio.c_cflag |= kSize[format.data_bits - 5];
+  if (format.parity != Parity::none) tio.c_cflag |= PARENB;
+  if (format.parity == Parity::odd) tio.c_cflag |= PARODD;
+  if (format.stop_bits == 2) tio.c_cflag |= CSTOPB;
+  if (tcsetattr(fd, TCSANOW, &tio) != 0)
+    fail(fd, fmt::format("serial port {}: cannot set {}: {}", path, format.describe(), std::strerror(errno)));
+}
+
+}  // namespace
+
+std::unique_ptr<SerialLink> SerialLink::open(const std::string& path, LineFormat format) {
+  const int fd = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw LinkError(open_failure(path, errno));
+  // flock also holds against root, which TIOCEXCL does not.
+  if (flock(fd, LOCK_EX | LOCK_NB) != 0) fail(fd, open_failure(path, EBUSY));
+  ioctl(fd, TIOCEXCL);
+  configure_line(fd, path, format);
+
+  int lines = TIOCM_DTR | TIOCM_RTS;
+  const bool held = ioctl(fd, TIOCMBIS, &lines) == 0;
+  if (!held && errno != ENOTTY && errno != EINVAL)
+    fail(fd, fmt::format("serial port {}: cannot raise DTR/RTS: {}", path, std::strerror(errno)));
+  tcflush(fd, TCIOFLUSH);  // nothing stale from before we owned the port
+  return std::unique_ptr<SerialLink>(new SerialLink(fd, path, format, held));
+}
+
+SerialLink::~SerialLink() { ::close(fd_); }
+
+IoResult SerialLink::read(std::span<std::uint8_t> buffer) { return fd_read(fd_, buffer); }
+IoResult SerialLink::write(std::span<const std::uint8_t> bytes) { return fd_write(fd_, bytes); }
+std::string SerialLink::describe() const { return fmt::format("{} ({})", path_, format_.describe()); }
+
+}  // namespace cellctl::link
