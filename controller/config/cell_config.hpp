@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 
+#include "config/axis_section.hpp"
+#include "config/cell_limits.hpp"
 #include "config/yaml_node.hpp"
 
 namespace cellctl::config {
@@ -12,6 +14,13 @@ namespace cellctl::config {
 struct CellConfig {
   std::string name;
   std::filesystem::path source;  // the file it came from, for messages
+  std::vector<AxisConfig> axes;
+  CellLimits limits;
+  StopReactions stops;
+  LoopConfig loop;
+
+  // The axis with this name, or nullptr.
+  [[nodiscard]] const AxisConfig* axis(std::string_view axis_name) const noexcept;
 };
 
 // Throws ConfigError (file:line:column: field: rule) on the first problem.

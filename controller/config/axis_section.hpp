@@ -1,0 +1,29 @@
+#pragma once
+// The cell's axes: each is one SCU actuator moved by one SCU function, with its scaling from mm to
+// the SCU's encoder edges and the mechanical limits no recipe may exceed. At most one axis is
+// measured by the absolute encoder, which closes the loop on it.
+
+#include <string>
+#include <vector>
+
+#include "config/yaml_node.hpp"
+
+namespace cellctl::config {
+
+struct AxisConfig {
+  std::string name;
+  int actuator = 1;   // SCU actuator 1..6
+  int function = 1;   // SCU function F1..F10 that moves it (remote position + remote speed)
+  double edges_per_mm = 10.0;
+  double min_mm = 0.0;   // the cell's travel limits for this axis (safety monitor and validator)
+  double max_mm = 100.0;
+  double max_speed_mm_s = 20.0;  // what 100 % SCU speed means on this axis
+  double min_speed_mm_s = 0.5;   // below this the actuator may not move at all (checked before motion)
+  double max_accel_mm_s2 = 40.0;
+  double max_jerk_mm_s3 = 400.0;
+  bool encoder = false;          // measured by the cell's encoder
+};
+
+[[nodiscard]] std::vector<AxisConfig> parse_axes(const YamlNode& list);
+
+}  // namespace cellctl::config
