@@ -1,0 +1,26 @@
+#pragma once
+// A recipe unrolled into the flat list of actions the supervisor executes, one after the other:
+// repeats expanded, each action labelled with where it came from ("3/12 repeat 2/5 › drill (line 31)").
+// Built once before the run; the supervisor then only indexes into it (no allocation in the cycle).
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "recipe/recipe.hpp"
+
+namespace cellctl::recipe {
+
+struct Instruction {
+  std::string label;  // human-readable, for status, journal and summary
+  int line = 0;
+  std::variant<Move, Spindle, Dwell, Wait, Require> action;
+};
+
+struct Program {
+  std::vector<Instruction> instructions;
+};
+
+[[nodiscard]] Program unroll(const Recipe& recipe);
+
+}  // namespace cellctl::recipe
