@@ -1,0 +1,35 @@
+#include "scu/crc16.hpp"
+
+#include <array>
+
+namespace cellctl::scu {
+namespace {
+
+// Built at compile time from the polynomial; equals the manual's CRC_TABLE entry for entry
+// (tests/scu/crc16_test.cpp checks a sample of it against the printed table).
+constexpr std::array<std::uint16_t, 256> make_table() {
+  std::array<std::uint16_t, 256> table{};
+  for (unsigned i = 0; i < 256; ++i) {
+    auto crc = static_cast<std::uint16_t>(i << 8);
+    for (int bit = 0; bit < 8; ++bit) {
+      crc = static_cast<std::uint16_t>((crc & 0x8000u) ? (crc << 1) ^ 0x1021u : crc << 1);
+    }
+    table[i] = crc;
+  }
+  return table;
+}
+
+constexpr auto kTable = make_table();
+static_assert(kTable[1] == 0x1021 && kTable[255] == 0x1EF0, "CRC table must match the manual");
+
+}  // namespace
+
+std::uint16_t crc16(std::span<const std::uint8_t> bytes) noexcept {
+  std::uint16_t crc = 0;
+  for (const auto b : bytes) {
+    crc = static_cast<std::uint16_t>(kTable[((crc >> 8) ^ b) & 0xFFu] ^ (crc << 8));
+  }
+  return crc;
+}
+
+}  // namespace cellctl::scu
