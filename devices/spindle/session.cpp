@@ -1,0 +1,292 @@
+#include "spindle/session.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "spindle/fault_numbers.hpp"
+
+namespace cellctl::spindle {
+namespace {
+
+// Formats into a string whose capacity was reserved at construction: no allocation in the cycle.
+template <class... Args>
+void assign_formatted(std::string& out, fmt::format_string<Args...> format, Args&&... args) {
+  std::array<char, 256> buffer{};
+  const auto r = fmt::format_to_n(buffer.data(), buffer.size(), format, std::forward<Args>(args)...);
+  out.assign(buffer.data(), std::min(r.size, buffer.size()));
+}
+
+std::string_view name_of(MsgId id) noexcept {
+  switch (id) {
+    case MsgId::set_basic: return "SET Grundparameter (0x10)";
+    case MsgId::set_start: return "SET Startparameter (0x18)";
+    case MsgId::cmd_start: return "CMD System Start (0xA0)";
+    case MsgId::cmd_stop: return "CMD System Stopp (0xA1)";
+    case MsgId::cmd_reset: return "CMD System Reset (0xA2)";
+    case MsgId::res_status: return "status values (0x59)";
+    case MsgId::res_ident: return "identification (0x5A)";
+    case MsgId::res_statusout: return "statusout (0x60)";
+    default: return "message";
+  }
+}
+
+constexpr bool representable_hz(double hz) noexcept { return std::isfinite(hz) && hz >= 0.0 && hz <= 65535.0; }
+
+long long to_ms(link::Duration d) noexcept {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
+}
+
+}  // namespace
+
+Session::Session(link::Link& link, const SessionConfig& config)
+    : link_(link), config_(config), link_name_(link.describe()) {
+  fault_reason_.reserve(256);
+  snapshot_.start_refused_reason.reserve(256);
+}
+
+Session::Outgoing Session::make(const Message& m) {
+  Outgoing o;
+  o.frame.resize(Codec::encode(m, o.frame.storage()));
+  o.sent_id = id_of(m);
+  if (const auto* request = std::get_if<Request>(&m)) {
+    o.answer_id = request->wanted;
+  } else {
+    o.answer_id = o.sent_id;
+    o.command = true;
+  }
+  return o;
+}
+
+bool Session::enqueue(const Message& m) {
+  if (queued_ == kQueueCapacity) return false;
+  queue_[queued_++] = make(m);
+  return true;
+}
+
+void Session::activate(link::TimePoint now) {
+  lifecycle_ = link::Lifecycle::activating;
+  fault_reason_.clear();
+  queued_ = 0;
+  in_flight_.reset();
+  tx_.clear();
+  decoder_.reset();
+  snapshot_ = Snapshot{};
+  snapshot_.start_refused_reason.reserve(256);
+  activated_at_ = now;
+  next_status_at_ = next_values_at_ = now;
+  start_parameters_sent_ = false;  // the converter may have been switched off and on in between
+  watching_start_ = false;
+}
+
+void Session::deactivate(link::TimePoint) {
+  if (lifecycle_ == link::Lifecycle::inactive || lifecycle_ == link::Lifecycle::fault) return;
+  lifecycle_ = link::Lifecycle::deactivating;
+  (void)stop();
+}
+
+bool Session::start(double frequency_hz, Direction direction) {
+  if (lifecycle_ != link::Lifecycle::active || !representable_hz(frequency_hz) ||
+      direction == Direction::digital_input)
+    return false;
+  const bool send_parameters =
+      config_.set_start_parameters && (!start_parameters_sent_ || sent_direction_ != direction);
+  if (kQueueCapacity - queued_ < (send_parameters ? 3u : 2u)) return false;
+  if (send_parameters) {
+    (void)enqueue(SetStart{Source::sycodrive, Source::sycodrive, direction});
+    start_parameters_sent_ = true;
+    sent_direction_ = direction;
+  }
+  (void)enqueue(SetBasic{static_cast<std::uint16_t>(std::lround(frequency_hz)), SpeedUnit::hz});
+  (void)enqueue(Command{MsgId::cmd_start});
+  snapshot_.requested_frequency_hz = frequency_hz;
+  snapshot_.direction = direction;
+  snapshot_.start_refused = false;
+  snapshot_.start_refused_reason.clear();
+  return true;
+}
+
+bool Session::set_frequency(double frequency_hz) {
+  if (lifecycle_ != link::Lifecycle::active || !representable_hz(frequency_hz)) return false;
+  if (!enqueue(SetBasic{static_cast<std::uint16_t>(std::lround(frequency_hz)), SpeedUnit::hz})) return false;
+  snapshot_.requested_frequency_hz = frequency_hz;
+  return true;
+}
+
+bool Session::stop() {
+  if (lifecycle_ != link::Lifecycle::active && lifecycle_ != link::Lifecycle::deactivating) return false;
+  // Nothing queued may run after a stop: drop it all and put the stop first.
+  queued_ = 0;
+  watching_start_ = false;
+  return enqueue(Command{MsgId::cmd_stop});
+}
+
+bool Session::reset() {
+  if (lifecycle_ != link::Lifecycle::active) return false;
+  return enqueue(Command{MsgId::cmd_reset});
+}
+
+bool Session::commands_pending() const noexcept { return queued_ > 0 || (in_flight_ && in_flight_->command); }
+
+link::Lifecycle Session::poll(link::TimePoint now) {
+  if (lifecycle_ == link::Lifecycle::inactive || lifecycle_ == link::Lifecycle::fault) return lifecycle_;
+  read_replies(now);
+  check_in_flight(now);
+  if (lifecycle_ == link::Lifecycle::fault) return lifecycle_;
+  if (health_.silent_for(now, activated_at_) > config_.link_fault_after) {
+    assign_formatted(fault_reason_, "spindle converter on {} silent for {} ms (limit {} ms)", link_name_,
+                     to_ms(health_.silent_for(now, activated_at_)), to_ms(config_.link_fault_after));
+    enter_fault();
+    return lifecycle_;
+  }
+  if (lifecycle_ == link::Lifecycle::deactivating && !in_flight_ && queued_ == 0) {
+    lifecycle_ = link::Lifecycle::inactive;
+    return lifecycle_;
+  }
+  send_next(now);
+  if (!tx_.empty()) {
+    std::array<std::uint8_t, 2 * kMaxFrameLength> chunk{};
+    const std::size_t n = std::min(tx_.size(), chunk.size());
+    for (std::size_t i = 0; i < n; ++i) chunk[i] = tx_[i];
+    const auto r = link_.write(std::span(chunk).first(n));
+    if (r.ok()) tx_.drop(r.count);
+  }
+  return lifecycle_;
+}
+
+void Session::read_replies(link::TimePoint now) {
+  std::array<std::uint8_t, 128> buffer{};
+  for (;;) {
+    const auto r = link_.read(buffer);
+    if (!r.ok()) {
+      assign_formatted(fault_reason_, "spindle link {} {}", link_name_,
+                       r.status == link::IoStatus::closed ? "closed" : "failed");
+      enter_fault();
+      return;
+    }
+    if (r.count == 0) return;
+    for (std::size_t i = 0; i < r.count; ++i) {
+      const auto d = decoder_.push(buffer[i]);
+      if (!d) continue;
+      if (d->ok()) {
+        on_reply(now, d->message);
+      } else {
+        ++health_.bad_frames;  // the request in flight times out and is repeated
+      }
+    }
+  }
+}
+
+void Session::on_reply(link::TimePoint now, const Message& m) {
+  const auto* ack = std::get_if<Ack>(&m);
+  const MsgId answer = ack ? ack->acknowledged : id_of(m);
+  if (!in_flight_ || in_flight_->answer_id != answer || (ack != nullptr) != in_flight_->command) {
+    ++health_.bad_frames;  // a late answer to a request already given up on, or a stray frame
+    return;
+  }
+  health_.record_reply(sent_at_, now);
+  if (const auto* s = std::get_if<StatusOut>(&m)) on_statusout(*s);
+  if (const auto* v = std::get_if<StatusValues>(&m)) on_values(*v);
+  if (const auto* id = std::get_if<Identification>(&m)) {
+    snapshot_.identification = *id;
+    if (lifecycle_ == link::Lifecycle::activating) lifecycle_ = link::Lifecycle::active;
+  }
+  if (ack && ack->acknowledged == MsgId::cmd_start) watching_start_ = true;
+  in_flight_.reset();
+}
+
+void Session::on_statusout(const StatusOut& s) {
+  snapshot_.status_valid = true;
+  snapshot_.at_speed = s.at_speed();
+  snapshot_.at_rest = s.at_rest();
+  snapshot_.state = s.state;
+  snapshot_.error_number = s.error_number;
+  snapshot_.current_limit = s.current_limit();
+  snapshot_.motor_over_temperature = s.over_temperature();
+  snapshot_.motor_code = s.motor_code;
+  if (!watching_start_) return;
+  // The first statusout after the start's ACK: running, or at rest with the converter saying why not.
+  watching_start_ = false;
+  if (s.at_rest() && s.state != DeviceState::none) {
+    const auto meaning = explain_fault_number(s.error_number);
+    snapshot_.start_refused = true;
+    assign_formatted(snapshot_.start_refused_reason, "converter acknowledged the start but stays at rest: {} {}{}{}",
+                     s.state == DeviceState::fault ? "fault" : "warning", s.error_number,
+                     meaning.empty() ? "" : " — ", meaning);
+  }
+}
+
+void Session::on_values(const StatusValues& v) {
+  snapshot_.values_valid = true;
+  snapshot_.set_frequency_hz = v.set_frequency_hz;
+  snapshot_.actual_frequency_hz = v.actual_frequency_hz;
+  snapshot_.peak_current_a = v.peak_current_a();
+  snapshot_.motor_current_a = v.motor_current_a();
+  snapshot_.power_w = v.power_w();
+  snapshot_.motor_voltage_v = v.motor_voltage_v();
+  snapshot_.dc_link_voltage_v = v.dc_link_voltage_v();
+  snapshot_.motor_code = v.motor_code;
+  snapshot_.converter_hours = v.converter_hours;
+  snapshot_.motor_hours = v.motor_hours;
+}
+
+void Session::check_in_flight(link::TimePoint now) {
+  if (!in_flight_ || lifecycle_ == link::Lifecycle::fault || now - sent_at_ < config_.reply_timeout) return;
+  ++health_.timeouts;
+  if (tries_ <= config_.retries) {
+    ++health_.retries;
+    transmit(now, *in_flight_);
+    return;
+  }
+  if (in_flight_->command) {
+    // An unconfirmed SET or CMD leaves the converter's state unknown: that is a fault, not a shrug.
+    assign_formatted(fault_reason_, "spindle converter on {} did not acknowledge {} after {} tries", link_name_,
+                     name_of(in_flight_->sent_id), tries_);
+    enter_fault();
+    return;
+  }
+  in_flight_.reset();  // a poll: the next one is due soon enough; silence is judged by link_fault_after
+}
+
+void Session::send_next(link::TimePoint now) {
+  if (in_flight_) return;
+  if (queued_ > 0) {
+    const Outgoing next = queue_[0];
+    for (std::size_t i = 1; i < queued_; ++i) queue_[i - 1] = queue_[i];
+    --queued_;
+    tries_ = 0;
+    in_flight_ = next;
+    transmit(now, next);
+    return;
+  }
+  if (lifecycle_ == link::Lifecycle::deactivating) return;
+  std::optional<MsgId> wanted;
+  if (!snapshot_.identification) {
+    wanted = MsgId::res_ident;
+  } else if (now >= next_status_at_) {
+    wanted = MsgId::res_statusout;
+    next_status_at_ = now + config_.status_poll;
+  } else if (now >= next_values_at_) {
+    wanted = MsgId::res_status;
+    next_values_at_ = now + config_.values_poll;
+  }
+  if (!wanted) return;
+  tries_ = 0;
+  in_flight_ = make(Request{*wanted});
+  transmit(now, *in_flight_);
+}
+
+void Session::transmit(link::TimePoint now, const Outgoing& o) {
+  ++tries_;
+  sent_at_ = now;
+  (void)tx_.push(o.frame.view());
+}
+
+void Session::enter_fault() noexcept {
+  lifecycle_ = link::Lifecycle::fault;
+  queued_ = 0;
+  in_flight_.reset();
+  watching_start_ = false;
+}
+
+}  // namespace cellctl::spindle
