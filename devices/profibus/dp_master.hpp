@@ -115,6 +115,8 @@ class DpMaster {
   [[nodiscard]] link::Lifecycle lifecycle() const noexcept { return lifecycle_; }
   [[nodiscard]] DpState dp_state() const noexcept { return state_; }
   [[nodiscard]] const std::string& fault_reason() const noexcept { return fault_reason_; }
+  // Why the start-up was last begun again (slave lost, left data exchange, …); empty before.
+  [[nodiscard]] const std::string& restart_reason() const noexcept { return restart_reason_; }
   [[nodiscard]] const link::LinkHealth& health() const noexcept { return health_; }
   [[nodiscard]] const DpMasterStats& stats() const noexcept { return stats_; }
   // Time since the last good input (since activation when there was none).
@@ -145,19 +147,20 @@ class DpMaster {
  private:
   enum class Pending : std::uint8_t { none, cyclic, global_control, set_address };
 
-  void start_request(const FdlFrame& frame, bool expect_reply, link::TimePoint now);
-  void send_current(link::TimePoint now);
+  void send(const FdlFrame& frame, bool expect_reply, Pending pending, link::TimePoint now);
+  void transmit(link::TimePoint now);
   void next_request(link::TimePoint now);
   void on_reply(const FdlFrame& reply, link::TimePoint now);
+  void on_cyclic_reply(const FdlFrame& reply, link::TimePoint now);
   void on_no_reply(link::TimePoint now);
-  void on_sdn_sent(link::TimePoint now);
-  void handle_diag(const FdlFrame& reply, link::TimePoint now);
+  void on_diag(const FdlFrame& reply, link::TimePoint now);
+  void on_data(const FdlFrame& reply, link::TimePoint now);
   void enter(DpState s, link::TimePoint now);
   void restart(link::TimePoint now, std::string_view why);
-  void refuse(StartupFault::Kind kind, link::TimePoint now);
-  void set_fault_reason(std::string_view a, std::string_view b = {});
+  void refuse(StartupFault::Kind kind);
+  [[nodiscard]] bool has_request(link::TimePoint now) const noexcept;
   [[nodiscard]] std::uint8_t next_fc(std::uint8_t function) noexcept;
-  [[nodiscard]] bool line_free(link::TimePoint now) const noexcept;
+  [[nodiscard]] FdlFrame sap_request(std::uint8_t dsap, std::span<const std::uint8_t> data) noexcept;
 
   link::Link& link_;
   DpMasterConfig config_;
@@ -176,8 +179,7 @@ class DpMaster {
   bool in_flight_ = false;
   bool expect_reply_ = false;
   Pending pending_ = Pending::none;
-  FdlFrame request_;
-  wire::FixedBytes<kMaxFrameSize> request_bytes_;
+  wire::FixedBytes<kMaxFrameSize> request_bytes_;  // kept for a repetition with the same FCB
   std::uint8_t attempts_ = 0;
   link::TimePoint sent_at_{};
   link::TimePoint reply_deadline_{};
@@ -196,7 +198,6 @@ class DpMaster {
   wire::FixedBytes<kMaxIo> inputs_;
   DpDiagnosis diagnosis_;
   StartupFault startup_fault_;
-  bool diag_wanted_ = false;
 
   std::optional<GlobalControl> global_control_;
   std::optional<SetSlaveAdd> address_request_;
@@ -205,6 +206,7 @@ class DpMaster {
   link::LinkHealth health_;
   DpMasterStats stats_;
   std::string fault_reason_;
+  std::string restart_reason_;
 };
 
 }  // namespace cellctl::profibus

@@ -73,21 +73,17 @@ class DpSlave {
 
  private:
   void handle(const FdlFrame& request, link::TimePoint now);
-  void execute(const FdlFrame& request, link::TimePoint now);
-  void serve_sap(const FdlFrame& request, link::TimePoint now);
-  void set_prm(std::span<const std::uint8_t> data, std::uint8_t master, link::TimePoint now);
-  void chk_cfg(std::span<const std::uint8_t> data);
-  void data_exchange(const FdlFrame& request);
-  void global_control(std::span<const std::uint8_t> data);
-  void set_slave_add(std::span<const std::uint8_t> data);
-  void reply_diag(const FdlFrame& request);
-  void reply_data(std::uint8_t fc, std::span<const std::uint8_t> data);
-  void reply_sap(const FdlFrame& request, std::span<const std::uint8_t> data);
-  void reply_short_ack();
-  void reply_status(std::uint8_t fc);
+  [[nodiscard]] FdlFrame execute(const FdlFrame& request, link::TimePoint now);
+  [[nodiscard]] FdlFrame serve_sap(const FdlFrame& request, link::TimePoint now);
+  [[nodiscard]] bool set_prm(std::span<const std::uint8_t> data, std::uint8_t master, link::TimePoint now);
+  [[nodiscard]] bool chk_cfg(std::span<const std::uint8_t> data);
+  [[nodiscard]] FdlFrame data_exchange(const FdlFrame& request);
+  void global_control(const FdlFrame& request);
+  [[nodiscard]] bool set_slave_add(std::span<const std::uint8_t> data);
+  [[nodiscard]] FdlFrame diag_reply(const FdlFrame& request);
   void leave_data_exchange(LeaveReason reason);
+  void check_watchdog(link::TimePoint now);
   void send_due(link::TimePoint now);
-  [[nodiscard]] std::uint8_t data_fc() const;
 
   link::Link& link_;
   DpSlaveConfig config_;

@@ -37,11 +37,13 @@ class SlaveBehaviour {
     (void)out;
     return 0;
   }
-  // The extended diagnosis (octet 7 onwards); 0 octets when the device has none.
+  // The extended diagnosis (octet 7 onwards); 0 octets when the device has none. Called when the
+  // master reads the diagnosis, so a device may clear what diag_pending() reports here.
   virtual std::size_t ext_diag(std::span<std::uint8_t> out) = 0;
   // One Data_Exchange: consume the outputs, write the inputs, return the input length.
   virtual std::size_t exchange(std::span<const std::uint8_t> outputs, std::span<std::uint8_t> inputs) = 0;
-  // True while a diagnosis is waiting for the master: Data_Exchange replies carry DH until it is read.
+  // True while a diagnosis is waiting for the master: Data_Exchange replies carry DH (and the
+  // standard diagnosis Ext_Diag) until it is read.
   virtual bool diag_pending() { return false; }
   // True while the device is not able to exchange data for a reason of its own (Stat_Diag).
   virtual bool static_diag() { return false; }

@@ -1,0 +1,451 @@
+#include "profibus/dp_master.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "profibus/bus_timing.hpp"
+#include "profibus/fdl_codes.hpp"
+
+namespace cellctl::profibus {
+
+std::string_view to_string(DpState s) noexcept {
+  switch (s) {
+    case DpState::stopped: return "stopped";
+    case DpState::wait_address: return "wait_address";
+    case DpState::fdl_status: return "fdl_status";
+    case DpState::diag_initial: return "diag_initial";
+    case DpState::set_prm: return "set_prm";
+    case DpState::chk_cfg: return "chk_cfg";
+    case DpState::diag_check: return "diag_check";
+    case DpState::data_exchange: return "data_exchange";
+    case DpState::diag_cyclic: return "diag_cyclic";
+    case DpState::refused: return "refused";
+    case DpState::restart_wait: return "restart_wait";
+    case DpState::clearing: return "clearing";
+  }
+  return "?";
+}
+
+std::string_view to_string(StartupFault::Kind k) noexcept {
+  switch (k) {
+    case StartupFault::Kind::none: return "none";
+    case StartupFault::Kind::prm_fault: return "Prm_Fault";
+    case StartupFault::Kind::cfg_fault: return "Cfg_Fault";
+    case StartupFault::Kind::not_supported: return "Not_Supported";
+    case StartupFault::Kind::ident_mismatch: return "ident number mismatch";
+    case StartupFault::Kind::rejected: return "request rejected (RS)";
+  }
+  return "?";
+}
+
+namespace {
+
+void require(bool ok, const char* field, unsigned value, const char* rule) {
+  if (!ok)
+    throw std::invalid_argument(std::string("profibus master: ") + field + ": " + std::to_string(value) + ": " +
+                                rule);
+}
+
+bool is_reply_from(const FdlFrame& f, std::uint8_t master, std::uint8_t station) noexcept {
+  if (f.kind == FrameKind::short_ack) return true;
+  if (f.kind == FrameKind::token || fc::is_request(f.fc)) return false;
+  return f.da == master && f.sa == station;
+}
+
+bool is_data_reply(const FdlFrame& f) noexcept {
+  if (f.kind == FrameKind::short_ack) return true;
+  const std::uint8_t code = fc::function(f.fc);
+  return code == fc::kDataLow || code == fc::kDataHigh || code == fc::kOk;
+}
+
+}  // namespace
+
+DpMaster::DpMaster(link::Link& link, const DpMasterConfig& config, const DpSlaveSetup& setup)
+    : link_(link),
+      config_(config),
+      setup_(setup),
+      char_time_(config.line.char_time()),
+      tsyn_(config.line.baud ? bit_times(config.line, kTsynBits) : link::Duration{}),
+      slot_time_(config.line.baud ? bit_times(config.line, config.slot_time_bits) : link::Duration{}) {
+  require(config.line.baud > 0, "line.baud", config.line.baud, "must be positive");
+  require(config.master_address <= kMaxMasterAddress, "master_address", config.master_address, "outside 0..125");
+  require(config.slot_time_bits > 0, "slot_time_bits", config.slot_time_bits, "must be positive");
+  require(setup.station_address >= 1 && setup.station_address <= kDefaultSlaveAddress, "station_address",
+          setup.station_address, "outside 1..126");
+  require(setup.station_address != config.master_address, "station_address", setup.station_address,
+          "equals the master address");
+  require(setup.input_length <= kMaxIo, "input_length", static_cast<unsigned>(setup.input_length),
+          "above 244 octets");
+  require(setup.output_length <= kMaxIo, "output_length", static_cast<unsigned>(setup.output_length),
+          "above 244 octets");
+  outputs_.resize(setup.output_length);
+  inputs_.resize(setup.input_length);
+  // Reserved once so that reasons written in poll() never allocate.
+  fault_reason_.reserve(128);
+  restart_reason_.reserve(128);
+}
+
+void DpMaster::activate(link::TimePoint now) {
+  lifecycle_ = link::Lifecycle::activating;
+  activated_at_ = now;
+  startup_fault_ = {};
+  fault_reason_.clear();
+  in_flight_ = false;
+  decoder_.reset();
+  line_idle_from_ = now - tsyn_;
+  enter(setup_.station_address == kDefaultSlaveAddress ? DpState::wait_address : DpState::fdl_status, now);
+}
+
+void DpMaster::deactivate(link::TimePoint now) {
+  if (lifecycle_ == link::Lifecycle::inactive) return;
+  if (state_ == DpState::data_exchange || state_ == DpState::diag_cyclic) {
+    lifecycle_ = link::Lifecycle::deactivating;
+    enter(DpState::clearing, now);
+    return;
+  }
+  in_flight_ = false;
+  lifecycle_ = link::Lifecycle::inactive;
+  enter(DpState::stopped, now);
+}
+
+link::Duration DpMaster::input_age(link::TimePoint now) const noexcept {
+  const link::TimePoint since = stats_.last_input_at.value_or(activated_at_);
+  return now > since ? now - since : link::Duration{0};
+}
+
+bool DpMaster::set_outputs(std::span<const std::uint8_t> outputs) noexcept {
+  if (outputs.size() != setup_.output_length) return false;
+  (void)outputs_.assign(outputs);
+  return true;
+}
+
+bool DpMaster::global_control(std::uint8_t commands) noexcept {
+  if (lifecycle_ == link::Lifecycle::inactive || global_control_) return false;
+  global_control_ = GlobalControl{commands, config_.group};
+  return true;
+}
+
+bool DpMaster::set_slave_address(std::uint8_t new_address, bool no_add_chg) noexcept {
+  if (lifecycle_ == link::Lifecycle::inactive || address_change_ == RequestStatus::pending) return false;
+  if (new_address < 1 || new_address > kMaxMasterAddress || new_address == config_.master_address) return false;
+  address_request_ = SetSlaveAdd{new_address, setup_.ident, no_add_chg};
+  address_change_ = RequestStatus::pending;
+  return true;
+}
+
+link::Lifecycle DpMaster::poll(link::TimePoint now) {
+  std::array<std::uint8_t, 256> chunk{};
+  for (;;) {
+    const auto r = link_.read(chunk);
+    if (!r.ok() || r.count == 0) break;
+    line_idle_from_ = now;  // the line was busy until now: TSYN counts from here
+    (void)decoder_.push(std::span<const std::uint8_t>(chunk.data(), r.count));
+    if (in_flight_ && expect_reply_ && !reply_started_) {
+      // The reply has begun within the slot time: give it the time of a longest frame to finish.
+      reply_started_ = true;
+      reply_deadline_ = now + char_time_ * static_cast<int>(kMaxFrameSize) + slot_time_;
+    }
+  }
+  while (auto ev = decoder_.next()) {
+    if (ev->error != FdlError::none) {
+      ++health_.bad_frames;
+      continue;
+    }
+    if (in_flight_ && expect_reply_ && is_reply_from(ev->frame, config_.master_address, setup_.station_address))
+      on_reply(ev->frame, now);
+  }
+  if (in_flight_ && expect_reply_ && now >= reply_deadline_) on_no_reply(now);
+  if (!in_flight_ && now >= line_idle_from_ + tsyn_) next_request(now);
+  return lifecycle_;
+}
+
+std::optional<link::TimePoint> DpMaster::next_deadline() const noexcept {
+  if (in_flight_) return reply_deadline_;
+  const link::TimePoint line_free = line_idle_from_ + tsyn_;
+  if (address_request_ || (global_control_ && state_ == DpState::data_exchange)) return line_free;
+  if (!has_request(link::TimePoint::max())) return std::nullopt;
+  return std::max(line_free, next_cycle_at_);
+}
+
+// Whether the state has a cyclic request to send at `now`.
+bool DpMaster::has_request(link::TimePoint now) const noexcept {
+  switch (state_) {
+    case DpState::stopped:
+    case DpState::wait_address:
+    case DpState::refused: return false;
+    default: return now >= next_cycle_at_;
+  }
+}
+
+std::uint8_t DpMaster::next_fc(std::uint8_t function) noexcept {
+  auto& st = fcb_[setup_.station_address];
+  if (function == fc::kFdlStatus) {
+    st = {};  // the next request to this station starts the FCB sequence again
+    return static_cast<std::uint8_t>(fc::kRequest | function);
+  }
+  std::uint8_t code = static_cast<std::uint8_t>(fc::kRequest | function | (st.fcb ? fc::kFcb : 0));
+  if (st.started) code = static_cast<std::uint8_t>(code | fc::kFcv);
+  st.started = true;
+  st.fcb = !st.fcb;
+  return code;
+}
+
+FdlFrame DpMaster::sap_request(std::uint8_t dsap, std::span<const std::uint8_t> data) noexcept {
+  return make_sap_frame(setup_.station_address, config_.master_address, next_fc(fc::kSrdHigh), dsap, sap::kMaster,
+                        data);
+}
+
+void DpMaster::send(const FdlFrame& frame, bool expect_reply, Pending pending, link::TimePoint now) {
+  request_bytes_.resize(encode(frame, request_bytes_.storage()));
+  expect_reply_ = expect_reply;
+  pending_ = pending;
+  attempts_ = 0;
+  transmit(now);
+}
+
+void DpMaster::transmit(link::TimePoint now) {
+  decoder_.reset();  // octets from before this request cannot be its reply
+  (void)link_.write(request_bytes_.view());
+  sent_at_ = now;
+  const link::TimePoint request_end = now + char_time_ * static_cast<int>(request_bytes_.size());
+  line_idle_from_ = request_end;
+  reply_deadline_ = request_end + slot_time_;
+  reply_started_ = false;
+  in_flight_ = expect_reply_;
+}
+
+void DpMaster::next_request(link::TimePoint now) {
+  if (address_request_) {
+    std::array<std::uint8_t, kSetSlaveAddSize> data{};
+    (void)encode(*address_request_, data);
+    send(sap_request(sap::kSetSlaveAdd, data), true, Pending::set_address, now);
+    return;
+  }
+  if (global_control_ && state_ == DpState::data_exchange) {
+    std::array<std::uint8_t, kGlobalControlSize> data{};
+    (void)encode(*global_control_, data);
+    global_control_.reset();
+    send(make_sap_frame(kBroadcastAddress, config_.master_address,
+                        static_cast<std::uint8_t>(fc::kRequest | fc::kSdnHigh), sap::kGlobalControl, sap::kMaster,
+                        data),
+         false, Pending::global_control, now);
+    return;
+  }
+  if (!has_request(now)) return;
+  switch (state_) {
+    case DpState::restart_wait:
+      enter(DpState::fdl_status, now);
+      [[fallthrough]];
+    case DpState::fdl_status:
+      send(make_frame(setup_.station_address, config_.master_address, next_fc(fc::kFdlStatus)), true,
+           Pending::cyclic, now);
+      return;
+    case DpState::diag_initial:
+    case DpState::diag_check:
+    case DpState::diag_cyclic: send(sap_request(sap::kSlaveDiag, {}), true, Pending::cyclic, now); return;
+    case DpState::set_prm: {
+      std::array<std::uint8_t, kMaxData> prm{};
+      PrmStandard standard;
+      standard.wd_on = config_.wd_fact_1 > 0 && config_.wd_fact_2 > 0;
+      standard.wd_fact_1 = config_.wd_fact_1;
+      standard.wd_fact_2 = config_.wd_fact_2;
+      standard.min_tsdr_bits = config_.min_tsdr_bits;
+      standard.ident = setup_.ident;
+      standard.group = config_.group;
+      standard.freeze_req = setup_.freeze_req;
+      standard.sync_req = setup_.sync_req;
+      std::size_t n = encode(standard, prm);
+      std::copy_n(setup_.user_prm.view().begin(), setup_.user_prm.size(), prm.begin() + static_cast<long>(n));
+      n += setup_.user_prm.size();
+      send(sap_request(sap::kSetPrm, std::span<const std::uint8_t>(prm.data(), n)), true, Pending::cyclic, now);
+      return;
+    }
+    case DpState::chk_cfg: send(sap_request(sap::kChkCfg, setup_.cfg.view()), true, Pending::cyclic, now); return;
+    case DpState::data_exchange:
+      send(make_frame(setup_.station_address, config_.master_address, next_fc(fc::kSrdHigh), outputs_.view()),
+           true, Pending::cyclic, now);
+      // A fixed grid, skipping ahead after an overrun rather than bursting to catch up.
+      next_cycle_at_ = std::max(next_cycle_at_ + config_.data_exchange_period, now);
+      return;
+    case DpState::clearing: {
+      const GlobalControl clear{static_cast<std::uint8_t>(GlobalCommand::clear_data), 0};
+      std::array<std::uint8_t, kGlobalControlSize> data{};
+      (void)encode(clear, data);
+      send(make_sap_frame(setup_.station_address, config_.master_address,
+                          static_cast<std::uint8_t>(fc::kRequest | fc::kSdnHigh), sap::kGlobalControl,
+                          sap::kMaster, data),
+           false, Pending::global_control, now);
+      lifecycle_ = link::Lifecycle::inactive;
+      enter(DpState::stopped, now);
+      return;
+    }
+    case DpState::stopped:
+    case DpState::wait_address:
+    case DpState::refused: return;
+  }
+}
+
+void DpMaster::on_reply(const FdlFrame& reply, link::TimePoint now) {
+  in_flight_ = false;
+  line_idle_from_ = now;
+  health_.record_reply(sent_at_, now);
+  const Pending pending = pending_;
+  pending_ = Pending::none;
+  if (pending == Pending::set_address) {
+    const std::uint8_t new_address = address_request_->new_address;
+    address_request_.reset();
+    if (reply.kind != FrameKind::short_ack) {
+      ++health_.error_replies;
+      address_change_ = RequestStatus::failed;
+      return;
+    }
+    // Follow the slave to its new address and start it up there.
+    address_change_ = RequestStatus::done;
+    setup_.station_address = new_address;
+    if (lifecycle_ != link::Lifecycle::fault) lifecycle_ = link::Lifecycle::activating;
+    enter(DpState::fdl_status, now);
+    return;
+  }
+  on_cyclic_reply(reply, now);
+}
+
+void DpMaster::on_cyclic_reply(const FdlFrame& reply, link::TimePoint now) {
+  const bool ack = reply.kind == FrameKind::short_ack;
+  switch (state_) {
+    case DpState::fdl_status: enter(DpState::diag_initial, now); return;
+    case DpState::diag_initial:
+    case DpState::diag_check:
+    case DpState::diag_cyclic: on_diag(reply, now); return;
+    case DpState::set_prm:
+      if (!ack) {
+        ++health_.error_replies;
+        refuse(StartupFault::Kind::rejected);
+        return;
+      }
+      enter(DpState::chk_cfg, now);
+      return;
+    case DpState::chk_cfg:
+      // A refused Chk_Cfg (RS after a Prm_Fault) is explained by the diagnosis read next.
+      if (!ack) ++health_.error_replies;
+      enter(DpState::diag_check, now);
+      return;
+    case DpState::data_exchange: on_data(reply, now); return;
+    default: return;
+  }
+}
+
+void DpMaster::on_diag(const FdlFrame& reply, link::TimePoint now) {
+  const auto diag = reply.dsap ? decode_diagnosis(reply.data.view()) : std::nullopt;
+  if (!diag) {
+    ++health_.error_replies;
+    restart(now, "Slave_Diag reply malformed");
+    return;
+  }
+  diagnosis_ = *diag;
+  ++stats_.diag_reads;
+  const StandardDiag& d = diagnosis_.standard;
+  if (d.ident != setup_.ident) return refuse(StartupFault::Kind::ident_mismatch);
+  if (state_ == DpState::diag_initial) return enter(DpState::set_prm, now);
+  const bool ours = d.master_address == config_.master_address;
+  if (state_ == DpState::diag_check) {
+    if (d.prm_fault) return refuse(StartupFault::Kind::prm_fault);
+    if (d.cfg_fault) return refuse(StartupFault::Kind::cfg_fault);
+    if (d.not_supported) return refuse(StartupFault::Kind::not_supported);
+  }
+  if (d.ready_for_data_exchange() && ours) {
+    if (state_ == DpState::diag_check) {
+      lifecycle_ = link::Lifecycle::active;
+      stats_.last_input_at.reset();
+      health_.last_good = now;
+    }
+    state_ = DpState::data_exchange;
+    state_since_ = now;
+    return;
+  }
+  if (state_ == DpState::diag_cyclic || d.prm_req) {
+    restart(now, "slave left data exchange (diagnosis shows it not ready)");
+    return;
+  }
+  // Still not ready (e.g. Stat_Diag): ask again one period later, for at most lost_slave_time.
+  if (now - state_since_ > config_.lost_slave_time) {
+    restart(now, "slave not ready within lost_slave_time");
+    return;
+  }
+  next_cycle_at_ = now + std::max(config_.data_exchange_period, tsyn_);
+}
+
+void DpMaster::on_data(const FdlFrame& reply, link::TimePoint now) {
+  if (!is_data_reply(reply)) {
+    ++health_.error_replies;
+    restart(now, "slave refused Data_Exchange (not in data exchange)");
+    return;
+  }
+  if (reply.data.size() != setup_.input_length) {
+    ++health_.error_replies;
+    return;
+  }
+  (void)inputs_.assign(reply.data.view());
+  ++stats_.data_exchanges;
+  if (stats_.last_input_at) {
+    stats_.last_cycle = now - *stats_.last_input_at;
+    stats_.max_cycle = std::max(stats_.max_cycle, stats_.last_cycle);
+  }
+  stats_.last_input_at = now;
+  if (reply.kind != FrameKind::short_ack && fc::function(reply.fc) == fc::kDataHigh) {
+    // DH: the slave has a diagnosis for us; read it before the next exchange.
+    state_ = DpState::diag_cyclic;
+  }
+}
+
+void DpMaster::on_no_reply(link::TimePoint now) {
+  ++health_.timeouts;
+  if (attempts_ < config_.max_retries) {
+    // The same octets, hence the same FCB: a slave that did execute the request only answers again.
+    ++attempts_;
+    ++health_.retries;
+    transmit(now);
+    return;
+  }
+  in_flight_ = false;
+  line_idle_from_ = now;
+  const Pending pending = pending_;
+  pending_ = Pending::none;
+  if (pending == Pending::set_address) {
+    address_request_.reset();
+    address_change_ = RequestStatus::failed;
+    return;
+  }
+  if (state_ == DpState::data_exchange || state_ == DpState::diag_cyclic) {
+    if (health_.silent_for(now, state_since_) >= config_.lost_slave_time) {
+      ++stats_.lost;
+      restart(now, "slave lost: no reply within lost_slave_time");
+    }
+    return;
+  }
+  restart(now, "no reply during start-up");
+}
+
+void DpMaster::enter(DpState s, link::TimePoint now) {
+  state_ = s;
+  state_since_ = now;
+  next_cycle_at_ = now;
+  if (s == DpState::fdl_status) ++stats_.startups;
+  if (s == DpState::restart_wait) next_cycle_at_ = now + config_.restart_delay;
+}
+
+void DpMaster::restart(link::TimePoint now, std::string_view why) {
+  restart_reason_.assign(why.substr(0, restart_reason_.capacity()));
+  if (lifecycle_ != link::Lifecycle::fault) lifecycle_ = link::Lifecycle::activating;
+  enter(DpState::restart_wait, now);
+}
+
+void DpMaster::refuse(StartupFault::Kind kind) {
+  startup_fault_.kind = kind;
+  startup_fault_.diagnosis = diagnosis_;
+  lifecycle_ = link::Lifecycle::fault;
+  state_ = DpState::refused;
+  fault_reason_.assign("slave refused start-up: ");
+  fault_reason_.append(to_string(kind));
+}
+
+}  // namespace cellctl::profibus
