@@ -1,0 +1,89 @@
+#pragma once
+// What the run record records. Events are small fixed-size values so that the control cycle can
+// hand them to the journal without allocating: names are views of strings that outlive the run
+// (state names, program labels), free text goes into a fixed buffer.
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+#include <variant>
+
+#include <fmt/format.h>
+
+namespace cellctl::journal {
+
+inline constexpr std::size_t kMaxAxes = 6;
+
+// Fixed-capacity text, formatted in place: fmt::format_to_n never allocates and never overflows.
+struct Text {
+  std::array<char, 160> chars{};
+  std::uint8_t size = 0;
+
+  template <class... Args>
+  static Text format(fmt::format_string<Args...> f, Args&&... args) {
+    Text t;
+    const auto r = fmt::format_to_n(t.chars.data(), t.chars.size(), f, std::forward<Args>(args)...);
+    t.size = static_cast<std::uint8_t>(std::min<std::size_t>(r.size, t.chars.size()));
+    return t;
+  }
+  [[nodiscard]] std::string_view view() const noexcept { return {chars.data(), size}; }
+};
+
+struct RunStarted {
+  std::string_view recipe;
+  std::string_view cell;
+  std::string_view mode;  // "virtual-time", "emulated", "hardware"
+  std::uint32_t steps = 0;
+};
+struct StateChanged {
+  std::string_view from;
+  std::string_view to;
+  Text reason;
+};
+struct StepStarted {
+  std::uint32_t index = 0;
+  std::string_view label;
+};
+struct StepEnded {
+  std::uint32_t index = 0;
+  std::string_view label;
+  bool ok = true;
+  Text detail;
+};
+struct Command {
+  std::string_view name;    // start, hold, unhold, stop, abort, reset, emergency-stop
+  std::string_view source;  // operator, signal, monitor
+};
+struct Fault {
+  std::string_view rule;
+  std::uint8_t category = 1;  // stop category 0/1/2
+  Text detail;
+};
+struct FaultCleared {
+  std::string_view rule;
+};
+struct Sample {
+  std::uint8_t axes = 0;
+  std::array<float, kMaxAxes> planned_mm{};
+  std::array<float, kMaxAxes> scu_mm{};
+  float encoder_mm = 0.0f;
+  float encoder_mm_s = 0.0f;
+  float spindle_set_hz = 0.0f;
+  float spindle_actual_hz = 0.0f;
+};
+struct Note {
+  Text text;
+};
+struct RunEnded {
+  std::string_view outcome;  // complete, stopped, aborted
+};
+
+using Payload = std::variant<RunStarted, StateChanged, StepStarted, StepEnded, Command, Fault, FaultCleared, Sample,
+                             Note, RunEnded>;
+
+struct Event {
+  double t = 0.0;  // seconds since the run started (the loop's clock: real or virtual)
+  Payload payload;
+};
+
+}  // namespace cellctl::journal

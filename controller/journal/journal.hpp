@@ -1,0 +1,64 @@
+#pragma once
+// The run record: a JSON-lines file of every state change, step, command, fault and a periodic
+// sample. The control cycle only posts fixed-size events into a lock-free queue; a writer thread
+// formats, writes and flushes them, so nothing is lost on a fault or Ctrl-C and the cycle never
+// waits on a disk. At the end it adds the summary and draws the plot.
+
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "journal/event.hpp"
+#include "journal/run_summary.hpp"
+#include "journal/spsc_queue.hpp"
+
+namespace cellctl::journal {
+
+// What post() does when the writer has fallen behind: in real time the cycle must not wait, so the
+// event is counted as dropped (and the count is in the summary); in virtual time nothing is
+// real-time, so the cycle waits for room and nothing is ever dropped.
+enum class WhenFull : std::uint8_t { drop_and_count, wait };
+
+class Journal {
+ public:
+  // Creates `dir` if needed and opens dir/journal.jsonl; throws std::runtime_error naming the path.
+  Journal(const std::filesystem::path& dir, WhenFull when_full);
+  ~Journal();
+  Journal(const Journal&) = delete;
+  Journal& operator=(const Journal&) = delete;
+
+  // Cycle side: no allocation, no lock, no I/O.
+  void post(double t, const Payload& payload) noexcept;
+
+  // Drains everything, appends {"event":"summary",…} with `extra` merged in (cycle statistics),
+  // writes plot.svg, flushes and closes. Idempotent.
+  void close(const nlohmann::json& extra = {});
+
+  [[nodiscard]] const std::filesystem::path& dir() const noexcept { return dir_; }
+  [[nodiscard]] std::uint64_t dropped() const noexcept { return dropped_.load(); }
+  // Valid after close().
+  [[nodiscard]] const RunSummary& summary() const noexcept { return summary_; }
+
+ private:
+  void run_writer();
+  bool drain();
+
+  std::filesystem::path dir_;
+  WhenFull when_full_;
+  std::FILE* file_ = nullptr;
+  std::unique_ptr<SpscQueue<Event, 8192>> queue_;
+  std::atomic<bool> closing_{false};
+  std::atomic<std::uint64_t> dropped_{0};
+  std::vector<std::pair<double, Sample>> samples_;  // writer thread only
+  RunSummary summary_;                              // writer thread only until close()
+  std::thread writer_;
+  bool closed_ = false;
+};
+
+}  // namespace cellctl::journal

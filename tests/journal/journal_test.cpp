@@ -1,0 +1,102 @@
+#include "journal/journal.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace cellctl::journal {
+namespace {
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  auto d = std::filesystem::temp_directory_path() / ("cellctl-journal-" + name + "-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(d);
+  return d;
+}
+
+std::vector<nlohmann::json> read_lines(const std::filesystem::path& file) {
+  std::vector<nlohmann::json> out;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) out.push_back(nlohmann::json::parse(line));
+  return out;
+}
+
+TEST(Journal, WritesEveryEventAsOneJsonLineThenTheSummary) {
+  const auto dir = fresh_dir("lines");
+  {
+    Journal j(dir, WhenFull::wait);
+    j.post(0.0, RunStarted{"demo", "cell", "virtual-time", 2});
+    j.post(0.1, StateChanged{"Idle", "Starting", Text::format("operator start")});
+    j.post(0.2, StepStarted{0, "go (line 3)"});
+    Sample s;
+    s.axes = 2;
+    s.planned_mm = {1.0f, 2.0f};
+    s.scu_mm = {0.5f, 1.5f};
+    s.encoder_mm = 0.5f;
+    s.spindle_actual_hz = 100.0f;
+    j.post(0.3, s);
+    j.post(1.2, StepEnded{0, "go (line 3)", true, {}});
+    j.post(1.3, RunEnded{"complete"});
+    j.close({{"cycles", 1300}});
+  }
+  const auto lines = read_lines(dir / "journal.jsonl");
+  ASSERT_EQ(lines.size(), 7u);
+  EXPECT_EQ(lines[0]["event"], "run_started");
+  EXPECT_EQ(lines[1]["to"], "Starting");
+  EXPECT_EQ(lines[1]["reason"], "operator start");
+  EXPECT_EQ(lines[3]["event"], "sample");
+  EXPECT_EQ(lines[3]["scu_mm"].size(), 2u);
+  EXPECT_EQ(lines[4]["event"], "step_done");
+  EXPECT_EQ(lines[6]["event"], "summary");
+  EXPECT_EQ(lines[6]["outcome"], "complete");
+  EXPECT_EQ(lines[6]["cycles"], 1300);
+  EXPECT_NEAR(lines[6]["steps"][0]["seconds"].get<double>(), 1.0, 1e-9);
+  std::ifstream svg(dir / "plot.svg");
+  const std::string text((std::istreambuf_iterator<char>(svg)), {});
+  EXPECT_NE(text.find("<svg"), std::string::npos);
+  EXPECT_NE(text.find("<polyline"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Journal, PostedEventsReachTheFileWithoutClosing) {
+  // What a Ctrl-C or a crash would leave: the writer flushes each batch on its own.
+  const auto dir = fresh_dir("flush");
+  Journal j(dir, WhenFull::wait);
+  j.post(0.0, Fault{"overspeed", 1, Text::format("x at 30 mm/s")});
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  std::vector<nlohmann::json> lines;
+  while (lines.empty() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    lines = read_lines(dir / "journal.jsonl");
+  }
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0]["rule"], "overspeed");
+  j.close();
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Journal, WaitModeLosesNothingUnderAFlood) {
+  const auto dir = fresh_dir("flood");
+  constexpr int kEvents = 50'000;  // several times the queue
+  {
+    Journal j(dir, WhenFull::wait);
+    for (int i = 0; i < kEvents; ++i) j.post(i * 0.001, Note{Text::format("n{}", i)});
+    j.close();
+    EXPECT_EQ(j.dropped(), 0u);
+  }
+  const auto lines = read_lines(dir / "journal.jsonl");
+  ASSERT_EQ(lines.size(), static_cast<std::size_t>(kEvents) + 1);
+  EXPECT_EQ(lines[kEvents - 1]["text"], "n49999");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Journal, UnwritableDirectoryIsNamed) {
+  EXPECT_THROW(Journal("/proc/cellctl-cannot-write-here", WhenFull::wait), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace cellctl::journal
