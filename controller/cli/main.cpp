@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "cli/check_command.hpp"
 #include "cli/commands.hpp"
 #include "cli/drive.hpp"
 #include "cli/exit_codes.hpp"
@@ -35,6 +36,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))
       ->capture_default_str();
   app.add_flag("--trace", global.trace, "Hex trace of every telegram on every device link (to stderr)");
+
+  add_check_command(app, commands);
 
   try {
     app.parse(argc, argv);
