@@ -21,6 +21,7 @@ CellConfig parse_cell_config(const YamlNode& root, const std::filesystem::path& 
   if (auto n = root.maybe("limits")) cell.limits = parse_cell_limits(*n);
   if (auto n = root.maybe("stops")) cell.stops = parse_stop_reactions(*n);
   if (auto n = root.maybe("loop")) cell.loop = parse_loop(*n);
+  if (auto n = root.maybe("spindle")) cell.spindle = parse_spindle_section(*n);
   return cell;
 }
 

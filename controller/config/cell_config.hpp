@@ -7,6 +7,7 @@
 
 #include "config/axis_section.hpp"
 #include "config/cell_limits.hpp"
+#include "config/spindle_section.hpp"
 #include "config/yaml_node.hpp"
 
 namespace cellctl::config {
@@ -18,6 +19,7 @@ struct CellConfig {
   CellLimits limits;
   StopReactions stops;
   LoopConfig loop;
+  std::optional<SpindleSection> spindle;
 
   // The axis with this name, or nullptr.
   [[nodiscard]] const AxisConfig* axis(std::string_view axis_name) const noexcept;
