@@ -39,6 +39,13 @@ class Handshake {
   void on_input(const CyclicInput& in) noexcept;
   // Forget a finished (done/failed) handshake so that the next may start; also aborts on bus loss.
   void reset() noexcept { *this = Handshake{}; }
+  // A running handshake fails now (data exchange lost): the outcome on the encoder is unknown.
+  void abort(std::string_view why) noexcept {
+    if (busy()) {
+      phase_ = Phase::failed;
+      failure_ = why;
+    }
+  }
 
   [[nodiscard]] Kind kind() const noexcept { return kind_; }
   [[nodiscard]] Phase phase() const noexcept { return phase_; }

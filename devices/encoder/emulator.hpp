@@ -1,0 +1,76 @@
+#pragma once
+// The emulated SCH88BEX: a profibus::DpSlave whose behaviour is this encoder — parameters judged by
+// the manual's rules (Prm_Fault), the chosen functionality's configuration identifiers (Cfg_Fault),
+// the extended diagnosis, the shaft of a plant::Shaft turned into counts, and the handshakes of
+// EncoderDevice. Its EEPROM lives in a state file. Stepped by poll(now) over any Link.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "encoder/encoder_device.hpp"
+#include "link/link.hpp"
+#include "plant/shaft.hpp"
+#include "profibus/dp_slave.hpp"
+#include "profibus/slave_behaviour.hpp"
+
+namespace cellctl::encoder {
+
+struct EmulatorConfig {
+  std::uint8_t address = 1;  // the rotary switches: 1..125, or 126 (address set over the bus)
+  Functionality functionality = Functionality::scancon22;  // what the GSD module selects
+  DeviceIdentity identity;
+  link::LineFormat line = link::line_8e1(1'500'000);
+  std::filesystem::path state_file;  // empty: EEPROM not kept across restarts
+};
+
+class Emulator {
+ public:
+  // Throws std::invalid_argument (address, physical resolution) or std::runtime_error (state file).
+  Emulator(link::Link& link, const EmulatorConfig& config, const plant::Shaft& shaft);
+
+  void poll(link::TimePoint now);
+  [[nodiscard]] std::optional<link::TimePoint> next_deadline() const noexcept { return slave_.next_deadline(); }
+
+  // Fault injection: alarm::position_error / supply_voltage; warning::temperature_exceeded /
+  // light_control_reserve / operating_time_limit / battery_charge. A change raises a diagnosis (DH).
+  void set_alarm(std::uint16_t mask, bool on) noexcept;
+  void set_warning(std::uint16_t mask, bool on) noexcept;
+  // A slave that stops answering (and starts again).
+  void set_silent(bool silent) noexcept { slave_.set_silent(silent); }
+
+  [[nodiscard]] const profibus::DpSlave& slave() const noexcept { return slave_; }
+  [[nodiscard]] const EncoderDevice& device() const noexcept { return behaviour_.device; }
+  // Why the last Set_Prm was refused (the rule), empty when accepted.
+  [[nodiscard]] std::string_view last_prm_reason() const noexcept { return slave_.last_prm_reason(); }
+  [[nodiscard]] std::uint64_t watchdog_expiries() const noexcept { return slave_.counters().watchdog_expiries; }
+
+ private:
+  struct Behaviour final : profibus::SlaveBehaviour {
+    Behaviour(const EmulatorConfig& c, const NonVolatile& nv) : config(c), device(c.identity, nv) {}
+    profibus::PrmVerdict check_prm(std::span<const std::uint8_t> user_prm) override;
+    bool check_cfg(std::span<const std::uint8_t> cfg) override;
+    std::size_t ext_diag(std::span<std::uint8_t> out) override;
+    std::size_t exchange(std::span<const std::uint8_t> outputs, std::span<std::uint8_t> inputs) override;
+    bool diag_pending() override { return diag_changed; }
+    void on_watchdog_expired() override { device.release_outputs(); }
+    void on_clear_data() override { device.release_outputs(); }
+    void on_address_changed(std::uint8_t new_address, bool no_add_chg) override;
+
+    const EmulatorConfig& config;
+    EncoderDevice device;
+    std::string prm_reason;  // kept here: DpSlave holds a view of it
+    bool diag_changed = false;
+  };
+
+  [[nodiscard]] static std::uint8_t start_address(const EmulatorConfig& c, const NonVolatile& nv);
+
+  EmulatorConfig config_;
+  const plant::Shaft& shaft_;
+  NonVolatile saved_;
+  Behaviour behaviour_;
+  profibus::DpSlave slave_;
+  std::optional<link::TimePoint> last_poll_;
+};
+
+}  // namespace cellctl::encoder

@@ -1,0 +1,196 @@
+#include "encoder/session.hpp"
+
+#include <stdexcept>
+#include <variant>
+
+#include <fmt/format.h>
+
+namespace cellctl::encoder {
+namespace {
+
+profibus::DpSlaveSetup slave_setup(const SessionConfig& c) {
+  profibus::DpSlaveSetup s;
+  s.station_address = c.station_address;
+  s.ident = kIdentNumber;
+  std::array<std::uint8_t, 64> prm{};
+  s.user_prm.assign(std::span(prm).first(encode_user_prm(c.parameters, prm)));
+  s.cfg.assign(config_identifiers(c.parameters.functionality));
+  s.input_length = input_length(c.parameters.functionality);
+  s.output_length = output_length(c.parameters.functionality);
+  return s;
+}
+
+double length_per_count(const SessionConfig& c, const Scaling& scaling) {
+  if (c.counts_per_mm > 0.0 && c.mm_per_revolution > 0.0)
+    throw std::invalid_argument("encoder session: give counts_per_mm or mm_per_revolution, not both");
+  if (c.counts_per_mm > 0.0) return c.counts_per_mm;
+  if (c.mm_per_revolution > 0.0) return scaling.units_per_revolution() / c.mm_per_revolution;
+  throw std::invalid_argument(fmt::format("encoder session: counts_per_mm {} / mm_per_revolution {}: one must be > 0",
+                                          c.counts_per_mm, c.mm_per_revolution));
+}
+
+}  // namespace
+
+Session::Session(link::Link& link, const SessionConfig& config)
+    : config_(config),
+      scaling_(config.parameters, config.physical),
+      counts_per_mm_(length_per_count(config, scaling_)),
+      master_(link, config.bus, slave_setup(config)) {
+  fault_reason_.reserve(256);
+  snapshot_.has_status_bits = has_status_bits(config_.parameters);
+}
+
+void Session::activate(link::TimePoint now) {
+  handshake_.reset();
+  output_word_ = 0;
+  snapshot_.local_prm_violation = validate(config_.parameters, config_.physical);
+  if (snapshot_.local_prm_violation) {
+    // Never send parameters the encoder would refuse: say which rule, here.
+    snapshot_.lifecycle = link::Lifecycle::fault;
+    fault_reason_ = "parameters refused before sending: " + snapshot_.local_prm_violation->describe();
+    return;
+  }
+  fault_reason_.clear();
+  if (has_outputs(config_.parameters.functionality)) {
+    std::array<std::uint8_t, 4> zero{};
+    (void)master_.set_outputs(zero);
+  }
+  master_.activate(now);
+  snapshot_.lifecycle = master_.lifecycle();
+}
+
+void Session::deactivate(link::TimePoint now) {
+  handshake_.abort("session deactivated during the handshake");
+  master_.deactivate(now);
+}
+
+link::Lifecycle Session::poll(link::TimePoint now) {
+  if (snapshot_.local_prm_violation) return snapshot_.lifecycle;
+  const link::Lifecycle lc = master_.poll(now);
+  const auto& stats = master_.stats();
+  if (stats.data_exchanges != seen_exchanges_) {
+    seen_exchanges_ = stats.data_exchanges;
+    on_input(master_.inputs());
+  }
+  if (stats.diag_reads != seen_diag_reads_) {
+    seen_diag_reads_ = stats.diag_reads;
+    const auto& diag = master_.diagnosis();
+    snapshot_.standard_diag = diag.standard;
+    auto decoded = decode_diagnosis(diag.extended.view());
+    if (auto* d = std::get_if<EncoderDiagnosis>(&decoded)) snapshot_.diagnosis = *d;
+    snapshot_.diagnosis_reads = seen_diag_reads_;
+  }
+  const auto state = master_.dp_state();
+  snapshot_.lifecycle = lc;
+  snapshot_.dp_state = state;
+  snapshot_.data_exchange = state == profibus::DpState::data_exchange || state == profibus::DpState::diag_cyclic;
+  snapshot_.exchanges = seen_exchanges_;
+  snapshot_.input_age = master_.input_age(now);
+  snapshot_.startup_fault = master_.last_startup_fault().kind;
+  if (!snapshot_.data_exchange && handshake_.busy()) {
+    handshake_.abort("data exchange lost during the handshake");
+    push_outputs();
+  }
+  snapshot_.command = CommandStatus{handshake_.kind(), handshake_.phase(), handshake_.result(), handshake_.failure()};
+  update_fault(now);
+  return lc;
+}
+
+void Session::update_fault(link::TimePoint) {
+  if (snapshot_.lifecycle != link::Lifecycle::fault) {
+    if (!fault_reason_.empty()) fault_reason_.clear();
+    return;
+  }
+  if (!fault_reason_.empty()) return;  // written once per fault
+  fault_reason_ = master_.fault_reason();
+  if (snapshot_.startup_fault == profibus::StartupFault::Kind::prm_fault) {
+    // The slave does not say which rule: the local check passed, so its resolution must differ.
+    fault_reason_ += fmt::format(" (parameters pass the local check for {} steps × {} revolutions",
+                                 config_.physical.steps_per_revolution, config_.physical.revolutions);
+    if (snapshot_.diagnosis)
+      fault_reason_ += fmt::format("; the encoder reports {} × {}", snapshot_.diagnosis->singleturn_resolution,
+                                   snapshot_.diagnosis->revolutions);
+    fault_reason_ += ")";
+  } else if (snapshot_.startup_fault == profibus::StartupFault::Kind::cfg_fault) {
+    fault_reason_ += fmt::format(" (the encoder is not set up for {})", to_string(config_.parameters.functionality));
+  }
+}
+
+void Session::on_input(std::span<const std::uint8_t> bytes) noexcept {
+  const bool with_status = snapshot_.has_status_bits;
+  auto decoded = decode_input(config_.parameters.functionality, with_status, bytes);
+  const auto* in = std::get_if<CyclicInput>(&decoded);
+  if (in == nullptr) return;
+  const TimeBase tb = config_.parameters.time_base;
+  const double upr = scaling_.units_per_revolution();
+  snapshot_.position_counts = in->position(with_status);
+  snapshot_.position_mm = static_cast<double>(snapshot_.position_counts) / counts_per_mm_;
+  snapshot_.velocity_raw = in->velocity;
+  snapshot_.velocity_saturated = saturated(in->velocity);
+  snapshot_.velocity_mm_s = units_per_second(in->velocity, tb, upr) / counts_per_mm_;
+  snapshot_.acceleration_raw = in->acceleration;
+  snapshot_.acceleration_saturated = saturated(in->acceleration);
+  snapshot_.acceleration_mm_s2 =
+      units_per_second(in->acceleration, tb, upr) / counts_per_mm_ / link::to_seconds(sample_period(tb));
+  if (with_status) snapshot_.status = in->status();
+  // The first reply after an output change may answer a request sent before it: skip it.
+  if (handshake_.busy() && seen_exchanges_ > outputs_changed_at_ + 1) {
+    handshake_.on_input(*in);
+    push_outputs();
+  }
+}
+
+void Session::push_outputs() noexcept {
+  if (!has_outputs(config_.parameters.functionality)) return;
+  const std::uint32_t w = handshake_.output();
+  if (w == output_word_) return;
+  std::array<std::uint8_t, 4> out{};
+  (void)encode_output(w, out);
+  if (master_.set_outputs(out)) {
+    output_word_ = w;
+    outputs_changed_at_ = seen_exchanges_;
+  }
+}
+
+bool Session::manufacturer_function_allowed() const noexcept {
+  return snapshot_.data_exchange && !handshake_.busy() && has_status_bits(config_.parameters) &&
+         config_.parameters.commissioning;
+}
+
+bool Session::preset(std::uint32_t value) noexcept {
+  if (!snapshot_.data_exchange || !has_outputs(config_.parameters.functionality) || handshake_.busy()) return false;
+  if (value >= scaling_.range()) return false;  // 4.3.2: at most Total Measuring Range − 1
+  if (!handshake_.start_preset(value, snapshot_.has_status_bits)) return false;
+  push_outputs();
+  return true;
+}
+
+bool Session::set_direction(CodeSequence wanted) noexcept {
+  if (!manufacturer_function_allowed() || !handshake_.start_direction(wanted)) return false;
+  push_outputs();
+  return true;
+}
+
+bool Session::teach_in_start() noexcept {
+  if (!manufacturer_function_allowed() || !handshake_.start_teach_in()) return false;
+  push_outputs();
+  return true;
+}
+
+bool Session::teach_in_end(std::uint32_t distance) noexcept {
+  if (!manufacturer_function_allowed() || !handshake_.end_teach_in(distance)) return false;
+  push_outputs();
+  return true;
+}
+
+void Session::clear_command() noexcept {
+  if (handshake_.busy()) return;
+  handshake_.reset();
+  snapshot_.command = CommandStatus{};
+}
+
+bool Session::set_slave_address(std::uint8_t new_address) noexcept {
+  return master_.set_slave_address(new_address, false);
+}
+
+}  // namespace cellctl::encoder

@@ -1,0 +1,117 @@
+#pragma once
+// The encoder's DP master: a profibus::DpMaster set up with this encoder's Prm/Cfg (from typed
+// EncoderParameters), a typed snapshot per cycle (position in counts and mm, velocity in mm/s,
+// status bits, decoded diagnosis, start-up faults with the rule broken) and the manufacturer
+// functions as handshakes that run across cycles. Non-blocking: poll(now) never waits; no
+// allocation in poll() except when a fault reason is written.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "encoder/cyclic.hpp"
+#include "encoder/diagnosis.hpp"
+#include "encoder/handshake.hpp"
+#include "encoder/parameters.hpp"
+#include "encoder/scaling.hpp"
+#include "link/lifecycle.hpp"
+#include "link/link.hpp"
+#include "profibus/dp_master.hpp"
+
+namespace cellctl::encoder {
+
+struct SessionConfig {
+  std::uint8_t station_address = 1;  // 126: only set_slave_address() is possible
+  EncoderParameters parameters;
+  PhysicalResolution physical;        // of the encoder in use: for the local parameter check
+  profibus::DpMasterConfig bus;       // master address, line, slot time, retries, watchdog, lost time
+  // Length per count: exactly one of the two is > 0 (mm_per_revolution uses the units per revolution).
+  double counts_per_mm = 0.0;
+  double mm_per_revolution = 0.0;
+};
+
+// Where a command (handshake) stands.
+struct CommandStatus {
+  Handshake::Kind kind = Handshake::Kind::none;
+  Handshake::Phase phase = Handshake::Phase::idle;
+  std::uint32_t result = 0;   // preset/direction: position; Teach-In end: total resolution
+  std::string_view failure;   // static text when failed
+};
+
+struct Snapshot {
+  link::Lifecycle lifecycle = link::Lifecycle::inactive;
+  profibus::DpState dp_state = profibus::DpState::stopped;
+  bool data_exchange = false;
+  std::uint64_t exchanges = 0;      // good Data_Exchange replies so far
+  link::Duration input_age{};       // since the last good input
+
+  std::uint32_t position_counts = 0;  // measuring units
+  double position_mm = 0.0;
+  std::int16_t velocity_raw = 0;      // in the time base's unit
+  bool velocity_saturated = false;
+  double velocity_mm_s = 0.0;
+  std::int16_t acceleration_raw = 0;
+  bool acceleration_saturated = false;
+  double acceleration_mm_s2 = 0.0;
+  bool has_status_bits = false;
+  StatusBits status;                  // meaningful when has_status_bits
+
+  profibus::StandardDiag standard_diag;
+  std::optional<EncoderDiagnosis> diagnosis;  // the last extended diagnosis that decoded
+  std::uint64_t diagnosis_reads = 0;
+
+  std::optional<PrmViolation> local_prm_violation;  // refused here before anything was sent
+  profibus::StartupFault::Kind startup_fault = profibus::StartupFault::Kind::none;  // what the slave said
+  CommandStatus command;
+};
+
+class Session {
+ public:
+  // Throws std::invalid_argument naming the field and value (scale factors, bus settings).
+  Session(link::Link& link, const SessionConfig& config);
+
+  void activate(link::TimePoint now);
+  void deactivate(link::TimePoint now);
+  [[nodiscard]] link::Lifecycle poll(link::TimePoint now);
+  [[nodiscard]] std::optional<link::TimePoint> next_deadline() const noexcept { return master_.next_deadline(); }
+
+  [[nodiscard]] const Snapshot& snapshot() const noexcept { return snapshot_; }
+  [[nodiscard]] const link::LinkHealth& health() const noexcept { return master_.health(); }
+  [[nodiscard]] const std::string& fault_reason() const noexcept { return fault_reason_; }
+  [[nodiscard]] const SessionConfig& config() const noexcept { return config_; }
+  [[nodiscard]] double counts_per_mm() const noexcept { return counts_per_mm_; }
+
+  // Commands: false when not in data exchange, another command runs, or the function is not
+  // available with these parameters (value beyond the range; direction/Teach-In need the status
+  // bits and commissioning mode). Progress in snapshot().command; clear_command() after done/failed.
+  [[nodiscard]] bool preset(std::uint32_t value) noexcept;
+  [[nodiscard]] bool set_direction(CodeSequence wanted) noexcept;
+  [[nodiscard]] bool teach_in_start() noexcept;
+  [[nodiscard]] bool teach_in_end(std::uint32_t distance) noexcept;
+  void clear_command() noexcept;
+  // Set_Slave_Add for an encoder at station 126 (rotary switches at 0x7E, manual 3.4).
+  [[nodiscard]] bool set_slave_address(std::uint8_t new_address) noexcept;
+  [[nodiscard]] profibus::RequestStatus address_change_status() const noexcept {
+    return master_.address_change_status();
+  }
+
+ private:
+  [[nodiscard]] bool manufacturer_function_allowed() const noexcept;
+  void on_input(std::span<const std::uint8_t> bytes) noexcept;
+  void push_outputs() noexcept;
+  void update_fault(link::TimePoint now);
+
+  SessionConfig config_;
+  Scaling scaling_;
+  double counts_per_mm_;
+  profibus::DpMaster master_;
+  Handshake handshake_;
+  std::uint64_t seen_exchanges_ = 0;
+  std::uint64_t seen_diag_reads_ = 0;
+  std::uint64_t outputs_changed_at_ = 0;  // exchange count when the output word last changed
+  std::uint32_t output_word_ = 0;
+  Snapshot snapshot_;
+  std::string fault_reason_;
+};
+
+}  // namespace cellctl::encoder
