@@ -1,0 +1,450 @@
+#include "scu/session.hpp"
+
+#include <cstdlib>
+
+#include "scu/data_list.hpp"
+#include "wire/byte_writer.hpp"
+
+namespace cellctl::scu {
+
+const char* to_string(MoveOutcome o) noexcept {
+  switch (o) {
+    case MoveOutcome::none: return "none";
+    case MoveOutcome::queued: return "queued";
+    case MoveOutcome::running: return "running";
+    case MoveOutcome::arrived: return "arrived";
+    case MoveOutcome::stopped_short: return "stopped short of the target";
+    case MoveOutcome::refused: return "refused by the SCU";
+  }
+  return "?";
+}
+
+namespace {
+long long ms(link::Duration d) { return std::chrono::duration_cast<std::chrono::milliseconds>(d).count(); }
+std::uint8_t fnc(int function) { return static_cast<std::uint8_t>(function - 1); }
+}  // namespace
+
+Session::Session(link::Link& link, const SessionConfig& config)
+    : link_(link), config_(config), layout_(config.actuators) {
+  validate(config_);
+  for (std::size_t a = 0; a < kActuatorCount; ++a) snapshot_.actuators[a].configured = config_.actuators.test(a);
+  keepalive_.purpose = Purpose::keepalive;
+  const CyclicRequest rc{0, {}};
+  (void)encode_request(rc, keepalive_.bytes);
+  keepalive_.shape = reply_shape(rc);
+}
+
+bool Session::defined(int function) const noexcept {
+  return function >= 1 && function <= kMotionFunctionCount &&
+         config_.functions[static_cast<std::size_t>(function - 1)].defined;
+}
+
+bool Session::enqueue(bool urgent, const Request& r, Purpose p, std::uint8_t function, std::uint16_t data_id) {
+  Pending pending;
+  if (!encode_request(r, pending.bytes)) return false;
+  pending.shape = reply_shape(r);
+  pending.purpose = p;
+  pending.function = function;
+  pending.data_id = data_id;
+  return urgent ? urgent_.push_back(pending) : normal_.push_back(pending);
+}
+
+void Session::activate(link::TimePoint now) {
+  urgent_.clear();
+  normal_.clear();
+  in_flight_.reset();
+  replies_.expect_nothing();
+  fault_reason_.clear();
+  snapshot_.remote_open = false;
+  keepalive_armed_ = false;
+  stop_queued_.reset();
+  activated_at_ = now;
+  health_.last_good.reset();
+  state_ = link::Lifecycle::activating;
+  const auto object = layout_.object_value();
+  (void)enqueue(false, OpenRequest{config_.safety_id}, Purpose::open);
+  (void)enqueue(false, CyclicRequest{}, Purpose::first_keepalive);
+  (void)enqueue(false, TransferRequest{data_id::cyclic_object(1), object}, Purpose::setup_cyclic);
+}
+
+void Session::deactivate(link::TimePoint now) {
+  if (state_ != link::Lifecycle::active && state_ != link::Lifecycle::activating) {
+    state_ = link::Lifecycle::inactive;
+    return;
+  }
+  (void)now;
+  normal_.clear();
+  state_ = link::Lifecycle::deactivating;
+  for (int f = 1; f <= kMotionFunctionCount; ++f) {
+    auto& fs = snapshot_.functions[static_cast<std::size_t>(f - 1)];
+    const bool in_flight_execute = in_flight_ && in_flight_->purpose == Purpose::execute &&
+                                   in_flight_->function == fnc(f);
+    if ((fs.execution_open || in_flight_execute) && !stop_queued_.test(static_cast<std::size_t>(f - 1))) {
+      (void)enqueue(true, StopRequest{fnc(f), kSoftStartStop}, Purpose::stop, fnc(f));
+      stop_queued_.set(static_cast<std::size_t>(f - 1));
+    }
+  }
+  if (snapshot_.emergency_stop_open) (void)enqueue(true, StopRequest{kEmergencyStopFnc, kUnusedParam}, Purpose::release_emergency);
+  if (snapshot_.remote_open || in_flight_) (void)enqueue(false, AbortRequest{}, Purpose::close);
+  else state_ = link::Lifecycle::inactive;
+}
+
+link::Lifecycle Session::poll(link::TimePoint now) {
+  if (state_ == link::Lifecycle::inactive || state_ == link::Lifecycle::fault) {
+    std::array<std::uint8_t, 64> sink{};
+    while (link_.read(sink).count > 0) {
+    }  // nobody asked: whatever arrives is stale
+    return state_;
+  }
+  receive(now);
+  if (state_ == link::Lifecycle::fault) return state_;
+  if (in_flight_ && now - sent_at_ > config_.reply_timeout) {
+    ++health_.timeouts;
+    retry_or_give_up(now, "no reply");
+  }
+  if (state_ == link::Lifecycle::fault) return state_;
+  const auto silent = health_.silent_for(now, activated_at_);
+  if (silent > config_.link_fault_after) {
+    fault("SCU on " + link_.describe() + " silent for " + std::to_string(ms(silent)) + " ms (limit " +
+          std::to_string(ms(config_.link_fault_after)) +
+          " ms): check the cable, the SCU's power, DTR/RTS and the baud rate");
+    return state_;
+  }
+  if (!in_flight_ && state_ != link::Lifecycle::inactive) send_next(now);
+  return state_;
+}
+
+void Session::receive(link::TimePoint now) {
+  std::array<std::uint8_t, 256> buf{};
+  for (;;) {
+    const auto r = link_.read(buf);
+    if (r.status != link::IoStatus::ok) {
+      fault("SCU link " + link_.describe() + " " + (r.status == link::IoStatus::closed ? "closed" : "failed") +
+            ": check the port");
+      return;
+    }
+    if (r.count == 0) return;
+    (void)replies_.feed(std::span(buf).first(r.count));
+    for (auto e = replies_.next(); e.kind != ReplyStream::Event::Kind::need_more; e = replies_.next()) {
+      if (e.kind == ReplyStream::Event::Kind::reply) {
+        on_reply(e.reply, now);
+        if (state_ == link::Lifecycle::fault) return;
+        continue;
+      }
+      ++health_.bad_frames;
+      // A damaged reply to the request in flight (complete, wrong CRC): ask again at once.
+      if (e.error == DecodeError::bad_crc && in_flight_) retry_or_give_up(now, "replies with a bad CRC");
+      if (state_ == link::Lifecycle::fault) return;
+    }
+  }
+}
+
+void Session::on_reply(const Reply& reply, link::TimePoint now) {
+  if (!in_flight_) return;
+  health_.record_reply(sent_at_, now);
+  if (reply.status == Status::checksum_error) {
+    // The SCU saw our request damaged: the same request again.
+    ++health_.error_replies;
+    retry_or_give_up(now, "answers CSE (checksum error) every time");
+    return;
+  }
+  const Pending done = *in_flight_;
+  in_flight_.reset();
+  replies_.expect_nothing();
+  if (reply.status == Status::ack) {
+    on_ack(reply, done, now);
+  } else {
+    on_refusal(reply, done);
+  }
+}
+
+void Session::on_ack(const Reply& reply, const Pending& p, link::TimePoint now) {
+  auto& fs = snapshot_.functions[p.function < kMotionFunctionCount ? p.function : 0];
+  switch (p.purpose) {
+    case Purpose::open: snapshot_.remote_open = true; break;
+    case Purpose::first_keepalive: break;
+    case Purpose::setup_cyclic:
+      keepalive_armed_ = true;
+      last_keepalive_sent_ = now - config_.keepalive_period;  // the first refresh at once
+      break;
+    case Purpose::keepalive: on_refresh(reply.data, now); break;
+    case Purpose::position: break;
+    case Purpose::speed: break;
+    case Purpose::execute:
+      fs.execution_open = true;
+      fs.outcome = MoveOutcome::running;
+      execute_mark_[p.function] = snapshot_.refreshes;
+      break;
+    case Purpose::stop:
+      fs.execution_open = false;
+      stop_queued_.reset(p.function);
+      if (fs.outcome == MoveOutcome::running || fs.outcome == MoveOutcome::queued) fs.outcome = MoveOutcome::stopped_short;
+      break;
+    case Purpose::emergency_stop: snapshot_.emergency_stop_open = true; break;
+    case Purpose::release_emergency: snapshot_.emergency_stop_open = false; break;
+    case Purpose::read:
+      snapshot_.last_read.data_id = p.data_id;
+      snapshot_.last_read.valid = true;
+      snapshot_.last_read.status = Status::ack;
+      (void)snapshot_.last_read.value.assign(reply.data);
+      ++snapshot_.last_read.sequence;
+      break;
+    case Purpose::close:
+      snapshot_.remote_open = false;
+      state_ = link::Lifecycle::inactive;
+      break;
+  }
+}
+
+void Session::on_refusal(const Reply& reply, const Pending& p) {
+  ++health_.error_replies;
+  ++snapshot_.refusals;
+  snapshot_.last_refusal = Refusal{reply.command, reply.status};
+  const auto what = std::string(to_string(reply.command)) + " refused with " + std::string(to_string(reply.status)) +
+                    " (" + std::string(describe(reply.status)) + ")";
+  switch (p.purpose) {
+    case Purpose::open:
+    case Purpose::first_keepalive:
+    case Purpose::setup_cyclic:
+    case Purpose::close:
+      fault("SCU " + what + " while " + (state_ == link::Lifecycle::deactivating ? "leaving" : "entering") +
+            " remote mode: check safety_id and the SCU's parameterization, then activate again");
+      return;
+    case Purpose::keepalive:
+      // Remote mode is gone (watchdog lapse with Safety_ID 0, or the SCU was reset): it must be opened again.
+      fault("SCU " + what + " on the keep-alive: remote mode was lost (watchdog?); activate again");
+      return;
+    case Purpose::position:
+    case Purpose::speed:
+    case Purpose::execute:
+      snapshot_.functions[p.function].outcome = MoveOutcome::refused;
+      drop_queued_moves(p.function);
+      return;
+    case Purpose::stop:
+      stop_queued_.reset(p.function);
+      return;
+    case Purpose::emergency_stop:
+    case Purpose::release_emergency: return;
+    case Purpose::read:
+      snapshot_.last_read.data_id = p.data_id;
+      snapshot_.last_read.valid = false;
+      snapshot_.last_read.status = reply.status;
+      snapshot_.last_read.value.clear();
+      ++snapshot_.last_read.sequence;
+      return;
+  }
+}
+
+void Session::on_refresh(std::span<const std::uint8_t> data, link::TimePoint now) {
+  CyclicRefresh r;
+  if (!layout_.decode(data, r)) {
+    ++health_.bad_frames;
+    return;
+  }
+  for (std::size_t a = 0; a < kActuatorCount; ++a) {
+    if (!config_.actuators.test(a)) continue;
+    snapshot_.actuators[a].position_edges = r.positions[a];
+    snapshot_.actuators[a].status = r.status[a];
+  }
+  snapshot_.errors = r.errors;
+  if (r.errors.remote_timeout()) snapshot_.watchdog_lapse_seen = true;
+  ++snapshot_.refreshes;
+  snapshot_.last_refresh = now;
+  if (state_ == link::Lifecycle::activating) state_ = link::Lifecycle::active;
+  close_finished_executions();
+}
+
+void Session::close_finished_executions() {
+  for (std::size_t f = 0; f < kMotionFunctionCount; ++f) {
+    auto& fs = snapshot_.functions[f];
+    if (!fs.execution_open || stop_queued_.test(f) || snapshot_.refreshes <= execute_mark_[f]) continue;
+    const auto& fn = config_.functions[f];
+    bool moving = false, on_target = fs.outcome == MoveOutcome::running;
+    for (int a = 1; a <= kActuatorCount; ++a) {
+      if (!fn.moves(a)) continue;
+      const auto& act = snapshot_.actuators[static_cast<std::size_t>(a - 1)];
+      moving = moving || act.status.motion_active;
+      if (fs.targeted.test(static_cast<std::size_t>(a - 1)) &&
+          std::abs(act.position_edges - fs.targets[static_cast<std::size_t>(a - 1)]) > config_.arrival_tolerance_edges)
+        on_target = false;
+    }
+    if (moving) continue;
+    // The motion ended (at the target, stopped, or never started because the speed was below the
+    // actuator's threshold): the manual wants the RE closed with RS in every case.
+    if (fs.outcome == MoveOutcome::running) fs.outcome = on_target ? MoveOutcome::arrived : MoveOutcome::stopped_short;
+    if (enqueue(true, StopRequest{static_cast<std::uint8_t>(f), kUnusedParam}, Purpose::stop,
+                static_cast<std::uint8_t>(f)))
+      stop_queued_.set(f);
+  }
+}
+
+void Session::retry_or_give_up(link::TimePoint now, const char* why) {
+  if (!in_flight_) return;
+  if (attempts_ <= config_.retries) {
+    ++health_.retries;
+    transmit(*in_flight_, now);
+    return;
+  }
+  const Pending failed = *in_flight_;
+  in_flight_.reset();
+  replies_.expect_nothing();
+  switch (failed.purpose) {
+    case Purpose::open:
+    case Purpose::first_keepalive:
+    case Purpose::setup_cyclic:
+    case Purpose::close:
+      fault("SCU on " + link_.describe() + ": " + std::string(to_string(failed.shape.command)) + " got " + why +
+            " after " + std::to_string(attempts_) + " attempts: check the cable, the port and the baud rate");
+      return;
+    case Purpose::stop:
+    case Purpose::emergency_stop:
+    case Purpose::release_emergency:
+      (void)urgent_.push_front(failed);  // a stop is never given up; the link fault ends it if the SCU is gone
+      return;
+    case Purpose::position:
+    case Purpose::speed:
+    case Purpose::execute:
+      snapshot_.functions[failed.function].outcome = MoveOutcome::refused;
+      drop_queued_moves(failed.function);
+      return;
+    case Purpose::keepalive:
+    case Purpose::read: return;  // the next refresh or the caller's next read will do
+  }
+}
+
+void Session::send_next(link::TimePoint now) {
+  const bool keepalive_due = keepalive_armed_ && now - last_keepalive_sent_ >= config_.keepalive_period;
+  // Stops first; then the watchdog's RC when due (it must never starve); then the queue; with a zero
+  // period the RC fills every gap instead.
+  if (!urgent_.empty()) {
+    const Pending p = urgent_.front();
+    urgent_.pop_front();
+    attempts_ = 0;
+    transmit(p, now);
+  } else if (keepalive_due && config_.keepalive_period > link::Duration::zero()) {
+    attempts_ = 0;
+    transmit(keepalive_, now);
+  } else if (!normal_.empty()) {
+    const Pending p = normal_.front();
+    normal_.pop_front();
+    attempts_ = 0;
+    transmit(p, now);
+  } else if (keepalive_due) {
+    attempts_ = 0;
+    transmit(keepalive_, now);
+  }
+}
+
+void Session::transmit(const Pending& p, link::TimePoint now) {
+  ++attempts_;
+  in_flight_ = p;
+  sent_at_ = now;
+  if (p.purpose == Purpose::keepalive || p.purpose == Purpose::first_keepalive) last_keepalive_sent_ = now;
+  replies_.expect(p.shape);
+  const auto bytes = p.bytes.view();
+  const auto r = link_.write(bytes);
+  if (r.status != link::IoStatus::ok) {
+    fault("SCU link " + link_.describe() + " failed on write: check the port");
+    return;
+  }
+  // A short write on a serial port is treated like a lost request: the reply time-out retries it.
+}
+
+void Session::drop_queued_moves(std::optional<std::uint8_t> function) {
+  (void)normal_.remove_if([&](const Pending& p) {
+    const bool move = p.purpose == Purpose::position || p.purpose == Purpose::speed || p.purpose == Purpose::execute;
+    return move && (!function || p.function == *function);
+  });
+  for (std::size_t f = 0; f < kMotionFunctionCount; ++f) {
+    if (function && f != *function) continue;
+    if (snapshot_.functions[f].outcome == MoveOutcome::queued) snapshot_.functions[f].outcome = MoveOutcome::stopped_short;
+  }
+}
+
+void Session::fault(std::string reason) {
+  state_ = link::Lifecycle::fault;
+  fault_reason_ = std::move(reason);
+  urgent_.clear();
+  normal_.clear();
+  in_flight_.reset();
+  replies_.expect_nothing();
+  keepalive_armed_ = false;
+}
+
+bool Session::move_to(int function, std::span<const ActuatorTarget> targets, std::uint16_t speed_percent, bool soft) {
+  if (!accepting() || !defined(function) || speed_percent > 100 || snapshot_.emergency_stop_open) return false;
+  const auto f = static_cast<std::size_t>(function - 1);
+  auto& fs = snapshot_.functions[f];
+  if (fs.execution_open || stop_queued_.test(f) || fs.outcome == MoveOutcome::queued) return false;
+  const auto& fn = config_.functions[f];
+  std::bitset<kActuatorCount> given;
+  for (const auto& t : targets) {
+    if (!fn.moves(t.actuator)) return false;
+    given.set(static_cast<std::size_t>(t.actuator - 1));
+  }
+  if (given != fn.actuators || normal_.free_space() < targets.size() + 2) return false;
+  for (const auto& t : targets) {
+    std::array<std::uint8_t, 4> value{};
+    wire::ByteWriter w(value);
+    w.le(t.edges);
+    (void)enqueue(false, TransferRequest{data_id::remote_position(t.actuator), value}, Purpose::position, fnc(function));
+    fs.targets[static_cast<std::size_t>(t.actuator - 1)] = t.edges;
+  }
+  std::array<std::uint8_t, 2> speed{};
+  wire::ByteWriter w(speed);
+  w.le(speed_percent);
+  (void)enqueue(false, TransferRequest{data_id::remote_speed(function), speed}, Purpose::speed, fnc(function));
+  (void)enqueue(false,
+                ExecuteRequest{fnc(function), static_cast<std::uint8_t>(Direction::remote_position),
+                               soft ? kSoftStartStop : kFastStartStop},
+                Purpose::execute, fnc(function));
+  fs.targeted = given;
+  fs.speed_percent = speed_percent;
+  fs.outcome = MoveOutcome::queued;
+  return true;
+}
+
+bool Session::stop(int function, bool soft) {
+  if (!accepting() || !defined(function)) return false;
+  const auto f = static_cast<std::size_t>(function - 1);
+  drop_queued_moves(fnc(function));
+  (void)urgent_.remove_if([&](const Pending& p) { return p.purpose == Purpose::stop && p.function == fnc(function); });
+  if (!enqueue(true, StopRequest{fnc(function), soft ? kSoftStartStop : kFastStartStop}, Purpose::stop, fnc(function)))
+    return false;
+  stop_queued_.set(f);
+  return true;
+}
+
+bool Session::emergency_stop() {
+  if (state_ != link::Lifecycle::active && state_ != link::Lifecycle::deactivating) return false;
+  drop_queued_moves(std::nullopt);
+  Pending p;
+  const ExecuteRequest f20{kEmergencyStopFnc, kUnusedParam, kUnusedParam};
+  (void)encode_request(f20, p.bytes);
+  p.shape = reply_shape(f20);
+  p.purpose = Purpose::emergency_stop;
+  return urgent_.push_front(p);
+}
+
+bool Session::release_emergency_stop() {
+  if (!accepting() || !snapshot_.emergency_stop_open) return false;
+  return enqueue(true, StopRequest{kEmergencyStopFnc, kUnusedParam}, Purpose::release_emergency);
+}
+
+bool Session::set_speed(int function, std::uint16_t speed_percent) {
+  if (!accepting() || !defined(function) || speed_percent > 100) return false;
+  std::array<std::uint8_t, 2> speed{};
+  wire::ByteWriter w(speed);
+  w.le(speed_percent);
+  if (!enqueue(false, TransferRequest{data_id::remote_speed(function), speed}, Purpose::speed, fnc(function)))
+    return false;
+  snapshot_.functions[static_cast<std::size_t>(function - 1)].speed_percent = speed_percent;
+  return true;
+}
+
+bool Session::read(std::uint16_t data_id) {
+  if (!accepting() || value_size(data_id) == 0 || value_size(data_id) > kMaxReplyData) return false;
+  return enqueue(false, GetRequest{data_id}, Purpose::read, 0, data_id);
+}
+
+}  // namespace cellctl::scu

@@ -1,0 +1,31 @@
+#pragma once
+// How the master drives one SCU: remote-mode safety, keep-alive and reply timing, retries, when
+// silence becomes a link fault, and which actuators and functions the cell has.
+
+#include <bitset>
+#include <chrono>
+#include <cstdint>
+
+#include "link/clock.hpp"
+#include "scu/functions.hpp"
+
+namespace cellctl::scu {
+
+struct SessionConfig {
+  std::uint8_t safety_id = 0;  // RO parameter: 0, 1 or 2 (manual 4.1)
+  // RC period; must stay well inside the SCU's 500 ms watchdog. Zero = back to back, as fast as the
+  // line allows (RC whenever nothing else is queued).
+  link::Duration keepalive_period = std::chrono::milliseconds(100);
+  link::Duration reply_timeout = std::chrono::milliseconds(150);
+  int retries = 2;  // further attempts after a time-out or a CSE
+  link::Duration link_fault_after = std::chrono::milliseconds(1000);
+  std::bitset<kActuatorCount> actuators = 1;  // bit a-1 = actuator a is fitted
+  FunctionTable functions = scp11(1);
+  // A move has "arrived" when every actuator ended within this of its target.
+  std::int32_t arrival_tolerance_edges = 5;
+};
+
+// Throws std::invalid_argument naming the field and the value.
+void validate(const SessionConfig& c);
+
+}  // namespace cellctl::scu

@@ -1,0 +1,68 @@
+#pragma once
+// What the SCU session publishes each poll: per actuator position and decoded status, per function
+// the state of its RE/RS pair and the outcome of the last move, the decoded error word, remote mode,
+// and the last RG result.
+
+#include <array>
+#include <bitset>
+#include <cstdint>
+#include <optional>
+
+#include "link/clock.hpp"
+#include "scu/protocol.hpp"
+#include "scu/status_flags.hpp"
+
+namespace cellctl::scu {
+
+struct ActuatorState {
+  bool configured = false;
+  std::int32_t position_edges = 0;
+  Status1 status;  // present, motion_active, in_position, out_position …
+};
+
+enum class MoveOutcome : std::uint8_t {
+  none,           // no move asked
+  queued,         // telegrams waiting to go out
+  running,        // RE acknowledged, motion not yet ended
+  arrived,        // motion ended within the tolerance of every target
+  stopped_short,  // motion ended elsewhere: stopped, stalled (speed below threshold), fault
+  refused,        // the SCU answered an error to one of the move's telegrams
+};
+[[nodiscard]] const char* to_string(MoveOutcome o) noexcept;
+
+struct FunctionState {
+  bool execution_open = false;  // RE acknowledged, its RS not yet
+  MoveOutcome outcome = MoveOutcome::none;
+  std::uint16_t speed_percent = 0;  // last remote speed written
+  std::bitset<kActuatorCount> targeted;
+  std::array<std::int32_t, kActuatorCount> targets{};  // edges, for the targeted actuators
+};
+
+struct LastRead {
+  std::uint16_t data_id = 0;
+  bool valid = false;
+  Status status = Status::ack;
+  wire::FixedBytes<kMaxReplyData> value;
+  std::uint64_t sequence = 0;  // increments with every completed read
+};
+
+struct Refusal {
+  Command command = Command::get;
+  Status status = Status::ack;
+};
+
+struct Snapshot {
+  std::array<ActuatorState, kActuatorCount> actuators{};    // [a-1]
+  std::array<FunctionState, kMotionFunctionCount> functions{};  // [f-1]
+  ErrorWord errors;
+  bool remote_open = false;
+  bool emergency_stop_open = false;   // F20 executed, its RS not yet sent
+  bool watchdog_lapse_seen = false;   // error bit 22 was reported at least once
+  std::uint64_t refreshes = 0;        // RC replies with position/status data
+  std::optional<link::TimePoint> last_refresh;
+  LastRead last_read;
+  std::optional<Refusal> last_refusal;
+  std::uint64_t refusals = 0;
+};
+
+}  // namespace cellctl::scu
