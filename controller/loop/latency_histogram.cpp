@@ -8,14 +8,14 @@ namespace {
 
 using link::Duration;
 
-// edges[k] = 1 us * 10^(k / 20) for k = 0 .. kLogBins, rounded to whole nanoseconds (so the decade
-// edges are exact: 1 us, 10 us, ...).
+// edges[k] = 100 ns * 10^(k / 20) for k = 0 .. kLogBins, rounded to whole nanoseconds (so the decade
+// edges are exact: 100 ns, 1 us, 10 us, ...).
 const std::array<std::int64_t, LatencyHistogram::kLogBins + 1>& edges() noexcept {
   static const auto table = [] {
     std::array<std::int64_t, LatencyHistogram::kLogBins + 1> t{};
     for (std::size_t k = 0; k < t.size(); ++k) {
       const double exponent = static_cast<double>(k) / static_cast<double>(LatencyHistogram::kBinsPerDecade);
-      t[k] = std::llround(1000.0 * std::pow(10.0, exponent));
+      t[k] = std::llround(100.0 * std::pow(10.0, exponent));
     }
     return t;
   }();

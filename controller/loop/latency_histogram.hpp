@@ -1,6 +1,7 @@
 #pragma once
-// A fixed-size histogram of durations with log-spaced bins from 1 us to 100 ms (20 per decade, so a
-// bin is 12 % wide), plus an underflow bin [0, 1 us) and an overflow bin [100 ms, inf). Recording
+// A fixed-size histogram of durations with log-spaced bins from 100 ns to 100 ms (20 per decade, so
+// a bin is 12 % wide), plus an underflow bin [0, 100 ns) and an overflow bin [100 ms, inf). The range
+// starts below 1 us because stage compute times are often sub-microsecond. Recording
 // is a binary search in a constant table: no allocation, safe inside the control cycle.
 
 #include <array>
@@ -14,7 +15,7 @@ namespace cellctl::loop {
 class LatencyHistogram {
  public:
   static constexpr std::size_t kBinsPerDecade = 20;
-  static constexpr std::size_t kDecades = 5;  // 1 us .. 100 ms
+  static constexpr std::size_t kDecades = 6;  // 100 ns .. 100 ms
   static constexpr std::size_t kLogBins = kBinsPerDecade * kDecades;
   static constexpr std::size_t kBins = kLogBins + 2;  // + underflow + overflow
 

@@ -28,7 +28,7 @@ Loop::Loop(const link::Clock& clock, CycleWaiter& waiter, link::Duration period,
 
 void Loop::record_wake(link::TimePoint deadline, link::TimePoint woke) noexcept {
   stats_.jitter.record(woke - deadline);
-  if (has_last_wake_) stats_.period.record(woke - last_wake_);
+  if (has_last_wake_) stats_.period_error.record(std::chrono::abs(woke - last_wake_ - period_));
   has_last_wake_ = true;
   last_wake_ = woke;
 }
@@ -48,7 +48,7 @@ std::string Loop::summary() const {
                                 stats_.cycles, period_us, stats_.overrun_cycles, stats_.missed_deadlines);
   out += fmt::format("wake-up jitter: {} (p99 / period {:.2f} %)\n", percentiles(stats_.jitter),
                      100.0 * to_us(stats_.jitter.percentile(0.99)) / period_us);
-  out += fmt::format("period:         {}\n", percentiles(stats_.period));
+  out += fmt::format("period error:   {}\n", percentiles(stats_.period_error));
   for (std::size_t s = 0; s < stages_.size(); ++s) {
     const LatencyHistogram& h = stages_.histogram(s);
     out += fmt::format("stage {:<16} mean {:.2f} us, {}\n", stages_.name(s), to_us(h.mean()), percentiles(h));

@@ -25,7 +25,7 @@ struct LoopStats {
   std::uint64_t cycles = 0;            // bodies run
   std::uint64_t overrun_cycles = 0;    // cycles that ran past their next deadline
   std::uint64_t missed_deadlines = 0;  // deadlines skipped because of them
-  LatencyHistogram period;             // between consecutive wake-ups
+  LatencyHistogram period_error;       // |time between consecutive wake-ups - period|
   LatencyHistogram jitter;             // wake-up minus deadline
 };
 
