@@ -1,0 +1,76 @@
+#pragma once
+// CellState: the one snapshot of the whole cell that the monitor and the supervisor read each cycle,
+// in the program's units (mm, mm/s, Hz, s). Built from the three sessions' snapshots by CellDevices;
+// plain data, so the monitor and supervisor can be tested on states made by hand.
+
+#include <array>
+#include <cstdint>
+
+#include "link/clock.hpp"
+
+namespace cellctl::cell {
+
+inline constexpr std::size_t kMaxAxes = 6;
+
+struct AxisState {
+  bool present = false;      // the SCU reports the actuator
+  double scu_mm = 0.0;       // the SCU's own position (its edges ÷ edges_per_mm)
+  bool moving = false;       // SCU status 1: motion active
+  bool homed = false;        // SCU status 2: initialised
+  bool actuator_fault = false;
+  bool measured = false;     // the encoder measures this axis
+  double encoder_mm = 0.0;   // valid when measured and the encoder is in data exchange
+  double encoder_mm_s = 0.0;
+
+  // The best position there is: the encoder's where it measures the axis, else the SCU's.
+  [[nodiscard]] double position_mm() const noexcept { return measured ? encoder_mm : scu_mm; }
+};
+
+struct EncoderState {
+  bool data_exchange = false;
+  bool ready = false;           // status bit "Ready" (or data exchange in status-less modes)
+  bool alarm = false;           // diagnosis: an alarm is set
+  bool limit_switch = false;    // status bit "Limit switch"
+  bool diagnosis_pending = false;
+  double mm = 0.0;
+  double mm_s = 0.0;
+};
+
+struct SpindleState {
+  bool active = false;  // session active
+  double set_hz = 0.0;
+  double actual_hz = 0.0;
+  bool running = false;  // commanded to run
+  bool at_speed = false;
+  bool at_rest = true;
+  bool warning = false;
+  bool fault = false;
+  std::uint8_t fault_number = 0;
+  bool over_temperature = false;
+  bool current_limit = false;
+};
+
+enum class Device : std::uint8_t { scu, spindle, encoder };
+inline constexpr std::size_t kDevices = 3;
+[[nodiscard]] constexpr const char* to_string(Device d) noexcept {
+  return d == Device::scu ? "scu" : d == Device::spindle ? "spindle" : "encoder";
+}
+
+struct LinkState {
+  bool active = false;           // the session is in its active state
+  bool fault = false;            // the session gave up (its own link-fault deadline)
+  link::Duration silent_for{};   // since the last good reply
+};
+
+struct CellState {
+  link::TimePoint now{};
+  std::uint8_t axis_count = 0;
+  std::array<AxisState, kMaxAxes> axes{};
+  EncoderState encoder;
+  SpindleState spindle;
+  std::array<LinkState, kDevices> links{};
+  std::uint32_t scu_error_word = 0;  // error code 1, bits numbered from 1 = LSB
+  bool scu_remote = false;           // remote mode open (RO done, RC running)
+};
+
+}  // namespace cellctl::cell

@@ -1,0 +1,133 @@
+#include "monitor/monitor.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "scu/status_flags.hpp"
+
+namespace cellctl::monitor {
+namespace {
+
+constexpr std::size_t idx(Rule r) noexcept { return static_cast<std::size_t>(r); }
+
+// An axis may overshoot its travel limit by this much before it counts as outside (encoder noise,
+// the last edge of a soft stop); anything beyond is a fault.
+constexpr double kPositionMarginMm = 0.5;
+
+double ms(link::Duration d) noexcept { return std::chrono::duration<double, std::milli>(d).count(); }
+
+}  // namespace
+
+Monitor::Monitor(const config::CellConfig& cell) : cell_(cell) {}
+
+StopCategory Monitor::category_of(Rule r) const noexcept {
+  switch (r) {
+    case Rule::emergency_stop: return StopCategory::immediate;
+    case Rule::operator_stop: return cell_.stops.operator_stop;
+    case Rule::link_silent: return cell_.stops.link;
+    default: return cell_.stops.fault;
+  }
+}
+
+void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
+                    std::array<std::optional<journal::Text>, kRuleCount>& causes) const noexcept {
+  using journal::Text;
+  if (in.emergency_stop) causes[idx(Rule::emergency_stop)] = Text::format("emergency stop requested");
+  if (in.stop) causes[idx(Rule::operator_stop)] = Text::format("operator stop requested");
+  if (!armed_) return;
+
+  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+    const auto& l = s.links[d];
+    const auto name = cell::to_string(static_cast<cell::Device>(d));
+    if (l.fault || !l.active)
+      causes[idx(Rule::link_silent)] = Text::format("{} link lost (session {})", name, l.fault ? "fault" : "inactive");
+    else if (ms(l.silent_for) > cell_.limits.link_silence_ms)
+      causes[idx(Rule::link_silent)] =
+          Text::format("{} silent for {:.0f} ms (limit {:.0f} ms)", name, ms(l.silent_for), cell_.limits.link_silence_ms);
+  }
+
+  for (std::size_t i = 0; i < s.axis_count && i < cell_.axes.size(); ++i) {
+    const auto& a = s.axes[i];
+    const auto& c = cell_.axes[i];
+    const double p = a.position_mm();
+    if (p < c.min_mm - kPositionMarginMm || p > c.max_mm + kPositionMarginMm)
+      causes[idx(Rule::position_limit)] =
+          Text::format("axis {} at {:.2f} mm, outside [{:g}, {:g}] mm", c.name, p, c.min_mm, c.max_mm);
+    if (a.measured) {
+      if (std::abs(a.encoder_mm_s) > cell_.limits.overspeed_mm_s)
+        causes[idx(Rule::overspeed)] = Text::format("axis {} at {:.1f} mm/s by the encoder (limit {:g} mm/s)", c.name,
+                                                    a.encoder_mm_s, cell_.limits.overspeed_mm_s);
+      if (std::abs(a.scu_mm - a.encoder_mm) > cell_.limits.disagreement_mm)
+        causes[idx(Rule::disagreement)] =
+            Text::format("axis {}: SCU {:.2f} mm, encoder {:.2f} mm (tolerance {:g} mm)", c.name, a.scu_mm,
+                         a.encoder_mm, cell_.limits.disagreement_mm);
+    }
+  }
+
+  const auto& e = s.encoder;
+  if (!e.data_exchange || !e.ready)
+    causes[idx(Rule::encoder_not_ready)] =
+        Text::format("encoder {}", e.data_exchange ? "dropped its Ready bit" : "left data exchange");
+  if (e.alarm) causes[idx(Rule::encoder_alarm)] = Text::format("encoder diagnosis reports an alarm");
+  if (e.limit_switch) causes[idx(Rule::encoder_limit_switch)] = Text::format("encoder limit switch at {:.2f} mm", e.mm);
+  if (e.diagnosis_pending) causes[idx(Rule::encoder_diagnosis)] = Text::format("encoder signals new diagnosis");
+
+  const auto& sp = s.spindle;
+  if (sp.fault) causes[idx(Rule::spindle_fault)] = Text::format("spindle converter fault {}", sp.fault_number);
+  if (sp.over_temperature) causes[idx(Rule::spindle_temperature)] = Text::format("spindle motor over-temperature (PTC)");
+  const double f = std::abs(sp.actual_hz);
+  const double tol = cell_.limits.spindle_tolerance_hz;
+  if (f > cell_.limits.spindle_max_hz + tol)
+    causes[idx(Rule::spindle_frequency)] =
+        Text::format("spindle at {:.0f} Hz, above the cell's {:g} Hz", f, cell_.limits.spindle_max_hz);
+  else if (spindle_running_ && sp.at_speed && std::abs(f - spindle_set_hz_) > tol)
+    causes[idx(Rule::spindle_frequency)] =
+        Text::format("spindle at {:.0f} Hz while set to {:.0f} Hz", f, spindle_set_hz_);
+
+  if (s.scu_error_word != 0) {
+    const scu::ErrorWord word(s.scu_error_word);
+    int first = 0;
+    word.for_each_cause([&](int bit, std::string_view) {
+      if (first == 0) first = bit;
+    });
+    causes[idx(Rule::scu_error)] =
+        Text::format("SCU error bit {}: {} (word 0x{:08x})", first, scu::ErrorWord::cause(first), s.scu_error_word);
+  }
+}
+
+std::bitset<kRuleCount> Monitor::evaluate(const cell::CellState& state, const OperatorInputs& inputs,
+                                          double t) noexcept {
+  std::array<std::optional<journal::Text>, kRuleCount> causes{};
+  check(state, inputs, causes);
+  std::bitset<kRuleCount> fresh;
+  for (std::size_t i = 0; i < kRuleCount; ++i) {
+    if (!causes[i] || latches_[i].active) continue;
+    latches_[i] = Latch{true, category_of(static_cast<Rule>(i)), t, *causes[i]};
+    fresh.set(i);
+  }
+  return fresh;
+}
+
+std::optional<StopCategory> Monitor::demanded_stop() const noexcept {
+  std::optional<StopCategory> strongest;
+  for (const auto& l : latches_)
+    if (l.active && (!strongest || l.category < *strongest)) strongest = l.category;
+  return strongest;
+}
+
+bool Monitor::reset(const cell::CellState& state, const OperatorInputs& inputs) noexcept {
+  std::array<std::optional<journal::Text>, kRuleCount> causes{};
+  check(state, inputs, causes);
+  bool clear = true;
+  for (std::size_t i = 0; i < kRuleCount; ++i) {
+    if (!latches_[i].active) continue;
+    if (causes[i]) {
+      clear = false;
+      continue;
+    }
+    latches_[i].active = false;
+  }
+  return clear;
+}
+
+}  // namespace cellctl::monitor

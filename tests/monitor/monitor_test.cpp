@@ -1,0 +1,179 @@
+// The safety monitor on hand-made cell states: each rule fires on its cause with its configured
+// stop category, latches, and is cleared only by a reset once the cause is gone.
+
+#include "monitor/monitor.hpp"
+
+#include <gtest/gtest.h>
+
+namespace cellctl::monitor {
+namespace {
+
+using namespace std::chrono_literals;
+
+config::CellConfig cell_config() {
+  return config::parse_cell_config(config::YamlNode::load_string(R"(cell: t
+axes:
+  - {name: x, actuator: 1, function: 1, edges_per_mm: 10, min_mm: 0, max_mm: 100, max_speed_mm_s: 20, encoder: true}
+  - {name: z, actuator: 2, function: 2, edges_per_mm: 10, min_mm: 0, max_mm: 50, max_speed_mm_s: 10}
+limits: {overspeed_mm_s: 25, disagreement_mm: 2, link_silence_ms: 300, spindle_min_hz: 100, spindle_max_hz: 800,
+         spindle_tolerance_hz: 5}
+stops: {fault: 1, link: 0, operator: 2}
+)",
+                                                                 "cell.yaml"),
+                                   "cell.yaml");
+}
+
+cell::CellState healthy() {
+  cell::CellState s;
+  s.axis_count = 2;
+  s.axes[0] = {.present = true, .scu_mm = 10.0, .measured = true, .encoder_mm = 10.1};
+  s.axes[1] = {.present = true, .scu_mm = 5.0};
+  s.encoder = {.data_exchange = true, .ready = true, .mm = 10.1};
+  for (auto& l : s.links) l = {.active = true, .fault = false, .silent_for = 10ms};
+  return s;
+}
+
+class MonitorTest : public ::testing::Test {
+ protected:
+  config::CellConfig cfg = cell_config();
+  Monitor m{cfg};
+  void SetUp() override { m.arm(); }
+
+  // Evaluates `s`; expects exactly `rule` to latch, with `category`.
+  void expect_only(const cell::CellState& s, Rule rule, StopCategory category, OperatorInputs in = {}) {
+    const auto fresh = m.evaluate(s, in, 1.0);
+    EXPECT_EQ(fresh.count(), 1u) << fresh;
+    EXPECT_TRUE(fresh.test(static_cast<std::size_t>(rule))) << to_string(rule);
+    EXPECT_EQ(m.demanded_stop(), category);
+    EXPECT_FALSE(m.latch(rule).detail.view().empty());
+  }
+};
+
+TEST_F(MonitorTest, AHealthyCellDemandsNothing) {
+  EXPECT_TRUE(m.evaluate(healthy(), {}, 0.0).none());
+  EXPECT_FALSE(m.demanded_stop());
+}
+
+TEST_F(MonitorTest, PositionOutsideTheCellLimits) {
+  auto s = healthy();
+  s.axes[1].scu_mm = 50.6;
+  expect_only(s, Rule::position_limit, StopCategory::controlled_off);
+  EXPECT_EQ(m.latch(Rule::position_limit).detail.view(), "axis z at 50.60 mm, outside [0, 50] mm");
+}
+
+TEST_F(MonitorTest, TheEncoderDecidesWhereItMeasures) {
+  auto s = healthy();
+  s.axes[0].scu_mm = 101.0;  // the SCU's counting drifted, the encoder is the truth
+  s.axes[0].encoder_mm = 99.0;
+  EXPECT_FALSE(m.evaluate(s, {}, 0.0).test(static_cast<std::size_t>(Rule::position_limit)));
+}
+
+TEST_F(MonitorTest, OverspeedFromTheEncoder) {
+  auto s = healthy();
+  s.axes[0].encoder_mm_s = -26.0;
+  expect_only(s, Rule::overspeed, StopCategory::controlled_off);
+}
+
+TEST_F(MonitorTest, ScuAndEncoderDisagree) {
+  auto s = healthy();
+  s.axes[0].encoder_mm = 12.5;
+  expect_only(s, Rule::disagreement, StopCategory::controlled_off);
+  EXPECT_EQ(m.latch(Rule::disagreement).detail.view(), "axis x: SCU 10.00 mm, encoder 12.50 mm (tolerance 2 mm)");
+}
+
+TEST_F(MonitorTest, EncoderRules) {
+  auto s = healthy();
+  s.encoder.ready = false;
+  expect_only(s, Rule::encoder_not_ready, StopCategory::controlled_off);
+  Monitor m2{cfg};
+  m2.arm();
+  s = healthy();
+  s.encoder.alarm = true;
+  s.encoder.limit_switch = true;
+  s.encoder.diagnosis_pending = true;
+  const auto fresh = m2.evaluate(s, {}, 0.0);
+  EXPECT_TRUE(fresh.test(static_cast<std::size_t>(Rule::encoder_alarm)));
+  EXPECT_TRUE(fresh.test(static_cast<std::size_t>(Rule::encoder_limit_switch)));
+  EXPECT_TRUE(fresh.test(static_cast<std::size_t>(Rule::encoder_diagnosis)));
+}
+
+TEST_F(MonitorTest, SpindleFaultAndTemperature) {
+  auto s = healthy();
+  s.spindle.fault = true;
+  s.spindle.fault_number = 51;
+  expect_only(s, Rule::spindle_fault, StopCategory::controlled_off);
+  EXPECT_EQ(m.latch(Rule::spindle_fault).detail.view(), "spindle converter fault 51");
+  s = healthy();
+  s.spindle.over_temperature = true;
+  expect_only(s, Rule::spindle_temperature, StopCategory::controlled_off);
+}
+
+TEST_F(MonitorTest, SpindleFrequencyOutOfRange) {
+  auto s = healthy();
+  s.spindle.actual_hz = 806.0;
+  expect_only(s, Rule::spindle_frequency, StopCategory::controlled_off);
+}
+
+TEST_F(MonitorTest, SpindleOffItsSetPointAtSpeed) {
+  m.expect_spindle(true, 400.0);
+  auto s = healthy();
+  s.spindle.at_speed = true;
+  s.spindle.actual_hz = 390.0;
+  expect_only(s, Rule::spindle_frequency, StopCategory::controlled_off);
+}
+
+TEST_F(MonitorTest, ScuErrorBitsAreNamed) {
+  auto s = healthy();
+  s.scu_error_word = 1u << 21;  // bit 22: remote communication time-out
+  expect_only(s, Rule::scu_error, StopCategory::controlled_off);
+  const auto detail = std::string(m.latch(Rule::scu_error).detail.view());
+  EXPECT_NE(detail.find("SCU error bit 22"), std::string::npos) << detail;
+}
+
+TEST_F(MonitorTest, SilentLinkStopsImmediately) {
+  auto s = healthy();
+  s.links[1].silent_for = 301ms;
+  expect_only(s, Rule::link_silent, StopCategory::immediate);
+  EXPECT_EQ(m.latch(Rule::link_silent).detail.view(), "spindle silent for 301 ms (limit 300 ms)");
+}
+
+TEST_F(MonitorTest, OperatorAndEmergencyStops) {
+  expect_only(healthy(), Rule::operator_stop, StopCategory::controlled_hold, {.stop = true});
+  Monitor m2{cfg};
+  (void)m2.evaluate(healthy(), {.emergency_stop = true}, 0.0);
+  EXPECT_EQ(m2.demanded_stop(), StopCategory::immediate);
+}
+
+TEST_F(MonitorTest, UnarmedOnlyOperatorRulesApply) {
+  Monitor cold{cfg};
+  cell::CellState s;  // nothing up yet: no links, no encoder
+  s.axis_count = 2;
+  EXPECT_TRUE(cold.evaluate(s, {}, 0.0).none());
+  EXPECT_TRUE(cold.evaluate(s, {.stop = true}, 0.0).test(static_cast<std::size_t>(Rule::operator_stop)));
+}
+
+TEST_F(MonitorTest, LatchHoldsUntilResetWithTheCauseGone) {
+  auto s = healthy();
+  s.axes[0].encoder_mm_s = 30.0;
+  (void)m.evaluate(s, {}, 1.0);
+  s.axes[0].encoder_mm_s = 0.0;
+  EXPECT_TRUE(m.evaluate(s, {}, 2.0).none());
+  EXPECT_TRUE(m.any_latched()) << "the cause went away, the latch did not";
+  s.axes[0].encoder_mm_s = 30.0;
+  EXPECT_FALSE(m.reset(s, {})) << "reset refused while the cause is present";
+  EXPECT_TRUE(m.any_latched());
+  s.axes[0].encoder_mm_s = 0.0;
+  EXPECT_TRUE(m.reset(s, {}));
+  EXPECT_FALSE(m.any_latched());
+}
+
+TEST_F(MonitorTest, StrongestCategoryWins) {
+  auto s = healthy();
+  s.axes[0].encoder_mm_s = 30.0;  // category 1
+  s.links[0].fault = true;         // category 0
+  (void)m.evaluate(s, {}, 1.0);
+  EXPECT_EQ(m.demanded_stop(), StopCategory::immediate);
+}
+
+}  // namespace
+}  // namespace cellctl::monitor
