@@ -12,6 +12,7 @@
 #include "cli/drive.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/logging.hpp"
+#include "cli/spindle_commands.hpp"
 #include "config/yaml_node.hpp"
 #include "link/link_error.hpp"
 
@@ -38,6 +39,7 @@ int main(int argc, char** argv) {
   app.add_flag("--trace", global.trace, "Hex trace of every telegram on every device link (to stderr)");
 
   add_check_command(app, commands);
+  add_spindle_commands(app, commands);
 
   try {
     app.parse(argc, argv);

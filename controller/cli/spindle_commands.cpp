@@ -1,0 +1,193 @@
+#include "cli/spindle_commands.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "cli/device_link.hpp"
+#include "cli/drive.hpp"
+#include "cli/exit_codes.hpp"
+#include "config/cell_config.hpp"
+#include "spindle/fault_numbers.hpp"
+#include "spindle/session.hpp"
+
+namespace cellctl::cli {
+namespace {
+
+using namespace std::chrono_literals;
+
+enum class Action { status, start, stop, set, reset };
+
+struct SpindleOptions {
+  std::optional<std::string> port;
+  double frequency_hz = 0.0;
+  std::string direction = "cw";
+  double timeout_s = 30.0;
+};
+
+std::string describe_state(const spindle::Snapshot& s) {
+  if (s.state == spindle::DeviceState::none) return "ok";
+  const auto meaning = spindle::explain_fault_number(s.error_number);
+  return fmt::format("{} {}{}{}", s.fault() ? "FAULT" : "warning", s.error_number, meaning.empty() ? "" : ": ",
+                     meaning);
+}
+
+void print_snapshot(const spindle::Snapshot& s) {
+  fmt::print("state          {}\n", describe_state(s));
+  fmt::print("motion         {}\n", s.at_speed ? "at speed" : s.at_rest ? "at rest" : "changing speed");
+  fmt::print("frequency      set {:.0f} Hz, actual {:.0f} Hz\n", s.set_frequency_hz, s.actual_frequency_hz);
+  fmt::print("motor          {:.2f} V, {:.2f} A, {:.1f} W (current limit {:.2f} A{})\n", s.motor_voltage_v,
+             s.motor_current_a, s.power_w, s.peak_current_a, s.current_limit ? ", ACTIVE" : "");
+  fmt::print("DC link        {:.2f} V\n", s.dc_link_voltage_v);
+  fmt::print("temperature    {}\n", s.motor_over_temperature ? "PTC OVER-TEMPERATURE" : "ok");
+  fmt::print("run time       converter {} h, motor {} h, motor code {}\n", s.converter_hours, s.motor_hours,
+             s.motor_code);
+  if (const auto& id = s.identification) {
+    fmt::print("converter      type {}, firmware 0x{:04x}, serial {}\n", id->converter_type, id->firmware,
+               id->serial_number);
+    fmt::print("fault history  {} {} {} {} {} (latest first)\n", id->fault_history[0], id->fault_history[1],
+               id->fault_history[2], id->fault_history[3], id->fault_history[4]);
+  }
+}
+
+class Commissioning {
+ public:
+  Commissioning(const GlobalOptions& global, const SpindleOptions& options, const config::SpindleSection& section)
+      : options_(options), device_(section.port, options.port, "spindle", clock_, global.trace),
+        session_(device_.link(), section.session),
+        values_poll_(section.session.values_poll) {}
+
+  int run(Action action) {
+    session_.activate(clock_.now());
+    const bool up = drive([&] {
+      const auto& s = session_.snapshot();
+      return state_ == link::Lifecycle::active && s.status_valid && s.values_valid;
+    });
+    if (!up) return failed_to("reach the converter");
+    switch (action) {
+      case Action::status: break;
+      case Action::start: {
+        const auto dir = options_.direction == "ccw" ? spindle::Direction::counter_clockwise : spindle::Direction::clockwise;
+        if (!session_.start(options_.frequency_hz, dir)) return refuse("start");
+        if (!drive([&] { return snapshot().at_speed || snapshot().start_refused; })) return failed_to("reach speed");
+        if (snapshot().start_refused) {
+          spdlog::error("start refused: {}", snapshot().start_refused_reason);
+          return kExitFailed;
+        }
+        break;
+      }
+      case Action::stop:
+        if (!session_.stop()) return refuse("stop");
+        if (!drive([&] { return snapshot().at_rest && !session_.commands_pending(); })) return failed_to("come to rest");
+        break;
+      case Action::set:
+        if (!session_.set_frequency(options_.frequency_hz)) return refuse("set the frequency");
+        if (!drive([&] { return !session_.commands_pending(); })) return failed_to("acknowledge the set-point");
+        break;
+      case Action::reset:
+        if (!session_.reset()) return refuse("reset");
+        if (!drive([&] { return !session_.commands_pending(); })) return failed_to("acknowledge the reset");
+        break;
+    }
+    // The measured values are polled slower than the flags: wait for a set taken after the command.
+    if (action != Action::status && !drive_for(values_poll_ + 100ms)) return failed_to("keep answering");
+    print_snapshot(snapshot());
+    return snapshot().fault() ? kExitFailed : kExitOk;
+  }
+
+ private:
+  const spindle::Snapshot& snapshot() const { return session_.snapshot(); }
+
+  template <class Done>
+  bool drive(Done&& done) {
+    const auto timeout = std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.timeout_s));
+    return drive_until(clock_, timeout, [&](auto now) { state_ = session_.poll(now); },
+                       [&] { return state_ == link::Lifecycle::fault || done(); }) &&
+           state_ != link::Lifecycle::fault;
+  }
+  bool drive_for(link::Duration span) {
+    const auto until = clock_.now() + span;
+    return drive([&] { return clock_.now() >= until; });
+  }
+
+  int refuse(const char* what) {
+    spdlog::error("the spindle session would not {} (frequency {} Hz out of 0..65535?)", what, options_.frequency_hz);
+    return kExitUsage;
+  }
+
+  int failed_to(const char* what) {
+    if (g_interrupted.load()) return stop_after_interrupt();
+    if (state_ == link::Lifecycle::fault) {
+      spdlog::error("spindle on {}: {}", device_.path(), session_.fault_reason());
+      return kExitLink;
+    }
+    spdlog::error("spindle on {} did not {} within {} s", device_.path(), what, options_.timeout_s);
+    print_snapshot(snapshot());
+    return kExitFailed;
+  }
+
+  // Ctrl-C: bring the spindle to rest before exiting (drive_until ends at once once interrupted).
+  int stop_after_interrupt() {
+    if (session_.stop()) {
+      const auto deadline = clock_.now() + 10s;
+      while (clock_.now() < deadline) {
+        state_ = session_.poll(clock_.now());
+        if (state_ == link::Lifecycle::fault || (snapshot().at_rest && !session_.commands_pending())) break;
+        std::this_thread::sleep_for(1ms);
+      }
+    }
+    spdlog::warn("interrupted; spindle {}", snapshot().at_rest ? "at rest" : "NOT confirmed at rest");
+    return kExitInterrupted;
+  }
+
+  const SpindleOptions& options_;
+  link::MonotonicClock clock_;
+  DeviceLink device_;
+  spindle::Session session_;
+  link::Duration values_poll_;
+  link::Lifecycle state_ = link::Lifecycle::inactive;
+};
+
+int run_spindle(const GlobalOptions& global, const SpindleOptions& options, Action action) {
+  const auto cell = config::load_cell_config(global.config);
+  if (!cell.spindle && !options.port) {
+    spdlog::error("{} has no spindle: section; add one or give --port", global.config);
+    return kExitConfig;
+  }
+  Commissioning commissioning(global, options, cell.spindle.value_or(config::SpindleSection{}));
+  return commissioning.run(action);
+}
+
+}  // namespace
+
+void add_spindle_commands(CLI::App& app, Commands& commands) {
+  auto options = std::make_shared<SpindleOptions>();
+  auto* group = app.add_subcommand("spindle", "Commission the SycoTec spindle converter (RS232)");
+  group->require_subcommand(1);
+  group->add_option("--port", options->port, "Serial port (default: from the cell config)");
+  group->add_option("--timeout", options->timeout_s, "Seconds to wait for the converter")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
+
+  auto add = [&](const char* name, const char* help, Action action) {
+    auto* sub = group->add_subcommand(name, help);
+    commands.on(sub, [&commands, options, action] { return run_spindle(commands.global, *options, action); });
+    return sub;
+  };
+  add("status", "Read and print the converter's status, values and identification", Action::status);
+  auto* start = add("start", "Start the spindle and wait until it is at speed", Action::start);
+  start->add_option("--frequency", options->frequency_hz, "Set-point in Hz")->required()->check(CLI::Range(1.0, 65535.0));
+  start->add_option("--direction", options->direction, "cw (Rechtslauf) or ccw (Linkslauf)")
+      ->check(CLI::IsMember({"cw", "ccw"}))
+      ->capture_default_str();
+  add("stop", "Stop the spindle and wait until it is at rest", Action::stop);
+  auto* set = add("set", "Change the frequency set-point (takes effect at once while running)", Action::set);
+  set->add_option("--frequency", options->frequency_hz, "Set-point in Hz")->required()->check(CLI::Range(1.0, 65535.0));
+  add("reset", "Reset a converter fault (CMD System Reset) and show the result", Action::reset);
+}
+
+}  // namespace cellctl::cli
