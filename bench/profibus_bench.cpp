@@ -92,9 +92,9 @@ void BM_DataExchangeOverSimLink(benchmark::State& state) {
   if (master.health().timeouts != 0 || master.lifecycle() != link::Lifecycle::active)
     state.SkipWithError("the exchange did not run cleanly");
 
-  const double wire_s = link::to_seconds(bit_times(line, kTsynBits) + bit_times(line, config.min_tsdr_bits)) +
-                        static_cast<double>((frame_chars(kOutputs) + frame_chars(kInputs)) * line.bits_per_char()) /
-                            line.baud;
+  const double wire_s =
+      link::to_seconds(bit_times(line, kTsynBits) + bit_times(line, config.min_tsdr_bits)) +
+      static_cast<double>((frame_chars(kOutputs) + frame_chars(kInputs)) * line.bits_per_char()) / line.baud;
   const double rate = cycles / virtual_s;
   state.counters["cycles_per_virtual_s"] = rate;
   state.counters["line_limit_per_s"] = 1.0 / wire_s;

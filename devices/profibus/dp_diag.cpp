@@ -9,7 +9,9 @@ namespace {
 constexpr std::uint8_t bit(bool on, unsigned n) noexcept {
   return static_cast<std::uint8_t>(on ? (1u << n) : 0u);
 }
-constexpr bool has(std::uint8_t octet, unsigned n) noexcept { return ((static_cast<unsigned>(octet) >> n) & 1u) != 0; }
+constexpr bool has(std::uint8_t octet, unsigned n) noexcept {
+  return ((static_cast<unsigned>(octet) >> n) & 1u) != 0;
+}
 constexpr std::uint8_t kStatus2Fixed = 0x04;  // octet 2 bit 2 is always 1 in a slave's reply
 }  // namespace
 

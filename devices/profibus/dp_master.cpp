@@ -10,30 +10,48 @@ namespace cellctl::profibus {
 
 std::string_view to_string(DpState s) noexcept {
   switch (s) {
-    case DpState::stopped: return "stopped";
-    case DpState::wait_address: return "wait_address";
-    case DpState::fdl_status: return "fdl_status";
-    case DpState::diag_initial: return "diag_initial";
-    case DpState::set_prm: return "set_prm";
-    case DpState::chk_cfg: return "chk_cfg";
-    case DpState::diag_check: return "diag_check";
-    case DpState::data_exchange: return "data_exchange";
-    case DpState::diag_cyclic: return "diag_cyclic";
-    case DpState::refused: return "refused";
-    case DpState::restart_wait: return "restart_wait";
-    case DpState::clearing: return "clearing";
+    case DpState::stopped:
+      return "stopped";
+    case DpState::wait_address:
+      return "wait_address";
+    case DpState::fdl_status:
+      return "fdl_status";
+    case DpState::diag_initial:
+      return "diag_initial";
+    case DpState::set_prm:
+      return "set_prm";
+    case DpState::chk_cfg:
+      return "chk_cfg";
+    case DpState::diag_check:
+      return "diag_check";
+    case DpState::data_exchange:
+      return "data_exchange";
+    case DpState::diag_cyclic:
+      return "diag_cyclic";
+    case DpState::refused:
+      return "refused";
+    case DpState::restart_wait:
+      return "restart_wait";
+    case DpState::clearing:
+      return "clearing";
   }
   return "?";
 }
 
 std::string_view to_string(StartupFault::Kind k) noexcept {
   switch (k) {
-    case StartupFault::Kind::none: return "none";
-    case StartupFault::Kind::prm_fault: return "Prm_Fault";
-    case StartupFault::Kind::cfg_fault: return "Cfg_Fault";
-    case StartupFault::Kind::not_supported: return "Not_Supported";
-    case StartupFault::Kind::ident_mismatch: return "ident number mismatch";
-    case StartupFault::Kind::rejected: return "request rejected (RS)";
+    case StartupFault::Kind::none:
+      return "none";
+    case StartupFault::Kind::prm_fault:
+      return "Prm_Fault";
+    case StartupFault::Kind::cfg_fault:
+      return "Cfg_Fault";
+    case StartupFault::Kind::not_supported:
+      return "Not_Supported";
+    case StartupFault::Kind::ident_mismatch:
+      return "ident number mismatch";
+    case StartupFault::Kind::rejected:
+      return "request rejected (RS)";
   }
   return "?";
 }
@@ -42,8 +60,8 @@ namespace {
 
 void require(bool ok, const char* field, unsigned value, const char* rule) {
   if (!ok)
-    throw std::invalid_argument(std::string("profibus master: ") + field + ": " + std::to_string(value) + ": " +
-                                rule);
+    throw std::invalid_argument(std::string("profibus master: ") + field + ": " + std::to_string(value) +
+                                ": " + rule);
 }
 
 bool is_reply_from(const FdlFrame& f, std::uint8_t master, std::uint8_t station) noexcept {
@@ -68,7 +86,8 @@ DpMaster::DpMaster(link::Link& link, const DpMasterConfig& config, const DpSlave
       tsyn_(config.line.baud ? bit_times(config.line, kTsynBits) : link::Duration{}),
       slot_time_(config.line.baud ? bit_times(config.line, config.slot_time_bits) : link::Duration{}) {
   require(config.line.baud > 0, "line.baud", config.line.baud, "must be positive");
-  require(config.master_address <= kMaxMasterAddress, "master_address", config.master_address, "outside 0..125");
+  require(config.master_address <= kMaxMasterAddress, "master_address", config.master_address,
+          "outside 0..125");
   require(config.slot_time_bits > 0, "slot_time_bits", config.slot_time_bits, "must be positive");
   require(setup.station_address >= 1 && setup.station_address <= kDefaultSlaveAddress, "station_address",
           setup.station_address, "outside 1..126");
@@ -127,7 +146,8 @@ bool DpMaster::global_control(std::uint8_t commands) noexcept {
 
 bool DpMaster::set_slave_address(std::uint8_t new_address, bool no_add_chg) noexcept {
   if (lifecycle_ == link::Lifecycle::inactive || address_change_ == RequestStatus::pending) return false;
-  if (new_address < 1 || new_address > kMaxMasterAddress || new_address == config_.master_address) return false;
+  if (new_address < 1 || new_address > kMaxMasterAddress || new_address == config_.master_address)
+    return false;
   address_request_ = SetSlaveAdd{new_address, setup_.ident, no_add_chg};
   address_change_ = RequestStatus::pending;
   return true;
@@ -151,7 +171,8 @@ link::Lifecycle DpMaster::poll(link::TimePoint now) {
       ++health_.bad_frames;
       continue;
     }
-    if (in_flight_ && expect_reply_ && is_reply_from(ev->frame, config_.master_address, setup_.station_address))
+    if (in_flight_ && expect_reply_ &&
+        is_reply_from(ev->frame, config_.master_address, setup_.station_address))
       on_reply(ev->frame, now);
   }
   if (in_flight_ && expect_reply_ && now >= reply_deadline_) on_no_reply(now);
@@ -172,8 +193,10 @@ bool DpMaster::has_request(link::TimePoint now) const noexcept {
   switch (state_) {
     case DpState::stopped:
     case DpState::wait_address:
-    case DpState::refused: return false;
-    default: return now >= next_cycle_at_;
+    case DpState::refused:
+      return false;
+    default:
+      return now >= next_cycle_at_;
   }
 }
 
@@ -191,8 +214,8 @@ std::uint8_t DpMaster::next_fc(std::uint8_t function) noexcept {
 }
 
 FdlFrame DpMaster::sap_request(std::uint8_t dsap, std::span<const std::uint8_t> data) noexcept {
-  return make_sap_frame(setup_.station_address, config_.master_address, next_fc(fc::kSrdHigh), dsap, sap::kMaster,
-                        data);
+  return make_sap_frame(setup_.station_address, config_.master_address, next_fc(fc::kSrdHigh), dsap,
+                        sap::kMaster, data);
 }
 
 void DpMaster::send(const FdlFrame& frame, bool expect_reply, Pending pending, link::TimePoint now) {
@@ -226,8 +249,8 @@ void DpMaster::next_request(link::TimePoint now) {
     (void)encode(*global_control_, data);
     global_control_.reset();
     send(make_sap_frame(kBroadcastAddress, config_.master_address,
-                        static_cast<std::uint8_t>(fc::kRequest | fc::kSdnHigh), sap::kGlobalControl, sap::kMaster,
-                        data),
+                        static_cast<std::uint8_t>(fc::kRequest | fc::kSdnHigh), sap::kGlobalControl,
+                        sap::kMaster, data),
          false, Pending::global_control, now);
     return;
   }
@@ -242,7 +265,9 @@ void DpMaster::next_request(link::TimePoint now) {
       return;
     case DpState::diag_initial:
     case DpState::diag_check:
-    case DpState::diag_cyclic: send(sap_request(sap::kSlaveDiag, {}), true, Pending::cyclic, now); return;
+    case DpState::diag_cyclic:
+      send(sap_request(sap::kSlaveDiag, {}), true, Pending::cyclic, now);
+      return;
     case DpState::set_prm: {
       std::array<std::uint8_t, kMaxData> prm{};
       PrmStandard standard;
@@ -257,10 +282,13 @@ void DpMaster::next_request(link::TimePoint now) {
       std::size_t n = encode(standard, prm);
       std::copy_n(setup_.user_prm.view().begin(), setup_.user_prm.size(), prm.begin() + static_cast<long>(n));
       n += setup_.user_prm.size();
-      send(sap_request(sap::kSetPrm, std::span<const std::uint8_t>(prm.data(), n)), true, Pending::cyclic, now);
+      send(sap_request(sap::kSetPrm, std::span<const std::uint8_t>(prm.data(), n)), true, Pending::cyclic,
+           now);
       return;
     }
-    case DpState::chk_cfg: send(sap_request(sap::kChkCfg, setup_.cfg.view()), true, Pending::cyclic, now); return;
+    case DpState::chk_cfg:
+      send(sap_request(sap::kChkCfg, setup_.cfg.view()), true, Pending::cyclic, now);
+      return;
     case DpState::data_exchange:
       send(make_frame(setup_.station_address, config_.master_address, next_fc(fc::kSrdHigh), outputs_.view()),
            true, Pending::cyclic, now);
@@ -281,7 +309,8 @@ void DpMaster::next_request(link::TimePoint now) {
     }
     case DpState::stopped:
     case DpState::wait_address:
-    case DpState::refused: return;
+    case DpState::refused:
+      return;
   }
 }
 
@@ -312,10 +341,14 @@ void DpMaster::on_reply(const FdlFrame& reply, link::TimePoint now) {
 void DpMaster::on_cyclic_reply(const FdlFrame& reply, link::TimePoint now) {
   const bool ack = reply.kind == FrameKind::short_ack;
   switch (state_) {
-    case DpState::fdl_status: enter(DpState::diag_initial, now); return;
+    case DpState::fdl_status:
+      enter(DpState::diag_initial, now);
+      return;
     case DpState::diag_initial:
     case DpState::diag_check:
-    case DpState::diag_cyclic: on_diag(reply, now); return;
+    case DpState::diag_cyclic:
+      on_diag(reply, now);
+      return;
     case DpState::set_prm:
       if (!ack) {
         ++health_.error_replies;
@@ -329,8 +362,11 @@ void DpMaster::on_cyclic_reply(const FdlFrame& reply, link::TimePoint now) {
       if (!ack) ++health_.error_replies;
       enter(DpState::diag_check, now);
       return;
-    case DpState::data_exchange: on_data(reply, now); return;
-    default: return;
+    case DpState::data_exchange:
+      on_data(reply, now);
+      return;
+    default:
+      return;
   }
 }
 

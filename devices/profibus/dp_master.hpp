@@ -28,8 +28,8 @@
 #include "link/link.hpp"
 #include "link/link_health.hpp"
 #include "profibus/dp_diag.hpp"
-#include "profibus/fdl_codes.hpp"
 #include "profibus/dp_services.hpp"
+#include "profibus/fdl_codes.hpp"
 #include "profibus/fdl_decoder.hpp"
 #include "profibus/fdl_frame.hpp"
 #include "wire/fixed_bytes.hpp"
@@ -42,15 +42,15 @@ inline constexpr std::size_t kMaxIo = kMaxData;
 struct DpMasterConfig {
   std::uint8_t master_address = 1;                    // 0..125
   link::LineFormat line = link::line_8e1(1'500'000);  // character and bit times
-  std::uint32_t slot_time_bits = 300;  // TSL: longest wait for the first octet of a reply
-  std::uint8_t max_retries = 1;        // repetitions of a request that got no reply
-  std::uint8_t wd_fact_1 = 10;         // slave response watchdog = 10 ms × f1 × f2 (0: watchdog off)
+  std::uint32_t slot_time_bits = 300;                 // TSL: longest wait for the first octet of a reply
+  std::uint8_t max_retries = 1;                       // repetitions of a request that got no reply
+  std::uint8_t wd_fact_1 = 10;  // slave response watchdog = 10 ms × f1 × f2 (0: watchdog off)
   std::uint8_t wd_fact_2 = 10;
-  std::uint8_t min_tsdr_bits = 11;                                      // sent to the slave in Set_Prm
+  std::uint8_t min_tsdr_bits = 11;                                     // sent to the slave in Set_Prm
   link::Duration data_exchange_period = std::chrono::milliseconds(1);  // 0: back to back
   link::Duration lost_slave_time = std::chrono::milliseconds(100);     // no good reply → start-up again
   link::Duration restart_delay = std::chrono::milliseconds(10);        // between start-up attempts
-  std::uint8_t group = 0;                                               // Set_Prm group ident
+  std::uint8_t group = 0;                                              // Set_Prm group ident
 };
 
 struct DpSlaveSetup {
@@ -65,18 +65,18 @@ struct DpSlaveSetup {
 };
 
 enum class DpState : std::uint8_t {
-  stopped,          // not activated
-  wait_address,     // station 126: nothing to do until set_slave_address()
-  fdl_status,       // is anybody there?
-  diag_initial,     // Slave_Diag before parameterisation
+  stopped,       // not activated
+  wait_address,  // station 126: nothing to do until set_slave_address()
+  fdl_status,    // is anybody there?
+  diag_initial,  // Slave_Diag before parameterisation
   set_prm,
   chk_cfg,
-  diag_check,       // Slave_Diag after Chk_Cfg: must be ready
+  diag_check,  // Slave_Diag after Chk_Cfg: must be ready
   data_exchange,
-  diag_cyclic,      // Slave_Diag in data exchange (after DH)
-  refused,          // Prm/Cfg fault: stays until activate()
-  restart_wait,     // pause before the next start-up attempt
-  clearing,         // deactivate(): Global_Control Clear_Data
+  diag_cyclic,   // Slave_Diag in data exchange (after DH)
+  refused,       // Prm/Cfg fault: stays until activate()
+  restart_wait,  // pause before the next start-up attempt
+  clearing,      // deactivate(): Global_Control Clear_Data
 };
 [[nodiscard]] std::string_view to_string(DpState s) noexcept;
 
@@ -93,8 +93,8 @@ enum class RequestStatus : std::uint8_t { idle, pending, done, failed };
 struct DpMasterStats {
   std::uint64_t data_exchanges = 0;  // good Data_Exchange replies
   std::uint64_t diag_reads = 0;
-  std::uint64_t startups = 0;  // start-ups begun (the first and every restart)
-  std::uint64_t lost = 0;      // times the slave was declared lost
+  std::uint64_t startups = 0;   // start-ups begun (the first and every restart)
+  std::uint64_t lost = 0;       // times the slave was declared lost
   link::Duration last_cycle{};  // between the last two good Data_Exchange replies
   link::Duration max_cycle{};
   std::optional<link::TimePoint> last_input_at;  // when the last good input arrived

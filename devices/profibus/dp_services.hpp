@@ -54,7 +54,8 @@ struct GlobalControl {
 };
 
 [[nodiscard]] std::size_t encode(const GlobalControl& gc, std::span<std::uint8_t> out) noexcept;
-[[nodiscard]] std::optional<GlobalControl> decode_global_control(std::span<const std::uint8_t> bytes) noexcept;
+[[nodiscard]] std::optional<GlobalControl> decode_global_control(
+    std::span<const std::uint8_t> bytes) noexcept;
 
 // Set_Slave_Add (SAP 55): new address, ident number, No_Add_Chg (1: no further change allowed).
 inline constexpr std::size_t kSetSlaveAddSize = 4;

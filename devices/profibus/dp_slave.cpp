@@ -12,9 +12,12 @@ namespace cellctl::profibus {
 
 std::string_view to_string(DpSlaveState s) noexcept {
   switch (s) {
-    case DpSlaveState::wait_prm: return "Wait_Prm";
-    case DpSlaveState::wait_cfg: return "Wait_Cfg";
-    case DpSlaveState::data_exchange: return "Data_Exchange";
+    case DpSlaveState::wait_prm:
+      return "Wait_Prm";
+    case DpSlaveState::wait_cfg:
+      return "Wait_Cfg";
+    case DpSlaveState::data_exchange:
+      return "Data_Exchange";
   }
   return "?";
 }
@@ -96,7 +99,8 @@ void DpSlave::handle(const FdlFrame& request, link::TimePoint now) {
   }
   if (request.da != address_) return;
   ++counters_.requests;
-  if (master_ != kNoMaster && request.sa == master_ && watchdog_deadline_) watchdog_deadline_ = now + watchdog_;
+  if (master_ != kNoMaster && request.sa == master_ && watchdog_deadline_)
+    watchdog_deadline_ = now + watchdog_;
   if (sdn) {
     global_control(request);
     return;
@@ -141,7 +145,8 @@ FdlFrame DpSlave::serve_sap(const FdlFrame& request, link::TimePoint now) {
   const FdlFrame refused = status_reply(request, address_, fc::kNotActivated);
   const bool commissioning = address_ == kDefaultSlaveAddress;
   switch (*request.dsap) {
-    case sap::kSlaveDiag: return diag_reply(request);
+    case sap::kSlaveDiag:
+      return diag_reply(request);
     case sap::kSetPrm:
       if (commissioning) return refused;
       return set_prm(data, request.sa, now) ? make_short_ack() : refused;
@@ -153,10 +158,14 @@ FdlFrame DpSlave::serve_sap(const FdlFrame& request, link::TimePoint now) {
       const std::size_t n = behaviour_.real_cfg(cfg);
       return n > 0 ? answer(std::span<const std::uint8_t>(cfg.data(), n)) : answer(cfg_.view());
     }
-    case sap::kRdInp: return answer(inputs_.view());
-    case sap::kRdOutp: return answer(outputs_.view());
-    case sap::kSetSlaveAdd: return set_slave_add(data) ? make_short_ack() : refused;
-    default: return refused;
+    case sap::kRdInp:
+      return answer(inputs_.view());
+    case sap::kRdOutp:
+      return answer(outputs_.view());
+    case sap::kSetSlaveAdd:
+      return set_slave_add(data) ? make_short_ack() : refused;
+    default:
+      return refused;
   }
 }
 
@@ -165,8 +174,8 @@ FdlFrame DpSlave::diag_reply(const FdlFrame& request) {
   const StandardDiag standard = standard_diag();
   std::size_t n = encode(standard, buf);
   n += behaviour_.ext_diag(std::span<std::uint8_t>(buf).subspan(n, kMaxExtDiag));
-  return make_sap_frame(request.sa, address_, fc::kDataLow, request.ssap.value_or(sap::kMaster), sap::kSlaveDiag,
-                        std::span<const std::uint8_t>(buf.data(), n));
+  return make_sap_frame(request.sa, address_, fc::kDataLow, request.ssap.value_or(sap::kMaster),
+                        sap::kSlaveDiag, std::span<const std::uint8_t>(buf.data(), n));
 }
 
 bool DpSlave::set_prm(std::span<const std::uint8_t> data, std::uint8_t master, link::TimePoint now) {
@@ -187,7 +196,8 @@ bool DpSlave::set_prm(std::span<const std::uint8_t> data, std::uint8_t master, l
     prm_reason_ = "ident number does not match the slave's";
     return true;
   }
-  if ((standard->freeze_req && !config_.freeze_supported) || (standard->sync_req && !config_.sync_supported)) {
+  if ((standard->freeze_req && !config_.freeze_supported) ||
+      (standard->sync_req && !config_.sync_supported)) {
     not_supported_ = true;
     prm_reason_ = "Freeze/Sync requested but not supported";
     return true;
@@ -252,8 +262,8 @@ void DpSlave::global_control(const FdlFrame& request) {
   }
   if (freeze_enabled_ && gc->has(GlobalCommand::freeze)) {
     freeze_mode_ = true;
-    frozen_inputs_.resize(behaviour_.exchange(sync_mode_ ? synced_outputs_.view() : outputs_.view(),
-                                              frozen_inputs_.storage()));
+    frozen_inputs_.resize(
+        behaviour_.exchange(sync_mode_ ? synced_outputs_.view() : outputs_.view(), frozen_inputs_.storage()));
     frozen_valid_ = true;
   } else if (gc->has(GlobalCommand::unfreeze)) {
     freeze_mode_ = false;
@@ -269,8 +279,10 @@ void DpSlave::global_control(const FdlFrame& request) {
 
 bool DpSlave::set_slave_add(std::span<const std::uint8_t> data) {
   const auto req = decode_set_slave_add(data);
-  if (!req || !config_.address_change_allowed || address_locked_ || state_ != DpSlaveState::wait_prm) return false;
-  if (req->ident != config_.ident || req->new_address < 1 || req->new_address > kMaxMasterAddress) return false;
+  if (!req || !config_.address_change_allowed || address_locked_ || state_ != DpSlaveState::wait_prm)
+    return false;
+  if (req->ident != config_.ident || req->new_address < 1 || req->new_address > kMaxMasterAddress)
+    return false;
   // The acknowledgement is a short ack (no address in it), so moving now is safe.
   address_ = req->new_address;
   address_locked_ = req->no_add_chg;

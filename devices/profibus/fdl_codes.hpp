@@ -41,8 +41,12 @@ inline constexpr std::uint8_t kStationMasterNotReady = 0x10;
 inline constexpr std::uint8_t kStationMasterReady = 0x20;
 inline constexpr std::uint8_t kStationMasterInRing = 0x30;
 
-[[nodiscard]] constexpr bool is_request(std::uint8_t code) noexcept { return (code & kRequest) != 0; }
-[[nodiscard]] constexpr std::uint8_t function(std::uint8_t code) noexcept { return code & kFunctionMask; }
+[[nodiscard]] constexpr bool is_request(std::uint8_t code) noexcept {
+  return (code & kRequest) != 0;
+}
+[[nodiscard]] constexpr std::uint8_t function(std::uint8_t code) noexcept {
+  return code & kFunctionMask;
+}
 }  // namespace fc
 
 namespace sap {

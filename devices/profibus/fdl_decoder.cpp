@@ -4,7 +4,9 @@
 
 namespace cellctl::profibus {
 
-std::size_t FdlDecoder::push(std::span<const std::uint8_t> bytes) noexcept { return buffer_.push(bytes); }
+std::size_t FdlDecoder::push(std::span<const std::uint8_t> bytes) noexcept {
+  return buffer_.push(bytes);
+}
 
 std::optional<FdlEvent> FdlDecoder::next() noexcept {
   if (buffer_.empty()) return std::nullopt;

@@ -8,29 +8,42 @@ namespace cellctl::profibus {
 
 std::string_view to_string(FrameKind k) noexcept {
   switch (k) {
-    case FrameKind::sd1: return "SD1";
-    case FrameKind::sd2: return "SD2";
-    case FrameKind::sd3: return "SD3";
-    case FrameKind::token: return "SD4";
-    case FrameKind::short_ack: return "SC";
+    case FrameKind::sd1:
+      return "SD1";
+    case FrameKind::sd2:
+      return "SD2";
+    case FrameKind::sd3:
+      return "SD3";
+    case FrameKind::token:
+      return "SD4";
+    case FrameKind::short_ack:
+      return "SC";
   }
   return "?";
 }
 
 std::string_view to_string(FdlError e) noexcept {
   switch (e) {
-    case FdlError::none: return "none";
-    case FdlError::garbage: return "garbage before a start delimiter";
-    case FdlError::bad_length: return "SD2 length outside 4..249";
-    case FdlError::length_mismatch: return "SD2 LE and LEr differ";
-    case FdlError::bad_fcs: return "frame check sequence wrong";
-    case FdlError::bad_end_delimiter: return "end delimiter missing";
-    case FdlError::bad_sap: return "address extension without SAP octet";
+    case FdlError::none:
+      return "none";
+    case FdlError::garbage:
+      return "garbage before a start delimiter";
+    case FdlError::bad_length:
+      return "SD2 length outside 4..249";
+    case FdlError::length_mismatch:
+      return "SD2 LE and LEr differ";
+    case FdlError::bad_fcs:
+      return "frame check sequence wrong";
+    case FdlError::bad_end_delimiter:
+      return "end delimiter missing";
+    case FdlError::bad_sap:
+      return "address extension without SAP octet";
   }
   return "?";
 }
 
-FdlFrame make_frame(std::uint8_t da, std::uint8_t sa, std::uint8_t fc, std::span<const std::uint8_t> data) noexcept {
+FdlFrame make_frame(std::uint8_t da, std::uint8_t sa, std::uint8_t fc,
+                    std::span<const std::uint8_t> data) noexcept {
   FdlFrame f;
   f.da = da;
   f.sa = sa;
@@ -39,8 +52,8 @@ FdlFrame make_frame(std::uint8_t da, std::uint8_t sa, std::uint8_t fc, std::span
   return f;
 }
 
-FdlFrame make_sap_frame(std::uint8_t da, std::uint8_t sa, std::uint8_t fc, std::uint8_t dsap, std::uint8_t ssap,
-                        std::span<const std::uint8_t> data) noexcept {
+FdlFrame make_sap_frame(std::uint8_t da, std::uint8_t sa, std::uint8_t fc, std::uint8_t dsap,
+                        std::uint8_t ssap, std::span<const std::uint8_t> data) noexcept {
   FdlFrame f = make_frame(da, sa, fc, data);
   f.dsap = dsap;
   f.ssap = ssap;
@@ -89,9 +102,12 @@ std::size_t encoded_size(const FdlFrame& frame) noexcept {
   if (frame.da > 127 || frame.sa > 127) return 0;
   const std::size_t du = frame.data_unit_size();
   switch (data_frame_kind(frame)) {
-    case FrameKind::sd1: return 6;
-    case FrameKind::sd3: return 14;
-    default: return 3 + du > kMaxSd2Length ? 0 : 4 + 3 + du + 2;
+    case FrameKind::sd1:
+      return 6;
+    case FrameKind::sd3:
+      return 14;
+    default:
+      return 3 + du > kMaxSd2Length ? 0 : 4 + 3 + du + 2;
   }
 }
 
@@ -110,8 +126,12 @@ std::size_t encode(const FdlFrame& frame, std::span<std::uint8_t> out) noexcept 
     return w.size();
   }
   switch (data_frame_kind(frame)) {
-    case FrameKind::sd1: w.u8(kSd1); break;
-    case FrameKind::sd3: w.u8(kSd3); break;
+    case FrameKind::sd1:
+      w.u8(kSd1);
+      break;
+    case FrameKind::sd3:
+      w.u8(kSd3);
+      break;
     default: {
       const auto le = static_cast<std::uint8_t>(3 + frame.data_unit_size());
       w.u8(kSd2);
@@ -205,9 +225,12 @@ FdlParse parse_frame(std::span<const std::uint8_t> bytes) noexcept {
       p.frame.sa = bytes[2] & 0x7Fu;
       return p;
     }
-    case kSd1: return parse_framed(bytes, 1, 3, FrameKind::sd1);
-    case kSd3: return parse_framed(bytes, 1, 3 + kSd3DataUnit, FrameKind::sd3);
-    default: break;  // SD2
+    case kSd1:
+      return parse_framed(bytes, 1, 3, FrameKind::sd1);
+    case kSd3:
+      return parse_framed(bytes, 1, 3 + kSd3DataUnit, FrameKind::sd3);
+    default:
+      break;  // SD2
   }
   if (bytes.size() < 4) {
     // Judge what is there already, so a torn header is dropped without waiting for more octets.

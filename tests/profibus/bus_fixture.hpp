@@ -49,7 +49,8 @@ struct TestBehaviour final : SlaveBehaviour {
   std::size_t exchange(std::span<const std::uint8_t> outputs, std::span<std::uint8_t> inputs) override {
     last_outputs.assign(outputs.begin(), outputs.end());
     ++exchanges;
-    for (std::size_t i = 0; i < 8; ++i) inputs[i] = static_cast<std::uint8_t>(exchanges + static_cast<int>(i));
+    for (std::size_t i = 0; i < 8; ++i)
+      inputs[i] = static_cast<std::uint8_t>(exchanges + static_cast<int>(i));
     return 8;
   }
   bool diag_pending() override { return pending; }
@@ -86,7 +87,8 @@ inline DpSlaveSetup slave_setup(std::uint8_t station = kStation) {
 struct Bus {
   explicit Bus(DpMasterConfig mc = master_config(), DpSlaveSetup setup = slave_setup(),
                std::uint8_t slave_address = kStation)
-      : master(sim.master(), mc, setup), slave(sim.device(), DpSlaveConfig{slave_address, kIdent}, behaviour) {}
+      : master(sim.master(), mc, setup),
+        slave(sim.device(), DpSlaveConfig{slave_address, kIdent}, behaviour) {}
 
   link::VirtualClock clock;
   link::SimLink sim{clock, link::line_8e1(1'500'000), "dp"};
@@ -103,8 +105,8 @@ struct Bus {
     if (master_running) (void)master.poll(t);
     slave.poll(t);
     link::TimePoint next = t + std::chrono::milliseconds(1);
-    for (auto d : {sim.next_delivery(), master_running ? master.next_deadline() : std::nullopt,
-                   slave.next_deadline()})
+    for (auto d :
+         {sim.next_delivery(), master_running ? master.next_deadline() : std::nullopt, slave.next_deadline()})
       if (d) next = std::min(next, *d);
     clock.advance_to(std::max(next, t + link::Duration{1}));
   }
@@ -118,7 +120,9 @@ struct Bus {
     }
     return pred();
   }
-  void run_for(link::Duration span) { (void)run_until([] { return false; }, span); }
+  void run_for(link::Duration span) {
+    (void)run_until([] { return false; }, span);
+  }
 
   bool in_data_exchange() const {
     return master.lifecycle() == link::Lifecycle::active && master.dp_state() == DpState::data_exchange &&

@@ -48,7 +48,8 @@ TEST(DpBus, PrmVetoKeepsTheSlaveOutOfDataExchange) {
   Bus bus;
   bus.behaviour.veto = "units per revolution above the physical resolution";
   bus.master.activate(bus.now());
-  ASSERT_TRUE(bus.run_until([&] { return bus.master.lifecycle() == link::Lifecycle::fault; }, milliseconds(10)));
+  ASSERT_TRUE(
+      bus.run_until([&] { return bus.master.lifecycle() == link::Lifecycle::fault; }, milliseconds(10)));
   EXPECT_EQ(bus.master.dp_state(), DpState::refused);
   EXPECT_EQ(bus.master.last_startup_fault().kind, StartupFault::Kind::prm_fault);
   EXPECT_TRUE(bus.master.last_startup_fault().diagnosis.standard.prm_fault);
@@ -74,7 +75,8 @@ TEST(DpBus, WrongIdentIsAPrmFault) {
   setup.ident = 0x0BAD;
   Bus bus(master_config(), setup);
   bus.master.activate(bus.now());
-  ASSERT_TRUE(bus.run_until([&] { return bus.master.lifecycle() == link::Lifecycle::fault; }, milliseconds(10)));
+  ASSERT_TRUE(
+      bus.run_until([&] { return bus.master.lifecycle() == link::Lifecycle::fault; }, milliseconds(10)));
   // The master sees the real ident in the very first diagnosis and does not even parameterise.
   EXPECT_EQ(bus.master.last_startup_fault().kind, StartupFault::Kind::ident_mismatch);
   EXPECT_EQ(bus.master.diagnosis().standard.ident, kIdent);
@@ -86,7 +88,8 @@ TEST(DpBus, CfgMismatchIsACfgFault) {
   (void)setup.cfg.assign(cfg);
   Bus bus(master_config(), setup);
   bus.master.activate(bus.now());
-  ASSERT_TRUE(bus.run_until([&] { return bus.master.lifecycle() == link::Lifecycle::fault; }, milliseconds(10)));
+  ASSERT_TRUE(
+      bus.run_until([&] { return bus.master.lifecycle() == link::Lifecycle::fault; }, milliseconds(10)));
   EXPECT_EQ(bus.master.last_startup_fault().kind, StartupFault::Kind::cfg_fault);
   EXPECT_EQ(bus.master.fault_reason(), "slave refused start-up: Cfg_Fault");
   EXPECT_TRUE(bus.master.diagnosis().standard.cfg_fault);
@@ -103,7 +106,8 @@ TEST(DpBus, SilentMasterTripsTheSlaveWatchdog) {
 
   bus.master_running = false;
   const auto silent_from = bus.now();
-  ASSERT_TRUE(bus.run_until([&] { return bus.slave.state() != DpSlaveState::data_exchange; }, milliseconds(200)));
+  ASSERT_TRUE(
+      bus.run_until([&] { return bus.slave.state() != DpSlaveState::data_exchange; }, milliseconds(200)));
   // 10 ms × 5 × 2 = 100 ms after the last request received: sent at most one 1 ms period before the
   // silence began, or still on the wire (one frame, < 200 µs) when it began.
   const auto after = bus.now() - silent_from;
@@ -123,7 +127,8 @@ TEST(DpBus, SilentSlaveIsDetectedAndRecovers) {
 
   bus.slave.set_silent(true);
   const auto silent_from = bus.now();
-  ASSERT_TRUE(bus.run_until([&] { return bus.master.lifecycle() != link::Lifecycle::active; }, milliseconds(100)));
+  ASSERT_TRUE(
+      bus.run_until([&] { return bus.master.lifecycle() != link::Lifecycle::active; }, milliseconds(100)));
   // lost_slave_time (20 ms) from the last good reply, detected at the end of the next failed cycle.
   EXPECT_LE(bus.now() - silent_from, milliseconds(22));
   EXPECT_GE(bus.now() - silent_from, milliseconds(19));
@@ -167,8 +172,9 @@ TEST(DpBus, SlaveAt126RefusesEverythingButSetSlaveAdd) {
   auto setup = slave_setup(kDefaultSlaveAddress);
   Bus bus(master_config(), setup, kDefaultSlaveAddress);
   link::SimLink& sim = bus.sim;
-  const FdlFrame prm = make_sap_frame(126, kMaster, fc::kRequest | fc::kFcb | fc::kSrdHigh, sap::kSetPrm,
-                                      sap::kMaster, std::array<std::uint8_t, 7>{0x88, 1, 1, 11, 0x5c, 0x01, 0});
+  const FdlFrame prm =
+      make_sap_frame(126, kMaster, fc::kRequest | fc::kFcb | fc::kSrdHigh, sap::kSetPrm, sap::kMaster,
+                     std::array<std::uint8_t, 7>{0x88, 1, 1, 11, 0x5c, 0x01, 0});
   std::array<std::uint8_t, kMaxFrameSize> out{};
   ASSERT_EQ(sim.master().write(std::span<const std::uint8_t>(out.data(), encode(prm, out))).count, 18u);
   FdlDecoder d;
@@ -295,7 +301,8 @@ TEST(DpBus, LostReplyIsRepeatedWithTheSameFcbAndNotReExecuted) {
   EXPECT_EQ(slave.counters().repeats, 1u);
   EXPECT_EQ(behaviour.exchanges, exchanges + 1) << "executed once, answered twice";
   ASSERT_GE(slave_side.writes.size(), 2u);
-  EXPECT_EQ(slave_side.writes.back(), slave_side.writes[slave_side.writes.size() - 2]) << "the previous reply";
+  EXPECT_EQ(slave_side.writes.back(), slave_side.writes[slave_side.writes.size() - 2])
+      << "the previous reply";
 
   // The next cycle toggles the FCB and is executed normally.
   for (int i = 0; i < 2000 && master.stats().data_exchanges < 5; ++i) step();

@@ -70,8 +70,9 @@ TEST(DpServices, PrmStandardOctets) {
 }
 
 TEST(DpServices, GlobalControlAndSetSlaveAdd) {
-  GlobalControl gc{static_cast<std::uint8_t>(GlobalCommand::freeze) | static_cast<std::uint8_t>(GlobalCommand::sync),
-                   0x03};
+  GlobalControl gc{
+      static_cast<std::uint8_t>(GlobalCommand::freeze) | static_cast<std::uint8_t>(GlobalCommand::sync),
+      0x03};
   std::array<std::uint8_t, 2> g{};
   ASSERT_EQ(encode(gc, g), 2u);
   EXPECT_EQ(hex(g, 2), "28 03");

@@ -1,19 +1,22 @@
 // FDL frames byte-exact against protocol-notes.md, the SD1/SD2/SD3 choice, FCS/length/end-delimiter
 // errors, and the stream decoder's resynchronisation after garbage and torn frames.
 
+#include "profibus/fdl_frame.hpp"
+
 #include <gtest/gtest.h>
 
 #include <vector>
 
 #include "profibus/fdl_codes.hpp"
 #include "profibus/fdl_decoder.hpp"
-#include "profibus/fdl_frame.hpp"
 #include "wire/hex.hpp"
 
 namespace cellctl::profibus {
 namespace {
 
-std::vector<std::uint8_t> bytes(std::string_view hex) { return *wire::parse_hex(hex); }
+std::vector<std::uint8_t> bytes(std::string_view hex) {
+  return *wire::parse_hex(hex);
+}
 
 std::string encoded(const FdlFrame& f) {
   std::array<std::uint8_t, kMaxFrameSize> out{};
@@ -42,7 +45,8 @@ TEST(FdlFrame, FdlStatusRequestVector) {
 
 TEST(FdlFrame, SlaveDiagRequestVector) {
   // SAP 62 → 60, FCB 1, FCV 0, SRD_HI: SD2 with the address extension bits.
-  const FdlFrame f = make_sap_frame(5, 2, fc::kRequest | fc::kFcb | fc::kSrdHigh, sap::kSlaveDiag, sap::kMaster);
+  const FdlFrame f =
+      make_sap_frame(5, 2, fc::kRequest | fc::kFcb | fc::kSrdHigh, sap::kSlaveDiag, sap::kMaster);
   EXPECT_EQ(encoded(f), "68 05 05 68 85 82 6d 3c 3e ee 16");
   const FdlParse p = parse("68 05 05 68 85 82 6d 3c 3e ee 16");
   ASSERT_EQ(p.status, FdlParse::Status::frame);
@@ -140,11 +144,11 @@ TEST(FdlFrame, TypedErrors) {
 
 TEST(FdlDecoder, FramesInAnyPiecesAndResynchronisesAfterGarbage) {
   const auto stream = bytes(
-      "ff 00 "                              // line noise
-      "10 05 02 49 50 16 "                  // FDL_Status
-      "68 05 05 68 85 82 6d 3c 3e ef 16 "   // Slave_Diag with a wrong FCS
-      "68 05 05 68 85 "                     // torn frame: the rest never came
-      "68 05 05 68 85 82 6d 3c 3e ee 16 "   // Slave_Diag
+      "ff 00 "                             // line noise
+      "10 05 02 49 50 16 "                 // FDL_Status
+      "68 05 05 68 85 82 6d 3c 3e ef 16 "  // Slave_Diag with a wrong FCS
+      "68 05 05 68 85 "                    // torn frame: the rest never came
+      "68 05 05 68 85 82 6d 3c 3e ee 16 "  // Slave_Diag
       "e5");
   for (std::size_t piece : {std::size_t{1}, std::size_t{3}, std::size_t{7}, stream.size()}) {
     FdlDecoder d;
@@ -158,8 +162,10 @@ TEST(FdlDecoder, FramesInAnyPiecesAndResynchronisesAfterGarbage) {
     int errors = 0;
     bool fcs_seen = false;
     for (const auto& ev : events) {
-      if (ev.error == FdlError::none) frames.push_back(ev.frame.kind);
-      else ++errors;
+      if (ev.error == FdlError::none)
+        frames.push_back(ev.frame.kind);
+      else
+        ++errors;
       fcs_seen = fcs_seen || ev.error == FdlError::bad_fcs;
     }
     EXPECT_EQ(frames, (std::vector<FrameKind>{FrameKind::sd1, FrameKind::sd2, FrameKind::short_ack}))
