@@ -22,6 +22,7 @@ CellConfig parse_cell_config(const YamlNode& root, const std::filesystem::path& 
   if (auto n = root.maybe("stops")) cell.stops = parse_stop_reactions(*n);
   if (auto n = root.maybe("loop")) cell.loop = parse_loop(*n);
   if (auto n = root.maybe("spindle")) cell.spindle = parse_spindle_section(*n);
+  if (auto n = root.maybe("encoder")) cell.encoder = parse_encoder_section(*n);
   if (auto n = root.maybe("scu")) cell.scu = parse_scu_section(*n);
   return cell;
 }

@@ -7,6 +7,7 @@
 
 #include "config/axis_section.hpp"
 #include "config/cell_limits.hpp"
+#include "config/encoder_section.hpp"
 #include "config/scu_section.hpp"
 #include "config/spindle_section.hpp"
 #include "config/yaml_node.hpp"
@@ -21,6 +22,7 @@ struct CellConfig {
   StopReactions stops;
   LoopConfig loop;
   std::optional<SpindleSection> spindle;
+  std::optional<EncoderSection> encoder;
   std::optional<ScuSection> scu;
 
   // The axis with this name, or nullptr.
