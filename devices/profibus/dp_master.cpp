@@ -451,6 +451,7 @@ void DpMaster::on_no_reply(link::TimePoint now) {
     address_change_ = RequestStatus::failed;
     return;
   }
+  if (state_ == DpState::clearing) return;  // deactivating: the Clear_Data goes out regardless
   if (state_ == DpState::data_exchange || state_ == DpState::diag_cyclic) {
     if (health_.silent_for(now, state_since_) >= config_.lost_slave_time) {
       ++stats_.lost;

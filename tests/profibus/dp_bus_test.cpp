@@ -225,6 +225,21 @@ TEST(DpBus, DeactivateClearsTheOutputs) {
   EXPECT_TRUE(std::ranges::all_of(bus.slave.outputs(), [](std::uint8_t b) { return b == 0; }));
 }
 
+TEST(DpBus, DeactivateFinishesEvenWhenTheSlaveIsSilent) {
+  Bus bus;
+  bus.master.activate(bus.now());
+  ASSERT_TRUE(bus.run_until([&] { return bus.in_data_exchange(); }, milliseconds(10)));
+  bus.slave.set_silent(true);
+  // Deactivate while a request is on the wire: its reply will never come.
+  ASSERT_TRUE(bus.run_until([&] { return bus.sim.next_delivery().has_value(); }, milliseconds(2)));
+  bus.master.deactivate(bus.now());
+  ASSERT_TRUE(
+      bus.run_until([&] { return bus.master.lifecycle() == link::Lifecycle::inactive; }, milliseconds(5)));
+  EXPECT_EQ(bus.master.dp_state(), DpState::stopped);
+  bus.run_for(milliseconds(5));
+  EXPECT_EQ(bus.master.lifecycle(), link::Lifecycle::inactive) << "no restart after deactivate";
+}
+
 TEST(DpBus, FreezeHoldsTheInputsUntilUnfreeze) {
   auto setup = slave_setup();
   setup.freeze_req = true;
