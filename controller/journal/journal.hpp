@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "journal/event.hpp"
+#include "journal/event_sink.hpp"
 #include "journal/run_summary.hpp"
 #include "journal/spsc_queue.hpp"
 
@@ -25,16 +26,16 @@ namespace cellctl::journal {
 // real-time, so the cycle waits for room and nothing is ever dropped.
 enum class WhenFull : std::uint8_t { drop_and_count, wait };
 
-class Journal {
+class Journal final : public EventSink {
  public:
   // Creates `dir` if needed and opens dir/journal.jsonl; throws std::runtime_error naming the path.
   Journal(const std::filesystem::path& dir, WhenFull when_full);
-  ~Journal();
+  ~Journal() override;
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;
 
   // Cycle side: no allocation, no lock, no I/O.
-  void post(double t, const Payload& payload) noexcept;
+  void post(double t, const Payload& payload) noexcept override;
 
   // Drains everything, appends {"event":"summary",…} with `extra` merged in (cycle statistics),
   // writes plot.svg, flushes and closes. Idempotent.

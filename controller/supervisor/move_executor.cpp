@@ -1,0 +1,204 @@
+#include "supervisor/move_executor.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cellctl::supervisor {
+
+MoveExecutor::MoveExecutor(const config::CellConfig& cell, const recipe::Limits& limits, double dt,
+                           MoveSettings settings)
+    : cell_(cell), limits_(limits), settings_(settings), planner_(dt) {}
+
+double MoveExecutor::best_position(const cell::CellState& s, std::size_t i) const noexcept {
+  return s.axes[i].position_mm();
+}
+
+void MoveExecutor::start(const recipe::Move& move, const cell::CellState& s, double t, std::uint32_t& move_id) {
+  axes_ = {};
+  speed_ = move.speed_mm_s;
+  reason_ = {};
+  corrections_total_ = 0;
+  double lead = 0.0;
+  for (const auto& target : move.targets) {
+    const auto i = static_cast<std::size_t>(target.axis);
+    auto& a = axes_[i];
+    a.in_move = true;
+    a.start_mm = best_position(s, i);
+    a.target_mm = target.target_mm;
+    // Carry the SCU's present offset from the measurement into its target: fewer corrections later.
+    a.scu_target_mm = s.axes[i].scu_mm + (a.target_mm - a.start_mm);
+    a.tolerance_mm = limits_.axes[i] ? limits_.axes[i]->tolerance_mm : 0.05;
+    lead = std::max(lead, std::abs(a.target_mm - a.start_mm));
+  }
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    auto& a = axes_[i];
+    planned_[i] = i < s.axis_count ? best_position(s, i) : 0.0;
+    if (!a.in_move) continue;
+    const auto& c = cell_.axes[i];
+    const double share = lead > 0.0 ? std::abs(a.target_mm - a.start_mm) / lead : 0.0;
+    // Coordinated: each axis gets the share of the speed that makes it arrive with the leading one;
+    // never below the speed at which the actuator moves at all.
+    a.nominal_speed = std::clamp(speed_ * share, std::min(c.min_speed_mm_s * 1.2, speed_), c.max_speed_mm_s);
+    speed_sent_[i] = a.nominal_speed;
+  }
+  restart_profile(s);
+  for (auto& a : axes_) {
+    if (!a.in_move || std::abs(a.target_mm - a.start_mm) <= a.tolerance_mm) continue;
+    a.commanded = true;
+    a.move_id = ++move_id;
+  }
+  started_t_ = t;
+  last_progress_t_ = t;
+  last_speed_update_t_ = t;
+  best_remaining_ = lead;
+  still_since_.reset();
+  seen_moving_ = {};
+}
+
+void MoveExecutor::restart_profile(const cell::CellState& s) {
+  input_ = {};
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    const auto& a = axes_[i];
+    const auto k = static_cast<Eigen::Index>(i);
+    input_.enabled[i] = a.in_move;
+    input_.current_position[k] = i < s.axis_count ? best_position(s, i) : 0.0;
+    input_.target_position[k] = a.in_move ? a.target_mm : input_.current_position[k];
+    if (i < cell_.axes.size()) {
+      input_.max_velocity[k] = std::min(speed_, cell_.axes[i].max_speed_mm_s);
+      input_.max_acceleration[k] = cell_.axes[i].max_accel_mm_s2;
+      input_.max_jerk[k] = cell_.axes[i].max_jerk_mm_s3;
+    }
+  }
+}
+
+void MoveExecutor::command(cell::Intents& out) const noexcept {
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    if (!axes_[i].commanded) continue;
+    auto& intent = out.axes[i];
+    intent.move_id = axes_[i].move_id;
+    intent.move = true;
+    intent.target_mm = axes_[i].scu_target_mm;
+    intent.speed_mm_s = speed_sent_[i];
+    intent.soft = true;
+  }
+}
+
+MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents& out, std::uint32_t& move_id) {
+  // The profile: where the axes should be, and the pace the modulation keeps them on.
+  // An invalid profile (it cannot be: limits are validated at load) would leave the plan where it is.
+  if (!planner::is_error(planner_.update(input_, output_))) output_.pass_to_input(input_);
+  double plan_progress = 1.0;
+  double worst_remaining = 0.0;
+  bool all_inside = true;
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    const auto& a = axes_[i];
+    if (!a.in_move) continue;
+    planned_[i] = output_.new_position[static_cast<Eigen::Index>(i)];
+    const double span = a.target_mm - a.start_mm;
+    if (std::abs(span) > 1e-9) plan_progress = std::min(plan_progress, (planned_[i] - a.start_mm) / span);
+    const double remaining = std::abs(a.target_mm - best_position(s, i));
+    worst_remaining = std::max(worst_remaining, remaining);
+    if (remaining > a.tolerance_mm) all_inside = false;
+    if (s.axes[i].moving) seen_moving_[i] = true;
+  }
+
+  if (worst_remaining < best_remaining_ - 0.05) {
+    best_remaining_ = worst_remaining;
+    last_progress_t_ = t;
+  }
+  if (t - started_t_ > limits_.move_timeout_s) {
+    reason_ = journal::Text::format("move not done after {:.1f} s (time-out); {:.2f} mm still to go", t - started_t_,
+                                    worst_remaining);
+    return MoveStatus::failed;
+  }
+
+  const bool any_moving = [&] {
+    for (std::size_t i = 0; i < cell::kMaxAxes; ++i)
+      if (axes_[i].in_move && s.axes[i].moving) return true;
+    return false;
+  }();
+
+  if (!all_inside && t - last_progress_t_ > settings_.no_motion_s) {
+    for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+      const auto& a = axes_[i];
+      if (!a.in_move || std::abs(a.target_mm - best_position(s, i)) <= a.tolerance_mm) continue;
+      reason_ = journal::Text::format(
+          "no motion: axis {} stayed at {:.2f} mm for {:.1f} s at {:.2f} mm/s (below the actuator's threshold, or "
+          "blocked?)",
+          cell_.axes[i].name, best_position(s, i), t - last_progress_t_, speed_sent_[i]);
+      break;
+    }
+    return MoveStatus::failed;
+  }
+
+  // Keep coordinated axes on the common profile: an axis behind the plan gets a little more speed.
+  if (any_moving && t - last_speed_update_t_ >= settings_.speed_update_s) {
+    last_speed_update_t_ = t;
+    for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+      auto& a = axes_[i];
+      const double span = a.target_mm - a.start_mm;
+      if (!a.in_move || std::abs(span) < 1e-9 || a.corrections > 0) continue;
+      const double progress = (best_position(s, i) - a.start_mm) / span;
+      const double factor = std::clamp(1.0 + settings_.sync_gain * (plan_progress - progress), 0.5, 1.5);
+      const double axis_max = limits_.axes[i] ? limits_.axes[i]->max_speed_mm_s : cell_.axes[i].max_speed_mm_s;
+      const double v = std::clamp(a.nominal_speed * factor, std::min(cell_.axes[i].min_speed_mm_s * 1.2, axis_max),
+                                  axis_max);
+      if (std::abs(v - speed_sent_[i]) > 0.03 * a.nominal_speed) speed_sent_[i] = v;
+    }
+  }
+
+  // Judge only once the SCU has stopped and stayed stopped for a moment.
+  bool judged_still = !any_moving;
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    const auto& a = axes_[i];
+    const bool needs_motion = a.in_move && std::abs(a.target_mm - best_position(s, i)) > a.tolerance_mm;
+    if (needs_motion && !seen_moving_[i]) judged_still = false;  // not started yet
+  }
+  if (all_inside && !any_moving) {
+    command(out);
+    return MoveStatus::done;
+  }
+  if (!judged_still) {
+    still_since_.reset();
+    command(out);
+    return MoveStatus::running;
+  }
+  if (!still_since_) still_since_ = t;
+  if (t - *still_since_ < settings_.settle_s) {
+    command(out);
+    return MoveStatus::running;
+  }
+
+  // Stopped, yet outside the tolerance: the SCU's idea of the position is off. Correct and go again.
+  bool corrected = false;
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    auto& a = axes_[i];
+    if (!a.in_move) continue;
+    const double error = a.target_mm - best_position(s, i);
+    if (std::abs(error) <= a.tolerance_mm) continue;
+    if (a.corrections >= settings_.max_corrections) {
+      reason_ = journal::Text::format("axis {} at {:.3f} mm after {} corrections, target {:.3f} ± {:g} mm",
+                                      cell_.axes[i].name, best_position(s, i), a.corrections, a.target_mm,
+                                      a.tolerance_mm);
+      return MoveStatus::failed;
+    }
+    a.scu_target_mm += error;
+    a.move_id = ++move_id;
+    a.commanded = true;
+    ++a.corrections;
+    ++corrections_total_;
+    seen_moving_[i] = false;
+    // A short correction at full share of the speed is fine; never below the threshold.
+    speed_sent_[i] = std::max(a.nominal_speed, cell_.axes[i].min_speed_mm_s * 1.2);
+    corrected = true;
+  }
+  if (corrected) {
+    still_since_.reset();
+    last_progress_t_ = t;
+    best_remaining_ = worst_remaining;
+  }
+  command(out);
+  return MoveStatus::running;
+}
+
+}  // namespace cellctl::supervisor

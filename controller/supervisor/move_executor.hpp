@@ -1,0 +1,85 @@
+#pragma once
+// One recipe move, closed on the encoder. The planner gives the time-synchronised jerk-limited
+// profile (the journal's "planned" positions, and the pace the axes are kept on); the SCU gets the
+// targets and a speed per axis scaled so coordinated axes arrive together, modulated during the move
+// to keep them on their common profile. The move is done only when every axis is inside its
+// tolerance by its best measurement (the encoder where it has one). When the SCU has stopped but the
+// encoder says the axis is off (scale error, slip), the SCU target is corrected by the measured error
+// and the axis moved again, a bounded number of times. A move that produces no motion is detected.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include "cell/cell_state.hpp"
+#include "cell/intents.hpp"
+#include "config/cell_config.hpp"
+#include "journal/event.hpp"
+#include "planner/planner.hpp"
+#include "recipe/recipe.hpp"
+
+namespace cellctl::supervisor {
+
+struct MoveSettings {
+  int max_corrections = 3;
+  double no_motion_s = 1.5;         // no measurable progress for this long → "no motion"
+  double settle_s = 0.15;           // the SCU must show no motion for this long before we judge
+  double speed_update_s = 0.1;      // at most this often a new speed goes to the SCU
+  double sync_gain = 2.0;           // speed correction per unit of normalised lag
+};
+
+enum class MoveStatus : std::uint8_t { running, done, failed };
+
+class MoveExecutor {
+ public:
+  MoveExecutor(const config::CellConfig& cell, const recipe::Limits& limits, double dt, MoveSettings settings = {});
+
+  // Starts `move` from the state's current positions. `move_id` is the cell's move counter: every
+  // command to an axis takes the next value, so CellDevices sees each new command exactly once.
+  void start(const recipe::Move& move, const cell::CellState& s, double t, std::uint32_t& move_id);
+  // One cycle: updates the intents of the axes in the move. On failure, reason() says why.
+  [[nodiscard]] MoveStatus step(const cell::CellState& s, double t, cell::Intents& out, std::uint32_t& move_id);
+
+  [[nodiscard]] const journal::Text& reason() const noexcept { return reason_; }
+  [[nodiscard]] int corrections() const noexcept { return corrections_total_; }
+  // Where the profile says each axis should be now (for the journal's samples).
+  [[nodiscard]] double planned_mm(std::size_t axis) const noexcept { return planned_[axis]; }
+
+ private:
+  struct Axis {
+    bool in_move = false;
+    double start_mm = 0.0;
+    double target_mm = 0.0;      // the recipe's target (true position)
+    double scu_target_mm = 0.0;  // what the SCU is told (target + corrections)
+    double nominal_speed = 0.0;  // its share of the move speed, so that all arrive together
+    double tolerance_mm = 0.0;
+    int corrections = 0;
+    bool commanded = false;     // told to move (an axis already inside its tolerance is left alone)
+    std::uint32_t move_id = 0;  // bumped for every command to this axis (start, correction)
+  };
+
+  [[nodiscard]] double best_position(const cell::CellState& s, std::size_t i) const noexcept;
+  void command(cell::Intents& out) const noexcept;
+  void restart_profile(const cell::CellState& s);
+
+  const config::CellConfig& cell_;
+  const recipe::Limits& limits_;
+  MoveSettings settings_;
+  planner::Planner<6> planner_;
+  planner::Input<6> input_;
+  planner::Output<6> output_;
+  std::array<Axis, cell::kMaxAxes> axes_{};
+  std::array<double, cell::kMaxAxes> planned_{};
+  std::array<double, cell::kMaxAxes> speed_sent_{};
+  double speed_ = 0.0;
+  double started_t_ = 0.0;
+  double last_progress_t_ = 0.0;
+  double best_remaining_ = 0.0;
+  double last_speed_update_t_ = 0.0;
+  std::optional<double> still_since_;
+  std::array<bool, cell::kMaxAxes> seen_moving_{};  // the SCU showed motion since the last command
+  int corrections_total_ = 0;
+  journal::Text reason_;
+};
+
+}  // namespace cellctl::supervisor

@@ -1,0 +1,319 @@
+#include "supervisor/supervisor.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cellctl::supervisor {
+namespace {
+
+using journal::Text;
+
+bool is_running_state(State s) noexcept {
+  return s == State::execute || s == State::unholding || s == State::holding || s == State::held ||
+         s == State::completing;
+}
+
+}  // namespace
+
+Supervisor::Supervisor(const config::CellConfig& cell, const recipe::Recipe& recipe, const recipe::Program& program,
+                       journal::EventSink& events, double dt, SupervisorSettings settings)
+    : cell_(cell),
+      recipe_(recipe),
+      program_(program),
+      events_(events),
+      settings_(settings),
+      executor_(cell, recipe.limits, dt, settings.move) {}
+
+const recipe::Instruction* Supervisor::current() const noexcept {
+  return pc_ < program_.instructions.size() ? &program_.instructions[pc_] : nullptr;
+}
+
+bool Supervisor::command(Command c, std::string_view source, double t) {
+  bool allowed = false;
+  switch (c) {
+    case Command::start: allowed = state_ == State::idle; break;
+    case Command::hold: allowed = state_ == State::execute || state_ == State::unholding; break;
+    case Command::unhold: allowed = state_ == State::held; break;
+    case Command::stop: allowed = !is_final(state_) && state_ != State::stopping && state_ != State::aborting; break;
+    case Command::abort: allowed = state_ != State::aborted && state_ != State::aborting; break;
+    case Command::reset:
+      allowed = state_ == State::stopped || state_ == State::aborted || state_ == State::complete;
+      break;
+  }
+  if (!allowed) {
+    refusal_ = Text::format("{} is not possible in state {}", to_string(c), to_string(state_));
+    return false;
+  }
+  events_.post(t, journal::Command{to_string(c), source});
+  pending_ = c;
+  pending_source_ = source;
+  return true;
+}
+
+void Supervisor::enter(State next, double t, const Text& reason) {
+  if (next == state_) return;
+  events_.post(t, journal::StateChanged{to_string(state_), to_string(next), reason});
+  state_ = next;
+  state_since_ = t;
+}
+
+void Supervisor::clear_motion() noexcept {
+  for (auto& a : intents_.axes) a.move = false;
+}
+
+bool Supervisor::axes_still(const cell::CellState& s) const noexcept {
+  for (std::size_t i = 0; i < s.axis_count; ++i)
+    if (s.axes[i].moving) return false;
+  return true;
+}
+
+void Supervisor::apply_demanded(std::optional<config::StopCategory> demanded, double t) {
+  if (!demanded) return;
+  switch (*demanded) {
+    case config::StopCategory::immediate:
+      if (state_ != State::aborting && state_ != State::aborted) enter(State::aborting, t, Text::format("stop category 0"));
+      break;
+    case config::StopCategory::controlled_off:
+      if (state_ != State::stopping && state_ != State::stopped && state_ != State::aborting && state_ != State::aborted)
+        enter(State::stopping, t, Text::format("stop category 1"));
+      break;
+    case config::StopCategory::controlled_hold:
+      if (state_ == State::execute || state_ == State::unholding || state_ == State::completing)
+        enter(State::holding, t, Text::format("stop category 2"));
+      else if (state_ == State::starting || state_ == State::idle)
+        enter(State::stopping, t, Text::format("stop category 2 before the recipe ran"));
+      break;
+  }
+}
+
+void Supervisor::start_instruction(const cell::CellState& s, double t) {
+  const auto& ins = program_.instructions[pc_];
+  instruction_started_ = true;
+  instruction_t_ = t;
+  last_execute_t_ = t;
+  if (const auto* move = std::get_if<recipe::Move>(&ins.action)) executor_.start(*move, s, t, move_counter_);
+  if (const auto* dwell = std::get_if<recipe::Dwell>(&ins.action)) dwell_left_s_ = dwell->seconds;
+  if (const auto* sp = std::get_if<recipe::Spindle>(&ins.action)) {
+    intents_.spindle.run = sp->start;
+    if (sp->start) {
+      intents_.spindle.frequency_hz = sp->frequency_hz;
+      intents_.spindle.clockwise = sp->direction == recipe::SpindleDirection::cw;
+    }
+  }
+  events_.post(t, journal::StepStarted{static_cast<std::uint32_t>(pc_), ins.label});
+}
+
+Supervisor::StepStatus Supervisor::run_instruction(const cell::CellState& s, double t) {
+  const auto& ins = program_.instructions[pc_];
+  const double elapsed = t - instruction_t_;
+  const double tol = cell_.limits.spindle_tolerance_hz;
+
+  if (std::holds_alternative<recipe::Move>(ins.action)) {
+    const auto status = executor_.step(s, t, intents_, move_counter_);
+    if (status == MoveStatus::failed) failure_ = executor_.reason();
+    if (status == MoveStatus::done) corrections_ += executor_.corrections();
+    return status == MoveStatus::done ? StepStatus::done : status == MoveStatus::failed ? StepStatus::failed
+                                                                                         : StepStatus::running;
+  }
+  if (const auto* sp = std::get_if<recipe::Spindle>(&ins.action)) {
+    const double want = sp->direction == recipe::SpindleDirection::cw ? sp->frequency_hz : -sp->frequency_hz;
+    const bool reached = sp->start ? (s.spindle.at_speed && std::abs(s.spindle.actual_hz - want) <= tol)
+                                   : s.spindle.at_rest;
+    if (reached) return StepStatus::done;
+    if (elapsed > recipe_.limits.spindle_timeout_s) {
+      failure_ = Text::format("spindle not {} after {:.1f} s (at {:.0f} Hz)", sp->start ? "at speed" : "at rest",
+                              elapsed, s.spindle.actual_hz);
+      return StepStatus::failed;
+    }
+    return StepStatus::running;
+  }
+  if (std::holds_alternative<recipe::Dwell>(ins.action)) {
+    dwell_left_s_ -= t - last_execute_t_;
+    last_execute_t_ = t;
+    return dwell_left_s_ <= 1e-9 ? StepStatus::done : StepStatus::running;
+  }
+  if (const auto* w = std::get_if<recipe::Wait>(&ins.action)) {
+    bool met = false;
+    using C = recipe::Wait::Condition;
+    switch (w->condition) {
+      case C::position_above: met = s.axes[static_cast<std::size_t>(w->axis)].position_mm() > w->threshold_mm; break;
+      case C::position_below: met = s.axes[static_cast<std::size_t>(w->axis)].position_mm() < w->threshold_mm; break;
+      case C::encoder_ready: met = s.encoder.data_exchange && s.encoder.ready; break;
+      case C::spindle_at_speed: met = s.spindle.at_speed; break;
+      case C::spindle_at_rest: met = s.spindle.at_rest; break;
+    }
+    if (met) return StepStatus::done;
+    if (elapsed > w->timeout_s) {
+      failure_ = Text::format("condition not met within {:g} s", w->timeout_s);
+      return StepStatus::failed;
+    }
+    return StepStatus::running;
+  }
+  const auto& r = std::get<recipe::Require>(ins.action);
+  for (int axis : r.homed_axes) {
+    if (!s.axes[static_cast<std::size_t>(axis)].homed) {
+      failure_ = Text::format("axis {} is not homed (run `cellctl home` first)", cell_.axes[static_cast<std::size_t>(axis)].name);
+      return StepStatus::failed;
+    }
+  }
+  if (r.encoder_ready && !(s.encoder.data_exchange && s.encoder.ready)) {
+    failure_ = Text::format("the encoder is not ready");
+    return StepStatus::failed;
+  }
+  if (r.spindle_at_rest && !s.spindle.at_rest) {
+    failure_ = Text::format("the spindle is not at rest ({:.0f} Hz)", s.spindle.actual_hz);
+    return StepStatus::failed;
+  }
+  return StepStatus::done;
+}
+
+void Supervisor::sample(const cell::CellState& s, double t) {
+  if (t < next_sample_t_) return;
+  next_sample_t_ = t + settings_.sample_s;
+  journal::Sample smp;
+  smp.axes = s.axis_count;
+  for (std::size_t i = 0; i < s.axis_count; ++i) {
+    smp.planned_mm[i] = static_cast<float>(executor_.planned_mm(i));
+    smp.scu_mm[i] = static_cast<float>(s.axes[i].scu_mm);
+    if (s.axes[i].measured) {
+      smp.encoder_mm = static_cast<float>(s.axes[i].encoder_mm);
+      smp.encoder_mm_s = static_cast<float>(s.axes[i].encoder_mm_s);
+    }
+  }
+  smp.spindle_set_hz = static_cast<float>(intents_.spindle.run ? intents_.spindle.frequency_hz : 0.0);
+  smp.spindle_actual_hz = static_cast<float>(s.spindle.actual_hz);
+  events_.post(t, smp);
+}
+
+void Supervisor::step(const cell::CellState& s, std::optional<config::StopCategory> demanded, double t) {
+  intents_.spindle.reset = false;
+  if (pending_) {
+    const Command c = *pending_;
+    pending_.reset();
+    const auto why = Text::format("{} by {}", to_string(c), pending_source_);
+    switch (c) {
+      case Command::start:
+        pc_ = 0;
+        instruction_started_ = false;
+        failure_ = {};
+        events_.post(t, journal::RunStarted{recipe_.name, cell_.name, settings_.mode, static_cast<std::uint32_t>(step_count())});
+        enter(State::starting, t, why);
+        break;
+      case Command::hold: enter(State::holding, t, why); break;
+      case Command::unhold:
+        if (demanded) {
+          refusal_ = Text::format("unhold refused: a latched fault still demands a stop (reset it first)");
+          events_.post(t, journal::Note{refusal_});
+        } else {
+          enter(State::unholding, t, why);
+        }
+        break;
+      case Command::stop: enter(State::stopping, t, why); break;
+      case Command::abort: enter(State::aborting, t, why); break;
+      case Command::reset: enter(State::resetting, t, why); break;
+    }
+  }
+  apply_demanded(demanded, t);
+
+  intents_.halt = cell::Halt::none;
+  switch (state_) {
+    case State::idle:
+    case State::complete:
+    case State::stopped:
+    case State::aborted:
+      clear_motion();
+      intents_.spindle.run = false;
+      break;
+
+    case State::starting: {
+      bool up = s.scu_remote && s.encoder.data_exchange && s.encoder.ready;
+      for (const auto& l : s.links) up = up && l.active;
+      if (up) {
+        cell_up_ = true;
+        enter(State::execute, t, Text::format("all devices up, encoder ready"));
+      } else if (t - state_since_ > settings_.start_timeout_s) {
+        failure_ = Text::format("devices not ready after {:g} s (scu {}, spindle {}, encoder {})",
+                                settings_.start_timeout_s, s.links[0].active ? "up" : "down",
+                                s.links[1].active ? "up" : "down",
+                                s.encoder.data_exchange ? (s.encoder.ready ? "ready" : "not ready") : "down");
+        enter(State::aborting, t, failure_);
+      }
+      break;
+    }
+
+    case State::execute: {
+      if (pc_ >= program_.instructions.size()) {
+        enter(State::completing, t, Text::format("all {} steps done", program_.instructions.size()));
+        break;
+      }
+      if (!instruction_started_) start_instruction(s, t);
+      const auto status = run_instruction(s, t);
+      const auto& ins = program_.instructions[pc_];
+      if (status == StepStatus::done) {
+        events_.post(t, journal::StepEnded{static_cast<std::uint32_t>(pc_), ins.label, true, {}});
+        clear_motion();
+        ++pc_;
+        instruction_started_ = false;
+      } else if (status == StepStatus::failed) {
+        events_.post(t, journal::StepEnded{static_cast<std::uint32_t>(pc_), ins.label, false, failure_});
+        enter(State::stopping, t, Text::format("step {} failed: {}", pc_ + 1, failure_.view()));
+      }
+      break;
+    }
+
+    case State::holding:
+      clear_motion();
+      intents_.halt = cell::Halt::controlled;
+      if (axes_still(s)) enter(State::held, t, Text::format("axes at rest"));
+      break;
+
+    case State::held:
+      clear_motion();
+      break;
+
+    case State::unholding:
+      // The interrupted step starts again from where the cell is (a dwell keeps what it had done).
+      if (pc_ < program_.instructions.size() &&
+          !std::holds_alternative<recipe::Dwell>(program_.instructions[pc_].action)) {
+        instruction_started_ = false;
+      }
+      last_execute_t_ = t;
+      enter(State::execute, t, Text::format("resuming step {}", pc_ + 1));
+      break;
+
+    case State::completing:
+      clear_motion();
+      intents_.spindle.run = false;
+      if (axes_still(s) && s.spindle.at_rest) {
+        enter(State::complete, t, Text::format("cell at rest"));
+        events_.post(t, journal::RunEnded{"complete"});
+      }
+      break;
+
+    case State::stopping:
+    case State::aborting: {
+      const bool abort = state_ == State::aborting;
+      clear_motion();
+      intents_.spindle.run = false;
+      intents_.halt = abort ? cell::Halt::immediate : cell::Halt::controlled;
+      const bool rest = axes_still(s) && (s.spindle.at_rest || !s.links[1].active);
+      if (rest || t - state_since_ > settings_.stop_timeout_s) {
+        const auto note = rest ? Text::format("cell at rest")
+                               : Text::format("not at rest after {:g} s; giving up waiting", settings_.stop_timeout_s);
+        enter(abort ? State::aborted : State::stopped, t, note);
+        events_.post(t, journal::RunEnded{abort ? "aborted" : "stopped"});
+      }
+      break;
+    }
+
+    case State::resetting:
+      clear_motion();
+      intents_.spindle.reset = true;  // clears a converter fault whose cause is gone
+      cell_up_ = false;
+      enter(State::idle, t, Text::format("reset done"));
+      break;
+  }
+  if (is_running_state(state_) || state_ == State::stopping || state_ == State::aborting) sample(s, t);
+}
+
+}  // namespace cellctl::supervisor

@@ -1,0 +1,88 @@
+#pragma once
+// The sequencer: runs the recipe's unrolled program as a PackML-style state machine, one cycle at a
+// time, and says what it wants of the devices as Intents. The monitor's demanded stop overrides it
+// every cycle (category 0 → Aborting, 1 → Stopping, 2 → Holding). Pure with respect to devices:
+// it reads CellState and writes Intents and events; no I/O, no allocation after construction.
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "cell/cell_state.hpp"
+#include "cell/intents.hpp"
+#include "config/cell_config.hpp"
+#include "journal/event_sink.hpp"
+#include "recipe/program.hpp"
+#include "recipe/recipe.hpp"
+#include "supervisor/move_executor.hpp"
+#include "supervisor/packml.hpp"
+
+namespace cellctl::supervisor {
+
+struct SupervisorSettings {
+  double start_timeout_s = 20.0;  // devices up and encoder ready
+  double stop_timeout_s = 30.0;   // axes still and spindle at rest after a stop
+  double sample_s = 0.02;         // journal sample period
+  std::string_view mode = "virtual-time";  // for the run record: virtual-time, emulated, hardware
+  MoveSettings move;
+};
+
+class Supervisor {
+ public:
+  Supervisor(const config::CellConfig& cell, const recipe::Recipe& recipe, const recipe::Program& program,
+             journal::EventSink& events, double dt, SupervisorSettings settings = {});
+
+  // An operator command, carried out at the next step. False when the state does not allow it now;
+  // refusal() says why. Reset must only be sent once the monitor's latches are clear.
+  bool command(Command c, std::string_view source, double t);
+  void step(const cell::CellState& s, std::optional<config::StopCategory> demanded, double t);
+
+  [[nodiscard]] const cell::Intents& intents() const noexcept { return intents_; }
+  [[nodiscard]] State state() const noexcept { return state_; }
+  [[nodiscard]] std::size_t step_index() const noexcept { return pc_; }
+  [[nodiscard]] std::size_t step_count() const noexcept { return program_.instructions.size(); }
+  [[nodiscard]] const recipe::Instruction* current() const noexcept;
+  // The device rules of the monitor apply from Execute on (the cell is up).
+  [[nodiscard]] bool cell_up() const noexcept { return cell_up_; }
+  [[nodiscard]] const journal::Text& failure() const noexcept { return failure_; }
+  [[nodiscard]] const journal::Text& refusal() const noexcept { return refusal_; }
+  [[nodiscard]] double planned_mm(std::size_t axis) const noexcept { return executor_.planned_mm(axis); }
+  [[nodiscard]] int corrections() const noexcept { return corrections_; }
+
+ private:
+  enum class StepStatus : std::uint8_t { running, done, failed };
+
+  void enter(State next, double t, const journal::Text& reason = {});
+  void start_instruction(const cell::CellState& s, double t);
+  StepStatus run_instruction(const cell::CellState& s, double t);
+  void apply_demanded(std::optional<config::StopCategory> demanded, double t);
+  void sample(const cell::CellState& s, double t);
+  [[nodiscard]] bool axes_still(const cell::CellState& s) const noexcept;
+  void clear_motion() noexcept;
+
+  const config::CellConfig& cell_;
+  const recipe::Recipe& recipe_;
+  const recipe::Program& program_;
+  journal::EventSink& events_;
+  SupervisorSettings settings_;
+  MoveExecutor executor_;
+
+  State state_ = State::idle;
+  double state_since_ = 0.0;
+  std::optional<Command> pending_;
+  std::string_view pending_source_;
+  cell::Intents intents_;
+  std::uint32_t move_counter_ = 0;
+  std::size_t pc_ = 0;
+  bool instruction_started_ = false;
+  double instruction_t_ = 0.0;
+  double dwell_left_s_ = 0.0;
+  double last_execute_t_ = 0.0;
+  double next_sample_t_ = 0.0;
+  bool cell_up_ = false;
+  int corrections_ = 0;
+  journal::Text failure_;
+  journal::Text refusal_;
+};
+
+}  // namespace cellctl::supervisor

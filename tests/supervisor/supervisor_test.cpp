@@ -1,0 +1,231 @@
+// The supervisor on a protocol-free cell (plant models driven by the intents): the PackML states,
+// closed-loop moves on the encoder, no-motion detection, hold/unhold, stop/reset and the monitor's
+// override — deterministic, on a virtual 1 ms cycle.
+
+#include "supervisor/supervisor.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "fake_cell.hpp"
+#include "recipe/recipe_loader.hpp"
+
+namespace cellctl::supervisor {
+namespace {
+
+using namespace std::chrono_literals;
+using config::StopCategory;
+
+class Recorder final : public journal::EventSink {
+ public:
+  void post(double t, const journal::Payload& p) noexcept override { events.push_back({t, p}); }
+  template <class T>
+  std::vector<std::pair<double, T>> all() const {
+    std::vector<std::pair<double, T>> out;
+    for (const auto& e : events)
+      if (const auto* v = std::get_if<T>(&e.payload)) out.emplace_back(e.t, *v);
+    return out;
+  }
+  std::vector<journal::Event> events;
+};
+
+const char* kCell = R"(cell: t
+axes:
+  - {name: x, actuator: 1, function: 1, edges_per_mm: 10, min_mm: 0, max_mm: 190, max_speed_mm_s: 20,
+     min_speed_mm_s: 0.8, max_accel_mm_s2: 40, max_jerk_mm_s3: 400, encoder: true}
+  - {name: z, actuator: 2, function: 2, edges_per_mm: 10, min_mm: 0, max_mm: 140, max_speed_mm_s: 15,
+     min_speed_mm_s: 0.8, max_accel_mm_s2: 30, max_jerk_mm_s3: 300}
+limits: {spindle_min_hz: 100, spindle_max_hz: 800}
+)";
+
+const std::string kRecipeHead = R"(recipe: {name: r, version: "1", cell: t}
+limits:
+  axes:
+    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
+    z: {min_mm: 0, max_mm: 120, max_speed_mm_s: 12, tolerance_mm: 0.1}
+  spindle: {min_hz: 200, max_hz: 600}
+  timeouts: {move_s: 30, spindle_s: 10}
+steps:
+)";
+
+class SupervisorTest : public ::testing::Test {
+ protected:
+  void load(const std::string& steps, double scale_error = 0.0, double plant_min_speed = 0.5,
+            SupervisorSettings settings = {}) {
+    cell_ = config::parse_cell_config(config::YamlNode::load_string(kCell, "cell.yaml"), "cell.yaml");
+    recipe_ = recipe::parse_recipe(config::YamlNode::load_string(kRecipeHead + steps, "r.yaml"), cell_);
+    program_ = recipe::unroll(recipe_);
+    fake_ = std::make_unique<testing::FakeCell>(cell_, scale_error, plant_min_speed);
+    sup_ = std::make_unique<Supervisor>(cell_, recipe_, program_, rec_, 0.001, settings);
+  }
+
+  // Steps the cell until `until` holds or `limit` seconds pass; returns whether it held.
+  template <class Until>
+  bool run(double limit, Until until, std::optional<StopCategory> demanded = std::nullopt) {
+    for (int i = 0; i < static_cast<int>(limit * 1000); ++i) {
+      const auto s = fake_->state(link::TimePoint{} + std::chrono::milliseconds(ms_));
+      sup_->step(s, demanded, ms_ / 1000.0);
+      fake_->apply(sup_->intents());
+      fake_->advance(1ms);
+      ++ms_;
+      if (until()) return true;
+    }
+    return false;
+  }
+  bool run_to(State s, double limit = 120.0) {
+    return run(limit, [&] { return sup_->state() == s; });
+  }
+  double t() const { return ms_ / 1000.0; }
+  cell::CellState now() const { return fake_->state(link::TimePoint{} + std::chrono::milliseconds(ms_)); }
+
+  config::CellConfig cell_;
+  recipe::Recipe recipe_;
+  recipe::Program program_;
+  Recorder rec_;
+  std::unique_ptr<testing::FakeCell> fake_;
+  std::unique_ptr<Supervisor> sup_;
+  int ms_ = 0;
+};
+
+TEST_F(SupervisorTest, RunsARecipeToComplete) {
+  load(R"(  - require: {encoder_ready: true, spindle_at_rest: true, homed: [x, z]}
+  - move: {to: {x: 30, z: 20}, speed_mm_s: 12}
+  - spindle: {start_hz: 400}
+  - repeat: {times: 2, steps: [{move: {to: {z: 60}, speed_mm_s: 6}}, {dwell: 0.5}, {move: {to: {z: 20}, speed_mm_s: 12}}]}
+  - spindle: stop
+)");
+  EXPECT_EQ(sup_->state(), State::idle);
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run_to(State::complete)) << to_string(sup_->state()) << " " << sup_->failure().view();
+  const auto s = now();
+  EXPECT_NEAR(s.axes[0].encoder_mm, 30.0, 0.1);
+  EXPECT_NEAR(s.axes[1].scu_mm, 20.0, 0.1);
+  EXPECT_TRUE(s.spindle.at_rest);
+  EXPECT_EQ(rec_.all<journal::StepEnded>().size(), program_.instructions.size());
+  for (const auto& [time, e] : rec_.all<journal::StepEnded>()) EXPECT_TRUE(e.ok) << e.label;
+  const auto ends = rec_.all<journal::RunEnded>();
+  ASSERT_EQ(ends.size(), 1u);
+  EXPECT_EQ(ends[0].second.outcome, "complete");
+  EXPECT_FALSE(rec_.all<journal::Sample>().empty());
+}
+
+TEST_F(SupervisorTest, CoordinatedAxesArriveTogether) {
+  load("  - move: {to: {x: 100, z: 25}, speed_mm_s: 12}\n");
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  double x_done = -1, z_done = -1;
+  ASSERT_TRUE(run(60.0, [&] {
+    const auto s = now();
+    if (x_done < 0 && std::abs(s.axes[0].encoder_mm - 100.0) < 0.1) x_done = t();
+    if (z_done < 0 && std::abs(s.axes[1].scu_mm - 25.0) < 0.1) z_done = t();
+    return sup_->state() == State::complete;
+  }));
+  // x travels 4× as far as z: at 12 and 3 mm/s they take the same time, give or take the ramps.
+  EXPECT_NEAR(x_done, z_done, 0.6) << "x " << x_done << " s, z " << z_done << " s";
+}
+
+TEST_F(SupervisorTest, ClosedLoopCorrectsAOnePercentScaleError) {
+  load("  - move: {to: {x: 120}, speed_mm_s: 15}\n", 0.01);
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run_to(State::complete)) << sup_->failure().view();
+  EXPECT_NEAR(now().axes[0].encoder_mm, 120.0, 0.1);
+  EXPECT_GE(sup_->corrections(), 1);
+}
+
+TEST_F(SupervisorTest, WithoutCorrectionTheOpenLoopMoveMissesTheTolerance) {
+  SupervisorSettings open_loop;
+  open_loop.move.max_corrections = 0;
+  load("  - move: {to: {x: 120}, speed_mm_s: 15}\n", 0.01, 0.5, open_loop);
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run_to(State::stopped));
+  EXPECT_NEAR(now().axes[0].encoder_mm, 120.0 / 1.01, 0.01) << "1 % short: 1.19 mm, far outside 0.1 mm";
+  EXPECT_NE(std::string(sup_->failure().view()).find("after 0 corrections"), std::string::npos)
+      << sup_->failure().view();
+}
+
+TEST_F(SupervisorTest, AMoveThatProducesNoMotionIsReported) {
+  // The plant's actuator needs 2 mm/s to move at all; the cell config believes 0.8 mm/s suffices.
+  load("  - move: {to: {z: 50}, speed_mm_s: 1}\n", 0.0, 2.0);
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run_to(State::stopped, 10.0));
+  const std::string why(sup_->failure().view());
+  EXPECT_NE(why.find("no motion: axis z stayed at 0.00 mm"), std::string::npos) << why;
+  EXPECT_LT(t(), 3.0) << "detected within the no-motion time, not at the move time-out";
+}
+
+TEST_F(SupervisorTest, HoldStopsTheAxesAndUnholdFinishesTheMove) {
+  load("  - move: {to: {x: 150}, speed_mm_s: 15}\n");
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run(30.0, [&] { return now().axes[0].encoder_mm > 40.0; }));
+  ASSERT_TRUE(sup_->command(Command::hold, "test", t()));
+  ASSERT_TRUE(run_to(State::held, 5.0));
+  const double held_at = now().axes[0].encoder_mm;
+  EXPECT_LT(held_at, 60.0);
+  ASSERT_TRUE(run(1.0, [] { return false; }) == false);
+  EXPECT_DOUBLE_EQ(now().axes[0].encoder_mm, held_at) << "held means still";
+  ASSERT_TRUE(sup_->command(Command::unhold, "test", t()));
+  ASSERT_TRUE(run_to(State::complete));
+  EXPECT_NEAR(now().axes[0].encoder_mm, 150.0, 0.1);
+}
+
+TEST_F(SupervisorTest, StopThenResetReturnsToIdle) {
+  load(R"(  - spindle: {start_hz: 400}
+  - move: {to: {x: 150}, speed_mm_s: 15}
+)");
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run(30.0, [&] { return now().axes[0].encoder_mm > 20.0; }));
+  ASSERT_TRUE(sup_->command(Command::stop, "operator", t()));
+  ASSERT_TRUE(run_to(State::stopped, 10.0));
+  const auto s = now();
+  EXPECT_FALSE(s.axes[0].moving);
+  EXPECT_TRUE(s.spindle.at_rest);
+  EXPECT_FALSE(sup_->command(Command::unhold, "operator", t()));
+  EXPECT_EQ(sup_->refusal().view(), "unhold is not possible in state Stopped");
+  ASSERT_TRUE(sup_->command(Command::reset, "operator", t()));
+  ASSERT_TRUE(run_to(State::idle, 1.0));
+}
+
+TEST_F(SupervisorTest, MonitorCategoryZeroAbortsWithAnImmediateHalt) {
+  load(R"(  - spindle: {start_hz: 400}
+  - move: {to: {x: 150}, speed_mm_s: 15}
+)");
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run(30.0, [&] { return now().axes[0].encoder_mm > 20.0; }));
+  const double v_before = std::abs(now().axes[0].encoder_mm_s);
+  ASSERT_GT(v_before, 5.0);
+  (void)run(0.002, [] { return false; }, StopCategory::immediate);
+  EXPECT_EQ(sup_->state(), State::aborting);
+  EXPECT_EQ(sup_->intents().halt, cell::Halt::immediate);
+  EXPECT_FALSE(now().axes[0].moving) << "category 0: the axis stops at once";
+  ASSERT_TRUE(run_to(State::aborted, 5.0));
+}
+
+TEST_F(SupervisorTest, MonitorCategoryTwoHolds) {
+  load("  - move: {to: {x: 150}, speed_mm_s: 15}\n");
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run(30.0, [&] { return now().axes[0].encoder_mm > 20.0; }));
+  ASSERT_TRUE(run(5.0, [&] { return sup_->state() == State::held; }, StopCategory::controlled_hold));
+  ASSERT_TRUE(sup_->command(Command::unhold, "operator", t()));
+  (void)run(0.002, [] { return false; }, StopCategory::controlled_hold);
+  EXPECT_EQ(sup_->state(), State::held) << "unhold refused while the latch demands a stop";
+}
+
+TEST_F(SupervisorTest, AFailedRequireStopsBeforeAnyMotion) {
+  load(R"(  - require: {spindle_at_rest: true}
+  - move: {to: {x: 150}, speed_mm_s: 15}
+)");
+  fake_->apply([] {
+    cell::Intents i;
+    i.spindle.run = true;
+    i.spindle.frequency_hz = 300;
+    return i;
+  }());
+  fake_->advance(100ms);
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run_to(State::stopped, 5.0));
+  EXPECT_NE(std::string(sup_->failure().view()).find("the spindle is not at rest"), std::string::npos);
+  EXPECT_DOUBLE_EQ(now().axes[0].encoder_mm, 0.0);
+}
+
+}  // namespace
+}  // namespace cellctl::supervisor
