@@ -10,8 +10,10 @@
 #include "cli/check_command.hpp"
 #include "cli/commands.hpp"
 #include "cli/drive.hpp"
+#include "cli/encoder_commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/logging.hpp"
+#include "cli/scu_commands.hpp"
 #include "cli/spindle_commands.hpp"
 #include "config/yaml_node.hpp"
 #include "link/link_error.hpp"
@@ -40,6 +42,8 @@ int main(int argc, char** argv) {
 
   add_check_command(app, commands);
   add_spindle_commands(app, commands);
+  add_encoder_commands(app, commands);
+  add_scu_commands(app, commands);
 
   try {
     app.parse(argc, argv);
