@@ -31,7 +31,9 @@ void report(benchmark::State& state, double telegrams, std::chrono::steady_clock
 }
 
 // The longest telegram (RES 0x59, 64 characters): the worst case for the decoder.
-spindle::StatusValues sample_values() { return {400, 800, 399, 2000, 4800, 100, 180, 1, 269, 6}; }
+spindle::StatusValues sample_values() {
+  return {400, 800, 399, 2000, 4800, 100, 180, 1, 269, 6};
+}
 
 void BM_DecodeStatusResponse(benchmark::State& state) {
   std::array<std::uint8_t, spindle::kMaxFrameLength> frame{};

@@ -32,8 +32,8 @@ struct SpindleOptions {
 std::string describe_state(const spindle::Snapshot& s) {
   if (s.state == spindle::DeviceState::none) return "ok";
   const auto meaning = spindle::explain_fault_number(s.error_number);
-  return fmt::format("{} {}{}{}", s.fault() ? "FAULT" : "warning", s.error_number, meaning.empty() ? "" : ": ",
-                     meaning);
+  return fmt::format("{} {}{}{}", s.fault() ? "FAULT" : "warning", s.error_number,
+                     meaning.empty() ? "" : ": ", meaning);
 }
 
 void print_snapshot(const spindle::Snapshot& s) {
@@ -56,8 +56,10 @@ void print_snapshot(const spindle::Snapshot& s) {
 
 class Commissioning {
  public:
-  Commissioning(const GlobalOptions& global, const SpindleOptions& options, const config::SpindleSection& section)
-      : options_(options), device_(section.port, options.port, "spindle", clock_, global.trace),
+  Commissioning(const GlobalOptions& global, const SpindleOptions& options,
+                const config::SpindleSection& section)
+      : options_(options),
+        device_(section.port, options.port, "spindle", clock_, global.trace),
         session_(device_.link(), section.session),
         values_poll_(section.session.values_poll) {}
 
@@ -69,11 +71,14 @@ class Commissioning {
     });
     if (!up) return failed_to("reach the converter");
     switch (action) {
-      case Action::status: break;
+      case Action::status:
+        break;
       case Action::start: {
-        const auto dir = options_.direction == "ccw" ? spindle::Direction::counter_clockwise : spindle::Direction::clockwise;
+        const auto dir = options_.direction == "ccw" ? spindle::Direction::counter_clockwise
+                                                     : spindle::Direction::clockwise;
         if (!session_.start(options_.frequency_hz, dir)) return refuse("start");
-        if (!drive([&] { return snapshot().at_speed || snapshot().start_refused; })) return failed_to("reach speed");
+        if (!drive([&] { return snapshot().at_speed || snapshot().start_refused; }))
+          return failed_to("reach speed");
         if (snapshot().start_refused) {
           spdlog::error("start refused: {}", snapshot().start_refused_reason);
           return kExitFailed;
@@ -82,11 +87,13 @@ class Commissioning {
       }
       case Action::stop:
         if (!session_.stop()) return refuse("stop");
-        if (!drive([&] { return snapshot().at_rest && !session_.commands_pending(); })) return failed_to("come to rest");
+        if (!drive([&] { return snapshot().at_rest && !session_.commands_pending(); }))
+          return failed_to("come to rest");
         break;
       case Action::set:
         if (!session_.set_frequency(options_.frequency_hz)) return refuse("set the frequency");
-        if (!drive([&] { return !session_.commands_pending(); })) return failed_to("acknowledge the set-point");
+        if (!drive([&] { return !session_.commands_pending(); }))
+          return failed_to("acknowledge the set-point");
         break;
       case Action::reset:
         if (!session_.reset()) return refuse("reset");
@@ -104,9 +111,11 @@ class Commissioning {
 
   template <class Done>
   bool drive(Done&& done) {
-    const auto timeout = std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.timeout_s));
-    return drive_until(clock_, timeout, [&](auto now) { state_ = session_.poll(now); },
-                       [&] { return state_ == link::Lifecycle::fault || done(); }) &&
+    const auto timeout =
+        std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.timeout_s));
+    return drive_until(
+               clock_, timeout, [&](auto now) { state_ = session_.poll(now); },
+               [&] { return state_ == link::Lifecycle::fault || done(); }) &&
            state_ != link::Lifecycle::fault;
   }
   bool drive_for(link::Duration span) {
@@ -115,7 +124,8 @@ class Commissioning {
   }
 
   int refuse(const char* what) {
-    spdlog::error("the spindle session would not {} (frequency {} Hz out of 0..65535?)", what, options_.frequency_hz);
+    spdlog::error("the spindle session would not {} (frequency {} Hz out of 0..65535?)", what,
+                  options_.frequency_hz);
     return kExitUsage;
   }
 
@@ -180,13 +190,17 @@ void add_spindle_commands(CLI::App& app, Commands& commands) {
   };
   add("status", "Read and print the converter's status, values and identification", Action::status);
   auto* start = add("start", "Start the spindle and wait until it is at speed", Action::start);
-  start->add_option("--frequency", options->frequency_hz, "Set-point in Hz")->required()->check(CLI::Range(1.0, 65535.0));
+  start->add_option("--frequency", options->frequency_hz, "Set-point in Hz")
+      ->required()
+      ->check(CLI::Range(1.0, 65535.0));
   start->add_option("--direction", options->direction, "cw (Rechtslauf) or ccw (Linkslauf)")
       ->check(CLI::IsMember({"cw", "ccw"}))
       ->capture_default_str();
   add("stop", "Stop the spindle and wait until it is at rest", Action::stop);
   auto* set = add("set", "Change the frequency set-point (takes effect at once while running)", Action::set);
-  set->add_option("--frequency", options->frequency_hz, "Set-point in Hz")->required()->check(CLI::Range(1.0, 65535.0));
+  set->add_option("--frequency", options->frequency_hz, "Set-point in Hz")
+      ->required()
+      ->check(CLI::Range(1.0, 65535.0));
   add("reset", "Reset a converter fault (CMD System Reset) and show the result", Action::reset);
 }
 

@@ -13,7 +13,8 @@ link::Duration ms_or(const YamlNode& section, std::string_view key, long long mi
 
 spindle::SessionConfig parse_session(const YamlNode& s) {
   spindle::SessionConfig c;
-  c.reply_timeout = ms_or(s, "reply_timeout_ms", 20, 2000, c.reply_timeout);  // 20 ms: a 64-byte reply's line time
+  c.reply_timeout =
+      ms_or(s, "reply_timeout_ms", 20, 2000, c.reply_timeout);  // 20 ms: a 64-byte reply's line time
   c.retries = s.int_in_or<unsigned>("retries", 0, 10, c.retries);
   c.status_poll = ms_or(s, "status_poll_ms", 5, 5000, c.status_poll);
   c.values_poll = ms_or(s, "values_poll_ms", 5, 60000, c.values_poll);
@@ -27,12 +28,14 @@ spindle::SessionConfig parse_session(const YamlNode& s) {
 }
 
 spindle::EmulatorConfig parse_emulator(const YamlNode& e) {
-  e.only_keys({"min_hz", "max_hz", "ramp_up_hz_s", "ramp_down_hz_s", "converter_type", "firmware", "serial_number",
-               "converter_hours", "motor_hours", "motor_code", "current_limit_a", "dc_link_voltage_v"});
+  e.only_keys({"min_hz", "max_hz", "ramp_up_hz_s", "ramp_down_hz_s", "converter_type", "firmware",
+               "serial_number", "converter_hours", "motor_hours", "motor_code", "current_limit_a",
+               "dc_link_voltage_v"});
   spindle::EmulatorConfig c;
   c.min_hz = e.double_in_or("min_hz", 0.0, 65535.0, c.min_hz);
   c.max_hz = e.double_in_or("max_hz", 1.0, 65535.0, c.max_hz);
-  if (c.max_hz <= c.min_hz) (e.has("max_hz") ? e.at("max_hz") : e.at("min_hz")).fail("max_hz must be above min_hz");
+  if (c.max_hz <= c.min_hz)
+    (e.has("max_hz") ? e.at("max_hz") : e.at("min_hz")).fail("max_hz must be above min_hz");
   c.ramp_up_hz_s = e.double_in_or("ramp_up_hz_s", 1.0, 100000.0, c.ramp_up_hz_s);
   c.ramp_down_hz_s = e.double_in_or("ramp_down_hz_s", 1.0, 100000.0, c.ramp_down_hz_s);
   c.converter_type = e.int_in_or<std::uint16_t>("converter_type", 0, 0xFFFF, c.converter_type);

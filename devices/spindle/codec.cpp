@@ -78,11 +78,19 @@ MsgId write_data(const Message& message, wire::ByteWriter& w) noexcept {
       message);
 }
 
-constexpr bool is_command(std::uint8_t v) noexcept { return v >= 0xA0 && v <= 0xA2; }
-constexpr bool is_acknowledgeable(std::uint8_t v) noexcept { return v == 0x10 || v == 0x18 || is_command(v); }
-constexpr bool is_response(std::uint8_t v) noexcept { return v == 0x59 || v == 0x5A || v == 0x60; }
+constexpr bool is_command(std::uint8_t v) noexcept {
+  return v >= 0xA0 && v <= 0xA2;
+}
+constexpr bool is_acknowledgeable(std::uint8_t v) noexcept {
+  return v == 0x10 || v == 0x18 || is_command(v);
+}
+constexpr bool is_response(std::uint8_t v) noexcept {
+  return v == 0x59 || v == 0x5A || v == 0x60;
+}
 
-Decoded bad_value() noexcept { return {DecodeError::bad_value, {}}; }
+Decoded bad_value() noexcept {
+  return {DecodeError::bad_value, {}};
+}
 
 }  // namespace
 
@@ -94,15 +102,24 @@ MsgId id_of(const Message& m) noexcept {
 
 std::string_view to_string(DecodeError e) noexcept {
   switch (e) {
-    case DecodeError::none: return "none";
-    case DecodeError::bad_hex_digit: return "bad hex digit";
-    case DecodeError::bad_version: return "bad version";
-    case DecodeError::unknown_message: return "unknown message id";
-    case DecodeError::wrong_length: return "wrong length";
-    case DecodeError::missing_etx: return "missing ETX";
-    case DecodeError::interrupted: return "frame interrupted by STX";
-    case DecodeError::bad_checksum: return "bad checksum";
-    case DecodeError::bad_value: return "undefined field value";
+    case DecodeError::none:
+      return "none";
+    case DecodeError::bad_hex_digit:
+      return "bad hex digit";
+    case DecodeError::bad_version:
+      return "bad version";
+    case DecodeError::unknown_message:
+      return "unknown message id";
+    case DecodeError::wrong_length:
+      return "wrong length";
+    case DecodeError::missing_etx:
+      return "missing ETX";
+    case DecodeError::interrupted:
+      return "frame interrupted by STX";
+    case DecodeError::bad_checksum:
+      return "bad checksum";
+    case DecodeError::bad_value:
+      return "undefined field value";
   }
   return "?";
 }
@@ -155,12 +172,13 @@ Decoded Codec::decode_data(std::uint8_t id, std::span<const std::uint8_t> data) 
       if (start < 0x01 || start > 0x03 || setpoint < 0x01 || setpoint > 0x05 || direction < 0x01 ||
           direction > 0x03)
         return bad_value();
-      return {DecodeError::none,
-              SetStart{static_cast<Source>(start), static_cast<Source>(setpoint), static_cast<Direction>(direction)}};
+      return {DecodeError::none, SetStart{static_cast<Source>(start), static_cast<Source>(setpoint),
+                                          static_cast<Direction>(direction)}};
     }
     case MsgId::cmd_start:
     case MsgId::cmd_stop:
-    case MsgId::cmd_reset: return {DecodeError::none, Command{static_cast<MsgId>(id)}};
+    case MsgId::cmd_reset:
+      return {DecodeError::none, Command{static_cast<MsgId>(id)}};
     case MsgId::request: {
       const auto wanted = r.u8();
       if (!is_response(wanted)) return bad_value();
@@ -214,7 +232,8 @@ Decoded Codec::decode_frame(std::span<const std::uint8_t> frame) noexcept {
   for (std::size_t i = 0; i < frame.size(); ++i) {
     if (auto d = decoder.push(frame[i])) {
       // A frame that ends before the input does is not "exactly one frame".
-      return i + 1 == frame.size() || d->error != DecodeError::none ? *d : Decoded{DecodeError::missing_etx, {}};
+      return i + 1 == frame.size() || d->error != DecodeError::none ? *d
+                                                                    : Decoded{DecodeError::missing_etx, {}};
     }
   }
   return {DecodeError::wrong_length, {}};
@@ -268,7 +287,8 @@ std::optional<Decoded> FrameDecoder::check_header() noexcept {
 
 Decoded FrameDecoder::finish() const noexcept {
   const std::span<const std::uint8_t> text(text_.data(), size_);
-  if (Codec::checksum(text.first(size_ - 2)) != byte_at(text, size_ - 2)) return {DecodeError::bad_checksum, {}};
+  if (Codec::checksum(text.first(size_ - 2)) != byte_at(text, size_ - 2))
+    return {DecodeError::bad_checksum, {}};
   std::array<std::uint8_t, kMaxDataLength> data{};
   const std::size_t n = (size_ - kHeaderTextLength - 2) / 2;
   for (std::size_t i = 0; i < n; ++i) data[i] = byte_at(text, kHeaderTextLength + 2 * i);

@@ -24,14 +24,14 @@ inline constexpr std::size_t kMaxFrameLength = 1 + kMaxTextLength + 1;
 
 enum class DecodeError : std::uint8_t {
   none,
-  bad_hex_digit,     // a character other than '0'..'9', 'a'..'f' between STX and ETX
-  bad_version,       // VER is not 01
-  unknown_message,   // a MSGID the manual does not define
-  wrong_length,      // LEN does not match the MSGID, or ETX came early
-  missing_etx,       // the text had its full length and the next byte was not ETX
-  interrupted,       // an STX arrived inside a frame: the frame was cut off, the new one is kept
-  bad_checksum,      // CHK does not match the text
-  bad_value,         // a well-formed frame with a field value the manual does not define
+  bad_hex_digit,    // a character other than '0'..'9', 'a'..'f' between STX and ETX
+  bad_version,      // VER is not 01
+  unknown_message,  // a MSGID the manual does not define
+  wrong_length,     // LEN does not match the MSGID, or ETX came early
+  missing_etx,      // the text had its full length and the next byte was not ETX
+  interrupted,      // an STX arrived inside a frame: the frame was cut off, the new one is kept
+  bad_checksum,     // CHK does not match the text
+  bad_value,        // a well-formed frame with a field value the manual does not define
 };
 [[nodiscard]] std::string_view to_string(DecodeError e) noexcept;
 

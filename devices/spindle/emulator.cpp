@@ -9,16 +9,18 @@ namespace cellctl::spindle {
 namespace {
 
 // A small HF motor's electrical picture, enough for values that rise with speed and load.
-constexpr double kVoltsPerHz = 0.05;        // V/f characteristic: 20 V at 400 Hz
-constexpr double kNoLoadCurrentA = 0.3;     // magnetising current while energised
-constexpr double kAmpsPerHz = 0.0015;       // friction and windage grow with speed
-constexpr double kRunUpExtraCurrentA = 0.8; // accelerating the rotor
+constexpr double kVoltsPerHz = 0.05;         // V/f characteristic: 20 V at 400 Hz
+constexpr double kNoLoadCurrentA = 0.3;      // magnetising current while energised
+constexpr double kAmpsPerHz = 0.0015;        // friction and windage grow with speed
+constexpr double kRunUpExtraCurrentA = 0.8;  // accelerating the rotor
 constexpr double kPowerFactor = 0.9;
 
 std::uint16_t scaled_u16(double value, double scale) noexcept {
   return static_cast<std::uint16_t>(std::clamp(std::lround(value * scale), 0L, 65535L));
 }
-std::uint32_t whole_hours(double seconds) noexcept { return static_cast<std::uint32_t>(seconds / 3600.0); }
+std::uint32_t whole_hours(double seconds) noexcept {
+  return static_cast<std::uint32_t>(seconds / 3600.0);
+}
 
 }  // namespace
 
@@ -59,9 +61,15 @@ void Emulator::poll(link::TimePoint now) {
 void Emulator::handle(const Message& m) {
   if (const auto* request = std::get_if<Request>(&m)) {
     switch (request->wanted) {
-      case MsgId::res_status: reply(status_values()); break;
-      case MsgId::res_ident: reply(identification()); break;
-      default: reply(statusout()); break;
+      case MsgId::res_status:
+        reply(status_values());
+        break;
+      case MsgId::res_ident:
+        reply(identification());
+        break;
+      default:
+        reply(statusout());
+        break;
     }
   } else if (const auto* basic = std::get_if<SetBasic>(&m)) {
     handle_set_basic(*basic);

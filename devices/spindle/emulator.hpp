@@ -82,12 +82,12 @@ class Emulator {
   wire::ByteQueue<1024> tx_;
 
   SetStart start_parameters_{Source::digital_input, Source::digital_input, Direction::clockwise};  // factory
-  std::uint16_t set_frequency_hz_ = 0;  // P1
-  bool running_ = false;                // started and neither stopped nor faulted
-  bool start_refused_ = false;          // warning 140 showing
+  std::uint16_t set_frequency_hz_ = 0;                                                             // P1
+  bool running_ = false;        // started and neither stopped nor faulted
+  bool start_refused_ = false;  // warning 140 showing
   bool over_temperature_ = false;
   bool current_limit_ = false;
-  std::optional<std::uint8_t> fault_;   // latched fault number
+  std::optional<std::uint8_t> fault_;  // latched fault number
   std::array<std::uint8_t, 5> fault_history_{};
   double converter_seconds_;
   double motor_seconds_;

@@ -21,11 +21,16 @@ inline constexpr std::uint8_t kWarningStartSourceNotRs232 = 140;
 // What a known number means, or an empty view.
 [[nodiscard]] constexpr std::string_view explain_fault_number(std::uint8_t n) noexcept {
   switch (n) {
-    case kWarningCurrentLimit: return "current limit active";
-    case kFaultMotorOverTemperature: return "motor over-temperature (PTC)";
-    case kFaultSetpointOutOfRange: return "frequency set-point outside the motor's limits";
-    case kWarningStartSourceNotRs232: return "start/set-point source (P140/P141) is not SycoDrive (RS232)";
-    default: return {};
+    case kWarningCurrentLimit:
+      return "current limit active";
+    case kFaultMotorOverTemperature:
+      return "motor over-temperature (PTC)";
+    case kFaultSetpointOutOfRange:
+      return "frequency set-point outside the motor's limits";
+    case kWarningStartSourceNotRs232:
+      return "start/set-point source (P140/P141) is not SycoDrive (RS232)";
+    default:
+      return {};
   }
 }
 

@@ -24,7 +24,13 @@ enum class MsgId : std::uint8_t {
 // P8: how the converter's own software shows speed. No effect on the wire values (always Hz).
 enum class SpeedUnit : std::uint8_t { hz = 0x01, rpm = 0x02 };
 // P140 start source / P141 set-point source. Only `sycodrive` (RS232) lets this program start the motor.
-enum class Source : std::uint8_t { sycodrive = 0x01, digital_input = 0x02, can = 0x03, analog_voltage = 0x04, analog_current = 0x05 };
+enum class Source : std::uint8_t {
+  sycodrive = 0x01,
+  digital_input = 0x02,
+  can = 0x03,
+  analog_voltage = 0x04,
+  analog_current = 0x05
+};
 // P146. Rechtslauf = clockwise, Linkslauf = counter-clockwise.
 enum class Direction : std::uint8_t { clockwise = 0x01, counter_clockwise = 0x02, digital_input = 0x03 };
 // statusout2.
@@ -91,13 +97,13 @@ struct Identification {
 
 // RES 0x60, 4 data bytes.
 struct StatusOut {
-  std::uint8_t error_number = 0;           // statusout1: the warning's or fault's number
-  DeviceState state = DeviceState::none;   // statusout2
-  std::uint8_t flags = 0;                  // statusout3, see the k…Flag masks
-  std::uint8_t motor_code = 0;             // statusout4: 0 inactive, 1..16 = M1..M16
+  std::uint8_t error_number = 0;          // statusout1: the warning's or fault's number
+  DeviceState state = DeviceState::none;  // statusout2
+  std::uint8_t flags = 0;                 // statusout3, see the k…Flag masks
+  std::uint8_t motor_code = 0;            // statusout4: 0 inactive, 1..16 = M1..M16
 
-  static constexpr std::uint8_t kAtRestFlags = 0x03;  // bits 0 and 1 both say STILLSTAND
-  static constexpr std::uint8_t kAtSpeedFlag = 0x04;  // N_Soll_OK
+  static constexpr std::uint8_t kAtRestFlags = 0x03;          // bits 0 and 1 both say STILLSTAND
+  static constexpr std::uint8_t kAtSpeedFlag = 0x04;          // N_Soll_OK
   static constexpr std::uint8_t kCurrentLimitFlag = 0x08;     // WARNSTROM
   static constexpr std::uint8_t kOverTemperatureFlag = 0x10;  // MOTORTEMPERATUR (PTC)
 
@@ -108,21 +114,29 @@ struct StatusOut {
   friend bool operator==(const StatusOut&, const StatusOut&) = default;
 };
 
-using Message = std::variant<SetBasic, SetStart, Command, Request, Ack, StatusValues, Identification, StatusOut>;
+using Message =
+    std::variant<SetBasic, SetStart, Command, Request, Ack, StatusValues, Identification, StatusOut>;
 
 // The data length (LEN) each MSGID must carry, or -1 for an ID the manual does not define.
 [[nodiscard]] constexpr int data_length(std::uint8_t id) noexcept {
   switch (static_cast<MsgId>(id)) {
-    case MsgId::set_basic: return 4;
-    case MsgId::set_start: return 3;
-    case MsgId::res_status: return 27;
-    case MsgId::res_ident: return 13;
-    case MsgId::res_statusout: return 4;
+    case MsgId::set_basic:
+      return 4;
+    case MsgId::set_start:
+      return 3;
+    case MsgId::res_status:
+      return 27;
+    case MsgId::res_ident:
+      return 13;
+    case MsgId::res_statusout:
+      return 4;
     case MsgId::cmd_start:
     case MsgId::cmd_stop:
-    case MsgId::cmd_reset: return 0;
+    case MsgId::cmd_reset:
+      return 0;
     case MsgId::request:
-    case MsgId::ack: return 1;
+    case MsgId::ack:
+      return 1;
   }
   return -1;
 }

@@ -19,19 +19,30 @@ void assign_formatted(std::string& out, fmt::format_string<Args...> format, Args
 
 std::string_view name_of(MsgId id) noexcept {
   switch (id) {
-    case MsgId::set_basic: return "SET Grundparameter (0x10)";
-    case MsgId::set_start: return "SET Startparameter (0x18)";
-    case MsgId::cmd_start: return "CMD System Start (0xA0)";
-    case MsgId::cmd_stop: return "CMD System Stopp (0xA1)";
-    case MsgId::cmd_reset: return "CMD System Reset (0xA2)";
-    case MsgId::res_status: return "status values (0x59)";
-    case MsgId::res_ident: return "identification (0x5A)";
-    case MsgId::res_statusout: return "statusout (0x60)";
-    default: return "message";
+    case MsgId::set_basic:
+      return "SET Grundparameter (0x10)";
+    case MsgId::set_start:
+      return "SET Startparameter (0x18)";
+    case MsgId::cmd_start:
+      return "CMD System Start (0xA0)";
+    case MsgId::cmd_stop:
+      return "CMD System Stopp (0xA1)";
+    case MsgId::cmd_reset:
+      return "CMD System Reset (0xA2)";
+    case MsgId::res_status:
+      return "status values (0x59)";
+    case MsgId::res_ident:
+      return "identification (0x5A)";
+    case MsgId::res_statusout:
+      return "statusout (0x60)";
+    default:
+      return "message";
   }
 }
 
-constexpr bool representable_hz(double hz) noexcept { return std::isfinite(hz) && hz >= 0.0 && hz <= 65535.0; }
+constexpr bool representable_hz(double hz) noexcept {
+  return std::isfinite(hz) && hz >= 0.0 && hz <= 65535.0;
+}
 
 long long to_ms(link::Duration d) noexcept {
   return std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
@@ -126,7 +137,9 @@ bool Session::reset() {
   return enqueue(Command{MsgId::cmd_reset});
 }
 
-bool Session::commands_pending() const noexcept { return queued_ > 0 || (in_flight_ && in_flight_->command); }
+bool Session::commands_pending() const noexcept {
+  return queued_ > 0 || (in_flight_ && in_flight_->command);
+}
 
 link::Lifecycle Session::poll(link::TimePoint now) {
   if (lifecycle_ == link::Lifecycle::inactive || lifecycle_ == link::Lifecycle::fault) return lifecycle_;
@@ -210,7 +223,8 @@ void Session::on_statusout(const StatusOut& s) {
   if (s.at_rest() && s.state != DeviceState::none) {
     const auto meaning = explain_fault_number(s.error_number);
     snapshot_.start_refused = true;
-    assign_formatted(snapshot_.start_refused_reason, "converter acknowledged the start but stays at rest: {} {}{}{}",
+    assign_formatted(snapshot_.start_refused_reason,
+                     "converter acknowledged the start but stays at rest: {} {}{}{}",
                      s.state == DeviceState::fault ? "fault" : "warning", s.error_number,
                      meaning.empty() ? "" : " — ", meaning);
   }
@@ -240,8 +254,8 @@ void Session::check_in_flight(link::TimePoint now) {
   }
   if (in_flight_->command) {
     // An unconfirmed SET or CMD leaves the converter's state unknown: that is a fault, not a shrug.
-    assign_formatted(fault_reason_, "spindle converter on {} did not acknowledge {} after {} tries", link_name_,
-                     name_of(in_flight_->sent_id), tries_);
+    assign_formatted(fault_reason_, "spindle converter on {} did not acknowledge {} after {} tries",
+                     link_name_, name_of(in_flight_->sent_id), tries_);
     enter_fault();
     return;
   }

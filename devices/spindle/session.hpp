@@ -50,13 +50,13 @@ struct Snapshot {
   std::uint8_t motor_code = 0;
   // From the status values (0x59).
   bool values_valid = false;
-  double set_frequency_hz = 0.0;     // P10, as the converter has it
-  double actual_frequency_hz = 0.0;  // P13, unsigned
-  double peak_current_a = 0.0;       // P11
-  double motor_current_a = 0.0;      // P18
-  double power_w = 0.0;              // P19
-  double motor_voltage_v = 0.0;      // P15
-  double dc_link_voltage_v = 0.0;    // P16
+  double set_frequency_hz = 0.0;      // P10, as the converter has it
+  double actual_frequency_hz = 0.0;   // P13, unsigned
+  double peak_current_a = 0.0;        // P11
+  double motor_current_a = 0.0;       // P18
+  double power_w = 0.0;               // P19
+  double motor_voltage_v = 0.0;       // P15
+  double dc_link_voltage_v = 0.0;     // P16
   std::uint32_t converter_hours = 0;  // P25
   std::uint32_t motor_hours = 0;      // P26
   // From the identification (0x5A), read once per activation.
@@ -96,8 +96,8 @@ class Session {
   using Frame = wire::FixedBytes<kMaxFrameLength>;
   struct Outgoing {
     Frame frame;
-    MsgId sent_id{};      // the MSGID of the request (for messages)
-    MsgId answer_id{};    // the ACK's data for a SET/CMD, the RES MSGID for a request
+    MsgId sent_id{};       // the MSGID of the request (for messages)
+    MsgId answer_id{};     // the ACK's data for a SET/CMD, the RES MSGID for a request
     bool command = false;  // a SET or CMD: must be confirmed, else the session faults
   };
   static constexpr std::size_t kQueueCapacity = 8;

@@ -26,11 +26,13 @@ std::vector<std::uint8_t> encode(const Message& m) {
   return out;
 }
 
-const std::string kManualStatusText = "01591b 00a7 0320 0000 00a7 0000 0230 02b2 0071 005a 00 0000010d 00000006 ab";
+const std::string kManualStatusText =
+    "01591b 00a7 0320 0000 00a7 0000 0230 02b2 0071 005a 00 0000010d 00000006 ab";
 
 TEST(SpindleCodec, ChecksumIsTheLowByteOfTheAsciiSum) {
   const std::string text = "01cf0159";  // 0x30+0x31+0x63+0x66+0x30+0x31+0x35+0x39 = 0x1f9
-  EXPECT_EQ(Codec::checksum(std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())), 0xf9);
+  EXPECT_EQ(Codec::checksum(std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())),
+            0xf9);
 }
 
 TEST(SpindleCodec, EncodesTheManualsStatusRequest) {
@@ -45,16 +47,16 @@ TEST(SpindleCodec, DecodesTheManualsStatusResponseIntoItsValues) {
   const auto d = Codec::decode_frame(frame(kManualStatusText));
   ASSERT_TRUE(d.ok()) << to_string(d.error);
   const auto& v = std::get<StatusValues>(d.message);
-  EXPECT_EQ(v.set_frequency_hz, 167);               // P10
-  EXPECT_DOUBLE_EQ(v.peak_current_a(), 8.00);       // P11
-  EXPECT_EQ(v.actual_frequency_hz, 167);            // P13
-  EXPECT_DOUBLE_EQ(v.motor_voltage_v(), 5.60);      // P15
-  EXPECT_DOUBLE_EQ(v.dc_link_voltage_v(), 6.90);    // P16
-  EXPECT_DOUBLE_EQ(v.motor_current_a(), 1.13);      // P18
-  EXPECT_DOUBLE_EQ(v.power_w(), 9.0);               // P19
-  EXPECT_EQ(v.motor_code, 0);                       // P20
-  EXPECT_EQ(v.converter_hours, 269u);               // P25
-  EXPECT_EQ(v.motor_hours, 6u);                     // P26
+  EXPECT_EQ(v.set_frequency_hz, 167);             // P10
+  EXPECT_DOUBLE_EQ(v.peak_current_a(), 8.00);     // P11
+  EXPECT_EQ(v.actual_frequency_hz, 167);          // P13
+  EXPECT_DOUBLE_EQ(v.motor_voltage_v(), 5.60);    // P15
+  EXPECT_DOUBLE_EQ(v.dc_link_voltage_v(), 6.90);  // P16
+  EXPECT_DOUBLE_EQ(v.motor_current_a(), 1.13);    // P18
+  EXPECT_DOUBLE_EQ(v.power_w(), 9.0);             // P19
+  EXPECT_EQ(v.motor_code, 0);                     // P20
+  EXPECT_EQ(v.converter_hours, 269u);             // P25
+  EXPECT_EQ(v.motor_hours, 6u);                   // P26
   // …and encoding those values gives back the manual's bytes, checksum "ab" included.
   EXPECT_EQ(encode(v), frame(kManualStatusText));
 }
@@ -97,7 +99,9 @@ TEST(SpindleCodec, EncodeRefusesASmallBuffer) {
   EXPECT_EQ(Codec::encode(Request{MsgId::res_status}, smaller), 0u);
 }
 
-Decoded decode(const std::string& text) { return Codec::decode_frame(frame(text)); }
+Decoded decode(const std::string& text) {
+  return Codec::decode_frame(frame(text));
+}
 
 TEST(SpindleCodec, RejectsBadFramesWithTypedErrors) {
   EXPECT_EQ(decode("01cf0159f8").error, DecodeError::bad_checksum);
@@ -187,7 +191,8 @@ TEST(SpindleFrameDecoder, NoSingleBitErrorYieldsADifferentMessage) {
       auto bad = good;
       bad[i] = static_cast<std::uint8_t>(bad[i] ^ (1u << bit));
       const auto got = feed(bad);
-      for (const auto& d : got.results) EXPECT_FALSE(d.ok() && !(d.message == original.message)) << i << "/" << bit;
+      for (const auto& d : got.results)
+        EXPECT_FALSE(d.ok() && !(d.message == original.message)) << i << "/" << bit;
     }
   }
 }

@@ -54,8 +54,9 @@ class EmulatorRaw : public ::testing::Test {
 };
 
 TEST_F(EmulatorRaw, AcknowledgesEverySetAndCommandWithItsId) {
-  for (const Message m : {Message{SetStart{}}, Message{SetBasic{400, SpeedUnit::hz}}, Message{Command{MsgId::cmd_start}},
-                          Message{Command{MsgId::cmd_stop}}, Message{Command{MsgId::cmd_reset}}}) {
+  for (const Message m :
+       {Message{SetStart{}}, Message{SetBasic{400, SpeedUnit::hz}}, Message{Command{MsgId::cmd_start}},
+        Message{Command{MsgId::cmd_stop}}, Message{Command{MsgId::cmd_reset}}}) {
     const auto answers = send(m);
     ASSERT_EQ(answers.size(), 1u);
     EXPECT_EQ(answers[0].message, Message{Ack{id_of(m)}});

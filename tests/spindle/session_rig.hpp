@@ -23,7 +23,8 @@ inline EmulatorConfig fast_test_emulator() {
 }
 
 struct SessionRig {
-  explicit SessionRig(SessionConfig session_config = {}, EmulatorConfig emulator_config = fast_test_emulator())
+  explicit SessionRig(SessionConfig session_config = {},
+                      EmulatorConfig emulator_config = fast_test_emulator())
       : emulator(sim.device(), emulator_config), session(sim.master(), session_config) {}
 
   void step(link::TimePoint now) {
@@ -32,8 +33,9 @@ struct SessionRig {
   }
   template <class Done>
   bool run_until(link::Duration limit, Done&& done) {
-    return testing::run_until(clock, std::chrono::milliseconds(1), limit, [this](auto now) { step(now); },
-                              std::forward<Done>(done));
+    return testing::run_until(
+        clock, std::chrono::milliseconds(1), limit, [this](auto now) { step(now); },
+        std::forward<Done>(done));
   }
   void run_for(link::Duration span) {
     testing::run_for(clock, std::chrono::milliseconds(1), span, [this](auto now) { step(now); });
@@ -41,7 +43,8 @@ struct SessionRig {
   bool activate() {
     session.activate(clock.now());
     return run_until(std::chrono::seconds(1), [this] {
-      return state == link::Lifecycle::active && session.snapshot().status_valid && session.snapshot().values_valid;
+      return state == link::Lifecycle::active && session.snapshot().status_valid &&
+             session.snapshot().values_valid;
     });
   }
 

@@ -38,12 +38,14 @@ TEST(SpindleSession, StartAt400HzReachesSpeedAndReportsIt) {
   ASSERT_TRUE(rig.activate());
   const auto t0 = rig.clock.now();
   ASSERT_TRUE(rig.session.start(400.0, Direction::counter_clockwise));
-  ASSERT_TRUE(rig.run_until(3s, [&] { return rig.session.snapshot().at_speed; })) << rig.session.fault_reason();
+  ASSERT_TRUE(rig.run_until(3s, [&] { return rig.session.snapshot().at_speed; }))
+      << rig.session.fault_reason();
   // 400 Hz at 400 Hz/s is 1 s of ramp, plus three telegrams and one poll period.
   const double took = link::to_seconds(rig.clock.now() - t0);
   EXPECT_GT(took, 1.0);
   EXPECT_LT(took, 1.1);
-  EXPECT_EQ(rig.emulator.start_parameters(), (SetStart{Source::sycodrive, Source::sycodrive, Direction::counter_clockwise}));
+  EXPECT_EQ(rig.emulator.start_parameters(),
+            (SetStart{Source::sycodrive, Source::sycodrive, Direction::counter_clockwise}));
   EXPECT_DOUBLE_EQ(rig.emulator.motor().frequency_hz(), -400.0);
 
   rig.run_for(300ms);  // one values poll later
@@ -116,7 +118,8 @@ TEST(SpindleSession, ACorruptedReplyIsRetried) {
   ASSERT_TRUE(rig.activate());
   rig.emulator.corrupt_next_checksum();  // the ACK of SET Startparameter
   ASSERT_TRUE(rig.session.start(400.0));
-  ASSERT_TRUE(rig.run_until(3s, [&] { return rig.session.snapshot().at_speed; })) << rig.session.fault_reason();
+  ASSERT_TRUE(rig.run_until(3s, [&] { return rig.session.snapshot().at_speed; }))
+      << rig.session.fault_reason();
   EXPECT_EQ(rig.session.health().bad_frames, 1u);
   EXPECT_EQ(rig.session.health().retries, 1u);
   EXPECT_EQ(rig.state, Lifecycle::active);
@@ -127,7 +130,8 @@ TEST(SpindleSession, ALostReplyIsRetried) {
   ASSERT_TRUE(rig.activate());
   rig.emulator.drop_next_replies(2);
   ASSERT_TRUE(rig.session.start(400.0));
-  ASSERT_TRUE(rig.run_until(3s, [&] { return rig.session.snapshot().at_speed; })) << rig.session.fault_reason();
+  ASSERT_TRUE(rig.run_until(3s, [&] { return rig.session.snapshot().at_speed; }))
+      << rig.session.fault_reason();
   EXPECT_EQ(rig.session.health().timeouts, 2u);
   EXPECT_EQ(rig.session.health().retries, 2u);
 }

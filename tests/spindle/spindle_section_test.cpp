@@ -88,7 +88,8 @@ TEST(SpindleSection, RejectsMalformedInputWithItsPosition) {
   expect_error([] { (void)parse("spindle:\n  reply_timeout_ms: soon\n"); },
                "cell.yaml:2:21: spindle.reply_timeout_ms: expected a whole number, got 'soon'");
   expect_error([] { (void)parse("spindle:\n  reply_timeout_ms: 500\n  link_fault_after_ms: 400\n"); },
-               "cell.yaml:3:24: spindle.link_fault_after_ms: link_fault_after_ms must be longer than reply_timeout_ms");
+               "cell.yaml:3:24: spindle.link_fault_after_ms: link_fault_after_ms must be longer than "
+               "reply_timeout_ms");
   expect_error([] { (void)parse("spindle:\n  emulator:\n    min_hz: 500\n    max_hz: 400\n"); },
                "cell.yaml:4:13: spindle.emulator.max_hz: max_hz must be above min_hz");
   expect_error([] { (void)parse("spindle:\n  emulator:\n    motor_code: 17\n"); },
