@@ -25,7 +25,7 @@ std::vector<AxisConfig> parse_axes(const YamlNode& list) {
       if (other.actuator == a.actuator)
         n.at("actuator").fail(fmt::format("actuator {} already belongs to axis '{}'", a.actuator, other.name));
     a.function = n.int_in<int>("function", 1, 10);
-    a.edges_per_mm = n.double_in("edges_per_mm", 0.001, 1e6);
+    a.edges_per_mm = n.double_in_or("edges_per_mm", 0.001, 1e6, 0.0);  // 0: the SCU section's
     a.min_mm = n.at("min_mm").as_double();
     a.max_mm = n.at("max_mm").as_double();
     if (a.max_mm <= a.min_mm) n.at("max_mm").fail(fmt::format("must be above min_mm ({:g})", a.min_mm));

@@ -14,7 +14,7 @@ struct AxisConfig {
   std::string name;
   int actuator = 1;   // SCU actuator 1..6
   int function = 1;   // SCU function F1..F10 that moves it (remote position + remote speed)
-  double edges_per_mm = 10.0;
+  double edges_per_mm = 0.0;  // SCU edges per mm: from the scu section's actuator unless given here
   double min_mm = 0.0;   // the cell's travel limits for this axis (safety monitor and validator)
   double max_mm = 100.0;
   double max_speed_mm_s = 20.0;  // what 100 % SCU speed means on this axis

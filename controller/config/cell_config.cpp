@@ -1,5 +1,7 @@
 #include "config/cell_config.hpp"
 
+#include "config/cell_checks.hpp"
+
 namespace cellctl::config {
 
 const AxisConfig* CellConfig::axis(std::string_view axis_name) const noexcept {
@@ -13,7 +15,7 @@ CellConfig load_cell_config(const std::filesystem::path& path) {
 }
 
 CellConfig parse_cell_config(const YamlNode& root, const std::filesystem::path& source) {
-  root.only_keys({"cell", "axes", "limits", "stops", "loop", "scu", "spindle", "encoder"});
+  root.only_keys({"cell", "axes", "limits", "stops", "loop", "plant", "scu", "spindle", "encoder"});
   CellConfig cell;
   cell.source = source;
   cell.name = root.string_at("cell");
@@ -24,6 +26,8 @@ CellConfig parse_cell_config(const YamlNode& root, const std::filesystem::path& 
   if (auto n = root.maybe("spindle")) cell.spindle = parse_spindle_section(*n);
   if (auto n = root.maybe("encoder")) cell.encoder = parse_encoder_section(*n);
   if (auto n = root.maybe("scu")) cell.scu = parse_scu_section(*n);
+  if (auto n = root.maybe("plant")) cell.plant = parse_plant(*n);
+  check_cell(root, cell);
   return cell;
 }
 

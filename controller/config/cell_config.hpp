@@ -24,6 +24,7 @@ struct CellConfig {
   std::optional<SpindleSection> spindle;
   std::optional<EncoderSection> encoder;
   std::optional<ScuSection> scu;
+  PlantConfig plant;
 
   // The axis with this name, or nullptr.
   [[nodiscard]] const AxisConfig* axis(std::string_view axis_name) const noexcept;

@@ -1,0 +1,16 @@
+#pragma once
+// The rules that tie the cell config's sections together: every axis is an actuator the SCU has,
+// moved alone by its function; its travel fits the stroke; its edges per mm agree with the SCU's;
+// the encoder measures exactly one axis when there is an encoder.
+
+#include "config/yaml_node.hpp"
+
+namespace cellctl::config {
+
+struct CellConfig;
+
+// Completes derived values (an axis's edges_per_mm from the SCU section) and throws ConfigError at
+// the offending field otherwise.
+void check_cell(const YamlNode& root, CellConfig& cell);
+
+}  // namespace cellctl::config
