@@ -75,7 +75,8 @@ void BM_CodecRoundTrip(benchmark::State& state) {
     benchmark::DoNotOptimize(scu::encode_request(rc, request));
     const auto req = scu::decode_request(request.view());
     benchmark::DoNotOptimize(req.error);
-    benchmark::DoNotOptimize(scu::encode_reply(scu::Reply{scu::Command::cyclic, scu::Status::ack, true, read}, reply));
+    benchmark::DoNotOptimize(
+        scu::encode_reply(scu::Reply{scu::Command::cyclic, scu::Status::ack, true, read}, reply));
     const auto rep = scu::decode_reply(reply.view(), scu::reply_shape(rc));
     benchmark::DoNotOptimize(layout.decode(rep.value.data, refresh));
     bytes = request.size() + reply.size();

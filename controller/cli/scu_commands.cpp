@@ -34,7 +34,9 @@ void print_snapshot(const scu::Snapshot& s) {
     if (!a.configured) continue;
     const auto& st = a.status;
     fmt::print("actuator {}     {} edges, {}{}{}{}\n", i + 1, a.position_edges,
-               !st.present ? "NOT PRESENT" : st.motion_active ? "moving" : "at rest",
+               !st.present        ? "NOT PRESENT"
+               : st.motion_active ? "moving"
+                                  : "at rest",
                st.in_position ? ", in position reached" : "", st.out_position ? ", out position reached" : "",
                st.limit_signal ? ", limit signal" : "");
   }
@@ -42,19 +44,22 @@ void print_snapshot(const scu::Snapshot& s) {
     fmt::print("errors         none\n");
   } else {
     fmt::print("errors         0x{:08x}\n", s.errors.raw());
-    s.errors.for_each_cause([](int bit, std::string_view cause) { fmt::print("  bit {:2}       {}\n", bit, cause); });
+    s.errors.for_each_cause(
+        [](int bit, std::string_view cause) { fmt::print("  bit {:2}       {}\n", bit, cause); });
   }
   for (std::size_t f = 0; f < s.functions.size(); ++f) {
     const auto& fs = s.functions[f];
     if (fs.outcome == scu::MoveOutcome::none && !fs.execution_open) continue;
-    fmt::print("function F{}    {}{}\n", f + 1, scu::to_string(fs.outcome), fs.execution_open ? " (RE open)" : "");
+    fmt::print("function F{}    {}{}\n", f + 1, scu::to_string(fs.outcome),
+               fs.execution_open ? " (RE open)" : "");
   }
 }
 
 class Commissioning {
  public:
   Commissioning(const GlobalOptions& global, const ScuOptions& options, const config::ScuSection& section)
-      : options_(options), device_(section.port, options.port, "scu", clock_, global.trace),
+      : options_(options),
+        device_(section.port, options.port, "scu", clock_, global.trace),
         session_(device_.link(), section.session) {}
 
   int run(Action action) {
@@ -62,11 +67,15 @@ class Commissioning {
     if (!drive([&] { return state_ == link::Lifecycle::active; })) return failed_to("open remote mode");
     int code = kExitOk;
     switch (action) {
-      case Action::status: break;
-      case Action::move: code = move(); break;
+      case Action::status:
+        break;
+      case Action::move:
+        code = move();
+        break;
       case Action::stop:
         if (!session_.stop(options_.function, !options_.fast)) {
-          spdlog::error("F{} is not a function of this SCU: check scu.functions in the cell config", options_.function);
+          spdlog::error("F{} is not a function of this SCU: check scu.functions in the cell config",
+                        options_.function);
           code = kExitUsage;
         }
         break;
@@ -78,24 +87,28 @@ class Commissioning {
  private:
   int move() {
     const scu::ActuatorTarget target[] = {{options_.actuator, options_.position_edges}};
-    if (!session_.move_to(options_.function, target, static_cast<std::uint16_t>(options_.speed), !options_.fast)) {
-      spdlog::error("move refused: F{} must be a configured function that moves exactly actuator {} "
-                    "(see scu.functions in the cell config), speed 0..100 %",
-                    options_.function, options_.actuator);
+    if (!session_.move_to(options_.function, target, static_cast<std::uint16_t>(options_.speed),
+                          !options_.fast)) {
+      spdlog::error(
+          "move refused: F{} must be a configured function that moves exactly actuator {} "
+          "(see scu.functions in the cell config), speed 0..100 %",
+          options_.function, options_.actuator);
       return kExitUsage;
     }
     const auto& f = session_.snapshot().functions[static_cast<std::size_t>(options_.function - 1)];
     // Waits for the motion to end and its RS to be acknowledged.
     const bool ended = drive([&] {
-      return f.outcome != scu::MoveOutcome::queued && f.outcome != scu::MoveOutcome::running && !f.execution_open;
+      return f.outcome != scu::MoveOutcome::queued && f.outcome != scu::MoveOutcome::running &&
+             !f.execution_open;
     });
     if (!ended) return failed_to("finish the move");
     if (f.outcome == scu::MoveOutcome::arrived) return kExitOk;
-    spdlog::error("F{} {} (actuator {} at {} edges, target {}): check the error word below; a speed below the "
-                  "actuator's minimum does not move it — try a higher --speed",
-                  options_.function, scu::to_string(f.outcome), options_.actuator,
-                  session_.snapshot().actuators[static_cast<std::size_t>(options_.actuator - 1)].position_edges,
-                  options_.position_edges);
+    spdlog::error(
+        "F{} {} (actuator {} at {} edges, target {}): check the error word below; a speed below the "
+        "actuator's minimum does not move it — try a higher --speed",
+        options_.function, scu::to_string(f.outcome), options_.actuator,
+        session_.snapshot().actuators[static_cast<std::size_t>(options_.actuator - 1)].position_edges,
+        options_.position_edges);
     print_snapshot(session_.snapshot());
     return kExitFailed;
   }
@@ -107,7 +120,8 @@ class Commissioning {
     session_.deactivate(clock_.now());
     const bool closed = drive([&] { return state_ == link::Lifecycle::inactive; });
     if (interrupted) {
-      spdlog::warn("interrupted; SCU remote mode {}", closed ? "closed, motion stopped" : "NOT confirmed closed");
+      spdlog::warn("interrupted; SCU remote mode {}",
+                   closed ? "closed, motion stopped" : "NOT confirmed closed");
       return kExitInterrupted;
     }
     if (!closed && code == kExitOk) return failed_to("leave remote mode");
@@ -116,9 +130,11 @@ class Commissioning {
 
   template <class Done>
   bool drive(Done&& done) {
-    const auto timeout = std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.timeout_s));
-    return drive_until(clock_, timeout, [&](auto now) { state_ = session_.poll(now); },
-                       [&] { return state_ == link::Lifecycle::fault || done(); }) &&
+    const auto timeout =
+        std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.timeout_s));
+    return drive_until(
+               clock_, timeout, [&](auto now) { state_ = session_.poll(now); },
+               [&] { return state_ == link::Lifecycle::fault || done(); }) &&
            state_ != link::Lifecycle::fault;
   }
 
@@ -128,8 +144,8 @@ class Commissioning {
       return kExitLink;
     }
     if (g_interrupted.load()) return kExitInterrupted;
-    spdlog::error("SCU on {} did not {} within {} s: raise --timeout for long strokes, or check the SCU", device_.path(),
-                  what, options_.timeout_s);
+    spdlog::error("SCU on {} did not {} within {} s: raise --timeout for long strokes, or check the SCU",
+                  device_.path(), what, options_.timeout_s);
     return kExitFailed;
   }
 
@@ -154,7 +170,8 @@ int run_scu(const GlobalOptions& global, const ScuOptions& options, Action actio
 
 void add_scu_commands(CLI::App& app, Commands& commands) {
   auto options = std::make_shared<ScuOptions>();
-  auto* group = app.add_subcommand("scu", "Commission the Ewellix SCU control unit and its actuators (RS232)");
+  auto* group =
+      app.add_subcommand("scu", "Commission the Ewellix SCU control unit and its actuators (RS232)");
   group->require_subcommand(1);
   group->add_option("--port", options->port, "Serial port (default: from the cell config)");
   group->add_option("--timeout", options->timeout_s, "Seconds to wait for the SCU or the motion")
@@ -172,14 +189,18 @@ void add_scu_commands(CLI::App& app, Commands& commands) {
   move->add_option("--function", options->function, "Function F1..F10 that moves the actuator")
       ->check(CLI::Range(1, 10))
       ->capture_default_str();
-  move->add_option("--actuator", options->actuator, "Actuator 1..6")->check(CLI::Range(1, 6))->capture_default_str();
+  move->add_option("--actuator", options->actuator, "Actuator 1..6")
+      ->check(CLI::Range(1, 6))
+      ->capture_default_str();
   move->add_option("--position-edges", options->position_edges, "Target in encoder edges")->required();
   move->add_option("--speed", options->speed, "Speed in % of the actuator's maximum")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
   move->add_flag("--fast", options->fast, "Fast start/stop (no ramps)");
   auto* stop = add("stop", "Stop a function (soft unless --fast)", Action::stop);
-  stop->add_option("--function", options->function, "Function F1..F10")->check(CLI::Range(1, 10))->capture_default_str();
+  stop->add_option("--function", options->function, "Function F1..F10")
+      ->check(CLI::Range(1, 10))
+      ->capture_default_str();
   stop->add_flag("--fast", options->fast, "Fast stop");
 }
 

@@ -6,7 +6,8 @@
 namespace cellctl::config {
 namespace {
 
-link::Duration ms_or(const YamlNode& s, std::string_view key, long long min, long long max, link::Duration fallback) {
+link::Duration ms_or(const YamlNode& s, std::string_view key, long long min, long long max,
+                     link::Duration fallback) {
   const auto n = s.maybe(key);
   return n ? std::chrono::milliseconds(n->as_integer_in(min, max)) : fallback;
 }
@@ -20,7 +21,8 @@ void parse_actuators(const YamlNode& list, ScuSection& out) {
                     "start_position_mm", "scale_error"});
     const int a = item.int_in<int>("index", 1, scu::kActuatorCount);
     const auto i = static_cast<std::size_t>(a - 1);
-    if (out.session.actuators.test(i)) item.at("index").fail("actuator " + std::to_string(a) + " is listed twice");
+    if (out.session.actuators.test(i))
+      item.at("index").fail("actuator " + std::to_string(a) + " is listed twice");
     out.session.actuators.set(i);
     auto& act = out.emulator.actuators[i];
     act.present = true;
@@ -33,7 +35,8 @@ void parse_actuators(const YamlNode& list, ScuSection& out) {
     p.start_position_mm = item.double_in_or("start_position_mm", 0.0, p.stroke_mm, p.start_position_mm);
     p.scale_error = item.double_in_or("scale_error", -0.1, 0.1, p.scale_error);
     // SCU positions are INT32 edges: the whole stroke must fit.
-    if (p.stroke_mm * act.edges_per_mm > 2e9) item.at("edges_per_mm").fail("stroke × edges_per_mm exceeds INT32");
+    if (p.stroke_mm * act.edges_per_mm > 2e9)
+      item.at("edges_per_mm").fail("stroke × edges_per_mm exceeds INT32");
   }
   if (out.session.actuators.none()) list.fail("lists no actuator");
 }
@@ -56,7 +59,8 @@ void parse_functions(const YamlNode& list, ScuSection& out) {
     }
     if (fn.actuators.none()) acts.fail("a function must move at least one actuator");
     fn.synchronized = item.bool_or("synchronized", false);
-    if (fn.synchronized && fn.actuators.count() < 2) item.at("synchronized").fail("needs two actuators or more");
+    if (fn.synchronized && fn.actuators.count() < 2)
+      item.at("synchronized").fail("needs two actuators or more");
   }
   out.session.functions = table;
   out.emulator.functions = table;
@@ -80,7 +84,8 @@ ScuSection parse_scu_section(const YamlNode& section) {
   if (s.link_fault_after <= s.reply_timeout)
     (section.has("link_fault_after_ms") ? section.at("link_fault_after_ms") : section.at("reply_timeout_ms"))
         .fail("link_fault_after_ms must be longer than reply_timeout_ms");
-  s.arrival_tolerance_edges = section.int_in_or<std::int32_t>("arrival_tolerance_edges", 0, 100000, s.arrival_tolerance_edges);
+  s.arrival_tolerance_edges =
+      section.int_in_or<std::int32_t>("arrival_tolerance_edges", 0, 100000, s.arrival_tolerance_edges);
   out.emulator.default_speed_percent =
       section.int_in_or<std::uint16_t>("default_speed_percent", 0, 100, out.emulator.default_speed_percent);
 

@@ -51,13 +51,20 @@ ReplyShape reply_shape(const Request& r) noexcept {
 
 const char* to_string(DecodeError e) noexcept {
   switch (e) {
-    case DecodeError::none: return "no error";
-    case DecodeError::bad_start: return "garbage (no 'R' at the start)";
-    case DecodeError::unknown_command: return "unknown command byte";
-    case DecodeError::unexpected_command: return "reply to another command than the one in flight";
-    case DecodeError::bad_status: return "invalid status byte";
-    case DecodeError::bad_length: return "impossible length";
-    case DecodeError::bad_crc: return "CRC mismatch";
+    case DecodeError::none:
+      return "no error";
+    case DecodeError::bad_start:
+      return "garbage (no 'R' at the start)";
+    case DecodeError::unknown_command:
+      return "unknown command byte";
+    case DecodeError::unexpected_command:
+      return "reply to another command than the one in flight";
+    case DecodeError::bad_status:
+      return "invalid status byte";
+    case DecodeError::bad_length:
+      return "impossible length";
+    case DecodeError::bad_crc:
+      return "CRC mismatch";
   }
   return "?";
 }
@@ -73,44 +80,43 @@ bool encode_request(const Request& r, RequestBytes& out) noexcept {
   wire::ByteWriter w(out.storage());
   w.u8(kMajor);
   w.u8(static_cast<std::uint8_t>(command_of(r)));
-  const bool fits = std::visit(
-      Overloaded{
-          [&](const OpenRequest& o) {
-            w.u8(o.safety_id);
-            return true;
-          },
-          [&](const AbortRequest&) { return true; },
-          [&](const CyclicRequest& c) {
-            if (c.write_data.size() + 1 > kMaxRequestData) return false;
-            w.le(static_cast<std::uint16_t>(1 + c.write_data.size()));
-            w.u8(c.index);
-            w.bytes(c.write_data);
-            return true;
-          },
-          [&](const GetRequest& g) {
-            w.le(g.data_id);
-            return true;
-          },
-          [&](const TransferRequest& t) {
-            if (t.value.size() + 2 > kMaxRequestData) return false;
-            w.le(static_cast<std::uint16_t>(2 + t.value.size()));
-            w.le(t.data_id);
-            w.bytes(t.value);
-            return true;
-          },
-          [&](const ExecuteRequest& e) {
-            w.u8(e.function);
-            w.u8(e.direction);
-            w.u8(e.start_stop);
-            return true;
-          },
-          [&](const StopRequest& s) {
-            w.u8(s.function);
-            w.u8(s.mode);
-            return true;
-          },
-      },
-      r);
+  const bool fits = std::visit(Overloaded{
+                                   [&](const OpenRequest& o) {
+                                     w.u8(o.safety_id);
+                                     return true;
+                                   },
+                                   [&](const AbortRequest&) { return true; },
+                                   [&](const CyclicRequest& c) {
+                                     if (c.write_data.size() + 1 > kMaxRequestData) return false;
+                                     w.le(static_cast<std::uint16_t>(1 + c.write_data.size()));
+                                     w.u8(c.index);
+                                     w.bytes(c.write_data);
+                                     return true;
+                                   },
+                                   [&](const GetRequest& g) {
+                                     w.le(g.data_id);
+                                     return true;
+                                   },
+                                   [&](const TransferRequest& t) {
+                                     if (t.value.size() + 2 > kMaxRequestData) return false;
+                                     w.le(static_cast<std::uint16_t>(2 + t.value.size()));
+                                     w.le(t.data_id);
+                                     w.bytes(t.value);
+                                     return true;
+                                   },
+                                   [&](const ExecuteRequest& e) {
+                                     w.u8(e.function);
+                                     w.u8(e.direction);
+                                     w.u8(e.start_stop);
+                                     return true;
+                                   },
+                                   [&](const StopRequest& s) {
+                                     w.u8(s.function);
+                                     w.u8(s.mode);
+                                     return true;
+                                   },
+                               },
+                               r);
   if (!fits) {
     out.clear();
     return false;
@@ -142,11 +148,15 @@ FrameLength request_frame_length(std::span<const std::uint8_t> prefix) noexcept 
   const auto cmd = command_from_byte(prefix[1]);
   if (!cmd) return {0, DecodeError::unknown_command};
   switch (*cmd) {
-    case Command::abort: return {4};
-    case Command::open: return {5};
+    case Command::abort:
+      return {4};
+    case Command::open:
+      return {5};
     case Command::get:
-    case Command::stop: return {6};
-    case Command::execute: return {7};
+    case Command::stop:
+      return {6};
+    case Command::execute:
+      return {7};
     case Command::transfer:
     case Command::cyclic: {
       if (prefix.size() < 4) return {};
@@ -184,9 +194,15 @@ Decoded<Request> decode_request(std::span<const std::uint8_t> frame) noexcept {
   const auto cmd = *command_from_byte(r.u8());
   Request out;
   switch (cmd) {
-    case Command::open: out = OpenRequest{r.u8()}; break;
-    case Command::abort: out = AbortRequest{}; break;
-    case Command::get: out = GetRequest{r.le<std::uint16_t>()}; break;
+    case Command::open:
+      out = OpenRequest{r.u8()};
+      break;
+    case Command::abort:
+      out = AbortRequest{};
+      break;
+    case Command::get:
+      out = GetRequest{r.le<std::uint16_t>()};
+      break;
     case Command::stop: {
       const auto f = r.u8();
       out = StopRequest{f, r.u8()};

@@ -21,9 +21,9 @@ namespace cellctl::scu {
 struct OpenRequest {  // RO
   std::uint8_t safety_id = 0;
 };
-struct AbortRequest {};  // RA
-struct CyclicRequest {   // RC
-  std::uint8_t index = kNoCyclicObject;         // 0..4 = CyclicObj 1..5
+struct AbortRequest {};                        // RA
+struct CyclicRequest {                         // RC
+  std::uint8_t index = kNoCyclicObject;        // 0..4 = CyclicObj 1..5
   std::span<const std::uint8_t> write_data{};  // the cyclic object's write data, in ID order
 };
 struct GetRequest {  // RG
@@ -33,18 +33,18 @@ struct TransferRequest {  // RT
   std::uint16_t data_id = 0;
   std::span<const std::uint8_t> value{};
 };
-struct ExecuteRequest {  // RE
-  std::uint8_t function = 0;                    // fnc_ID: 0..9 = F1..F10, 19 = F20 …
-  std::uint8_t direction = kUnusedParam;        // para_ID[0]: Direction for F1..F10
-  std::uint8_t start_stop = kUnusedParam;       // para_ID[1]: 0 fast, 1 soft, 0xFF configured
+struct ExecuteRequest {                    // RE
+  std::uint8_t function = 0;               // fnc_ID: 0..9 = F1..F10, 19 = F20 …
+  std::uint8_t direction = kUnusedParam;   // para_ID[0]: Direction for F1..F10
+  std::uint8_t start_stop = kUnusedParam;  // para_ID[1]: 0 fast, 1 soft, 0xFF configured
 };
 struct StopRequest {  // RS
   std::uint8_t function = 0;
   std::uint8_t mode = kUnusedParam;  // 0 fast, 1 soft, 0xFF configured
 };
 
-using Request =
-    std::variant<OpenRequest, AbortRequest, CyclicRequest, GetRequest, TransferRequest, ExecuteRequest, StopRequest>;
+using Request = std::variant<OpenRequest, AbortRequest, CyclicRequest, GetRequest, TransferRequest,
+                             ExecuteRequest, StopRequest>;
 
 [[nodiscard]] Command command_of(const Request& r) noexcept;
 
@@ -97,7 +97,8 @@ struct FrameLength {
   DecodeError error = DecodeError::none;
 };
 [[nodiscard]] FrameLength request_frame_length(std::span<const std::uint8_t> prefix) noexcept;
-[[nodiscard]] FrameLength reply_frame_length(std::span<const std::uint8_t> prefix, ReplyShape expected) noexcept;
+[[nodiscard]] FrameLength reply_frame_length(std::span<const std::uint8_t> prefix,
+                                             ReplyShape expected) noexcept;
 
 // True when the frame's last two bytes are the CRC of the rest (low byte first).
 [[nodiscard]] bool crc_ok(std::span<const std::uint8_t> frame) noexcept;

@@ -143,15 +143,22 @@ static_assert(sorted(), "the data list must be sorted by ID");
 
 std::size_t size_of(DataType t) noexcept {
   switch (t) {
-    case DataType::u8: return 1;
-    case DataType::u16: return 2;
+    case DataType::u8:
+      return 1;
+    case DataType::u16:
+      return 2;
     case DataType::u32:
     case DataType::i32:
-    case DataType::f32: return 4;
-    case DataType::string31: return 31;
-    case DataType::string36: return 36;
-    case DataType::cyclic_object: return 24;
-    case DataType::user_positions: return 26 * 4;
+    case DataType::f32:
+      return 4;
+    case DataType::string31:
+      return 31;
+    case DataType::string36:
+      return 36;
+    case DataType::cyclic_object:
+      return 24;
+    case DataType::user_positions:
+      return 26 * 4;
   }
   return 0;
 }

@@ -37,7 +37,9 @@ struct DataElement {
 // Bytes an RG of this ID returns (0 for an unknown ID).
 [[nodiscard]] std::size_t value_size(std::uint16_t id) noexcept;
 // Only remote data elements (0x3xxx) may be written with RT or as cyclic write data.
-[[nodiscard]] constexpr bool is_remote_data(std::uint16_t id) noexcept { return (id & 0xF000u) == 0x3000u; }
+[[nodiscard]] constexpr bool is_remote_data(std::uint16_t id) noexcept {
+  return (id & 0xF000u) == 0x3000u;
+}
 
 // The IDs the program uses by name (actuator a = 1..6, function f = 1..10, cyclic object k = 1..5).
 namespace data_id {
@@ -46,12 +48,24 @@ inline constexpr std::uint16_t kConfigurationInfo = 0x0002;
 inline constexpr std::uint16_t kPositions = 0x0010;  // group: all six
 inline constexpr std::uint16_t kStatus1 = 0x0170;    // group: all six
 inline constexpr std::uint16_t kErrorCode = 0x00D1;  // the latest error word; 0x00D2..D5 history
-[[nodiscard]] constexpr std::uint16_t position(int a) noexcept { return static_cast<std::uint16_t>(0x0010 + a); }
-[[nodiscard]] constexpr std::uint16_t status1(int a) noexcept { return static_cast<std::uint16_t>(0x0170 + a); }
-[[nodiscard]] constexpr std::uint16_t status2(int a) noexcept { return static_cast<std::uint16_t>(0x00E0 + a); }
-[[nodiscard]] constexpr std::uint16_t error_code(int n) noexcept { return static_cast<std::uint16_t>(0x00D0 + n); }
-[[nodiscard]] constexpr std::uint16_t cyclic_object(int k) noexcept { return static_cast<std::uint16_t>(0x3000 + k); }
-[[nodiscard]] constexpr std::uint16_t remote_speed(int f) noexcept { return static_cast<std::uint16_t>(0x3010 + f); }
+[[nodiscard]] constexpr std::uint16_t position(int a) noexcept {
+  return static_cast<std::uint16_t>(0x0010 + a);
+}
+[[nodiscard]] constexpr std::uint16_t status1(int a) noexcept {
+  return static_cast<std::uint16_t>(0x0170 + a);
+}
+[[nodiscard]] constexpr std::uint16_t status2(int a) noexcept {
+  return static_cast<std::uint16_t>(0x00E0 + a);
+}
+[[nodiscard]] constexpr std::uint16_t error_code(int n) noexcept {
+  return static_cast<std::uint16_t>(0x00D0 + n);
+}
+[[nodiscard]] constexpr std::uint16_t cyclic_object(int k) noexcept {
+  return static_cast<std::uint16_t>(0x3000 + k);
+}
+[[nodiscard]] constexpr std::uint16_t remote_speed(int f) noexcept {
+  return static_cast<std::uint16_t>(0x3010 + f);
+}
 [[nodiscard]] constexpr std::uint16_t remote_position(int a) noexcept {
   return static_cast<std::uint16_t>(0x3020 + a);
 }

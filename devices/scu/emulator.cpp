@@ -120,10 +120,17 @@ void Emulator::receive(link::TimePoint now) {
         continue;
       }
       switch (e.error) {
-        case DecodeError::bad_crc: answer_error(e.command_byte, Status::checksum_error, now); break;
-        case DecodeError::bad_length: answer_error(e.command_byte, Status::parameter_count_error, now); break;
-        case DecodeError::unknown_command: answer_error(e.command_byte, Status::invalid_command, now); break;
-        default: break;  // garbage before a telegram gets no answer: there is nobody to answer
+        case DecodeError::bad_crc:
+          answer_error(e.command_byte, Status::checksum_error, now);
+          break;
+        case DecodeError::bad_length:
+          answer_error(e.command_byte, Status::parameter_count_error, now);
+          break;
+        case DecodeError::unknown_command:
+          answer_error(e.command_byte, Status::invalid_command, now);
+          break;
+        default:
+          break;  // garbage before a telegram gets no answer: there is nobody to answer
       }
     }
   }
@@ -140,17 +147,16 @@ void Emulator::answer(const Request& request, link::TimePoint now) {
   Reply reply;
   reply.command = command_of(request);
   reply.has_data = reply_shape(request).has_data;
-  reply.status = std::visit(
-      Overloaded{
-          [&](const OpenRequest& r) { return handle(r, now); },
-          [&](const AbortRequest& r) { return handle(r, now); },
-          [&](const CyclicRequest& r) { return handle(r, now, data); },
-          [&](const GetRequest& r) { return handle(r, data); },
-          [&](const TransferRequest& r) { return handle(r); },
-          [&](const ExecuteRequest& r) { return handle(r); },
-          [&](const StopRequest& r) { return handle(r); },
-      },
-      request);
+  reply.status = std::visit(Overloaded{
+                                [&](const OpenRequest& r) { return handle(r, now); },
+                                [&](const AbortRequest& r) { return handle(r, now); },
+                                [&](const CyclicRequest& r) { return handle(r, now, data); },
+                                [&](const GetRequest& r) { return handle(r, data); },
+                                [&](const TransferRequest& r) { return handle(r); },
+                                [&](const ExecuteRequest& r) { return handle(r); },
+                                [&](const StopRequest& r) { return handle(r); },
+                            },
+                            request);
   reply.data = data.written();
   send(reply, now);
 }
@@ -245,12 +251,23 @@ Status Emulator::handle(const ExecuteRequest& r) {
       emergency_stop_ = true;
       stop_all(false);
       return Status::ack;
-    case kBuzzerFnc: buzzer_ = 1; return Status::ack;
-    case kBinaryOutput1Fnc: outputs_ |= 0x01; return Status::ack;
-    case kBinaryOutput2Fnc: outputs_ |= 0x02; return Status::ack;
-    case kLed1Fnc: hand_switch_leds_ |= 0x01; return Status::ack;
-    case kLed2Fnc: hand_switch_leds_ |= 0x02; return Status::ack;
-    default: return Status::parameter_data_error;
+    case kBuzzerFnc:
+      buzzer_ = 1;
+      return Status::ack;
+    case kBinaryOutput1Fnc:
+      outputs_ |= 0x01;
+      return Status::ack;
+    case kBinaryOutput2Fnc:
+      outputs_ |= 0x02;
+      return Status::ack;
+    case kLed1Fnc:
+      hand_switch_leds_ |= 0x01;
+      return Status::ack;
+    case kLed2Fnc:
+      hand_switch_leds_ |= 0x02;
+      return Status::ack;
+    default:
+      return Status::parameter_data_error;
   }
 }
 
@@ -265,31 +282,49 @@ Status Emulator::handle(const StopRequest& r) {
     return Status::ack;
   }
   switch (r.function) {
-    case kEmergencyStopFnc: emergency_stop_ = false; return Status::ack;
-    case kBuzzerFnc: buzzer_ = 0; return Status::ack;
-    case kBinaryOutput1Fnc: outputs_ &= 0xFE; return Status::ack;
-    case kBinaryOutput2Fnc: outputs_ &= 0xFD; return Status::ack;
-    case kLed1Fnc: hand_switch_leds_ &= 0xFE; return Status::ack;
-    case kLed2Fnc: hand_switch_leds_ &= 0xFD; return Status::ack;
-    default: return Status::parameter_data_error;
+    case kEmergencyStopFnc:
+      emergency_stop_ = false;
+      return Status::ack;
+    case kBuzzerFnc:
+      buzzer_ = 0;
+      return Status::ack;
+    case kBinaryOutput1Fnc:
+      outputs_ &= 0xFE;
+      return Status::ack;
+    case kBinaryOutput2Fnc:
+      outputs_ &= 0xFD;
+      return Status::ack;
+    case kLed1Fnc:
+      hand_switch_leds_ &= 0xFE;
+      return Status::ack;
+    case kLed2Fnc:
+      hand_switch_leds_ &= 0xFD;
+      return Status::ack;
+    default:
+      return Status::parameter_data_error;
   }
 }
 
 double Emulator::target_mm(std::size_t a, Direction d) const {
   const double stroke = config_.actuators[a].physics.stroke_mm;
   switch (d) {
-    case Direction::none: return actuators_[a].position_mm();
-    case Direction::in: return 0.0;
-    case Direction::out: return stroke;
+    case Direction::none:
+      return actuators_[a].position_mm();
+    case Direction::in:
+      return 0.0;
+    case Direction::out:
+      return stroke;
     case Direction::memory1:
     case Direction::memory2:
     case Direction::memory3:
     case Direction::memory4:
     case Direction::intermediate_in:
     case Direction::intermediate_out:
-      return kUserPositionFractions[static_cast<std::size_t>(d) - static_cast<std::size_t>(Direction::memory1)] *
+      return kUserPositionFractions[static_cast<std::size_t>(d) -
+                                    static_cast<std::size_t>(Direction::memory1)] *
              stroke;
-    case Direction::remote_position: return remote_position_[a] / config_.actuators[a].edges_per_mm;
+    case Direction::remote_position:
+      return remote_position_[a] / config_.actuators[a].edges_per_mm;
   }
   return actuators_[a].position_mm();
 }
@@ -374,37 +409,70 @@ void Emulator::read_element(std::uint16_t id, wire::ByteWriter& out) const {
   };
   const auto current = [&]() -> std::uint16_t {  // 0.1 A: 2 A idle draw of a running motor, + load with speed
     if (!is_present || !actuators_[a].moving()) return 0;
-    return static_cast<std::uint16_t>(20 + percent(std::abs(actuators_[a].velocity_mm_s()), phys.max_speed_mm_s) / 2);
+    return static_cast<std::uint16_t>(
+        20 + percent(std::abs(actuators_[a].velocity_mm_s()), phys.max_speed_mm_s) / 2);
   };
   switch (id & 0xFFF0) {
-    case 0x0000: string_of(id == data_id::kFirmwareInfo ? config_.firmware : config_.configuration,
-                           value_size(id)); return;
-    case 0x0010: out.le(position_edges(low)); return;
-    case 0x0030: out.le(std::uint16_t{0}); return;
-    case 0x0060: out.le(is_present ? relay_in_[a] : 0u); return;
-    case 0x0070: out.le(is_present ? relay_out_[a] : 0u); return;
-    case 0x0080: out.le(id == 0x008F ? over_current_count_ : is_present ? actuator_errors_[a] : 0u); return;
-    case 0x0090: out.le(is_present ? static_cast<std::uint32_t>(stroke_edges_[a]) : 0u); return;
-    case 0x00A0: out.le(current()); return;
+    case 0x0000:
+      string_of(id == data_id::kFirmwareInfo ? config_.firmware : config_.configuration, value_size(id));
+      return;
+    case 0x0010:
+      out.le(position_edges(low));
+      return;
+    case 0x0030:
+      out.le(std::uint16_t{0});
+      return;
+    case 0x0060:
+      out.le(is_present ? relay_in_[a] : 0u);
+      return;
+    case 0x0070:
+      out.le(is_present ? relay_out_[a] : 0u);
+      return;
+    case 0x0080:
+      out.le(id == 0x008F ? over_current_count_ : is_present ? actuator_errors_[a] : 0u);
+      return;
+    case 0x0090:
+      out.le(is_present ? static_cast<std::uint32_t>(stroke_edges_[a]) : 0u);
+      return;
+    case 0x00A0:
+      out.le(current());
+      return;
     case 0x00B0: {
       std::uint16_t total = 0;
       for (auto m : max_current_) total = std::max(total, m);
       out.le(id == 0x00BF ? total : std::max(max_current_[a], current()));
       return;
     }
-    case 0x00C0: if (id == 0x00C0) out.u8(40); else out.le(std::uint32_t{0}); return;
-    case 0x00D0: out.le(error_codes_[static_cast<std::size_t>(low - 1)]); return;
-    case 0x00E0: out.u8(Status2{is_present, is_present, is_present}.to_byte()); return;
+    case 0x00C0:
+      if (id == 0x00C0)
+        out.u8(40);
+      else
+        out.le(std::uint32_t{0});
+      return;
+    case 0x00D0:
+      out.le(error_codes_[static_cast<std::size_t>(low - 1)]);
+      return;
+    case 0x00E0:
+      out.u8(Status2{is_present, is_present, is_present}.to_byte());
+      return;
     case 0x00F0:
-      out.le(is_present ? percent(std::abs(actuators_[a].velocity_mm_s()), phys.max_speed_mm_s) : std::uint16_t{0});
+      out.le(is_present ? percent(std::abs(actuators_[a].velocity_mm_s()), phys.max_speed_mm_s)
+                        : std::uint16_t{0});
       return;
     case 0x0160:
-      if (id == 0x0166) out.u8(1);         // user 1
-      else if (id == 0x0165) out.u8(0);    // no locking box
-      else out.le(std::uint16_t{0});       // nothing locked, no battery
+      if (id == 0x0166)
+        out.u8(1);  // user 1
+      else if (id == 0x0165)
+        out.u8(0);  // no locking box
+      else
+        out.le(std::uint16_t{0});  // nothing locked, no battery
       return;
-    case 0x0170: out.u8(status1(low).to_byte()); return;
-    case 0x1010: out.le_float(is_present ? static_cast<float>(1.0 / config_.actuators[a].edges_per_mm) : 0.0f); return;
+    case 0x0170:
+      out.u8(status1(low).to_byte());
+      return;
+    case 0x1010:
+      out.le_float(is_present ? static_cast<float>(1.0 / config_.actuators[a].edges_per_mm) : 0.0f);
+      return;
     case 0x2000: {
       const double scale = is_present ? phys.stroke_mm * config_.actuators[a].edges_per_mm : 0.0;
       for (int user = 0; user < 4; ++user)
@@ -416,22 +484,45 @@ void Emulator::read_element(std::uint16_t id, wire::ByteWriter& out) const {
     case 0x3000:
       for (auto v : cyclic_objects_[static_cast<std::size_t>(low - 1)]) out.le(v);
       return;
-    case 0x3010: out.le(remote_speed_[static_cast<std::size_t>(low - 1)]); return;
-    case 0x3020: out.le(remote_position_[a]); return;
-    default: break;
+    case 0x3010:
+      out.le(remote_speed_[static_cast<std::size_t>(low - 1)]);
+      return;
+    case 0x3020:
+      out.le(remote_position_[a]);
+      return;
+    default:
+      break;
   }
   switch (id) {
-    case 0x0020: out.u8(0); return;
-    case 0x0040: out.le(std::uint32_t{0}); return;
-    case 0x0100: out.u8(0x01); return;  // mains connected
-    case 0x0110: out.u8(outputs_); return;
-    case 0x0120: out.u8(hand_switch_leds_); return;
-    case 0x0130: out.u8(0); return;
-    case 0x0140: out.u8(buzzer_); return;
-    case 0x0150: out.u8(1); return;  // sensor supply on
-    default: break;
+    case 0x0020:
+      out.u8(0);
+      return;
+    case 0x0040:
+      out.le(std::uint32_t{0});
+      return;
+    case 0x0100:
+      out.u8(0x01);
+      return;  // mains connected
+    case 0x0110:
+      out.u8(outputs_);
+      return;
+    case 0x0120:
+      out.u8(hand_switch_leds_);
+      return;
+    case 0x0130:
+      out.u8(0);
+      return;
+    case 0x0140:
+      out.u8(buzzer_);
+      return;
+    case 0x0150:
+      out.u8(1);
+      return;  // sensor supply on
+    default:
+      break;
   }
-  for (std::size_t i = 0; i < value_size(id); ++i) out.u8(0);  // unreachable for listed IDs; keeps sizes right
+  for (std::size_t i = 0; i < value_size(id); ++i)
+    out.u8(0);  // unreachable for listed IDs; keeps sizes right
 }
 
 Status Emulator::check_write(std::uint16_t id, std::span<const std::uint8_t> value) const {

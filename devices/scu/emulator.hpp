@@ -46,8 +46,8 @@ class Emulator {
   void drop_next_replies(int n) noexcept { drop_replies_ = n; }
   void set_reply_delay(link::Duration d) noexcept { reply_delay_ = d; }
   void corrupt_next_reply_crc() noexcept { corrupt_next_ = true; }
-  void inject_actuator_fault(int a);           // bit 15+a-1, actuator a fast-stopped
-  void inject_over_current();                  // bit 14, every actuator fast-stopped
+  void inject_actuator_fault(int a);              // bit 15+a-1, actuator a fast-stopped
+  void inject_over_current();                     // bit 14, every actuator fast-stopped
   void inject_position_difference(int function);  // bit 21, the function's actuators fast-stopped
 
   // What a test checks.

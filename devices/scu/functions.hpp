@@ -14,7 +14,9 @@ struct FunctionDef {
   bool defined = false;
   std::bitset<kActuatorCount> actuators;  // bit a-1 = actuator a
   bool synchronized = false;              // synchronized parallel run (bit 21 guards it)
-  [[nodiscard]] bool moves(int actuator) const noexcept { return defined && actuators.test(static_cast<std::size_t>(actuator - 1)); }
+  [[nodiscard]] bool moves(int actuator) const noexcept {
+    return defined && actuators.test(static_cast<std::size_t>(actuator - 1));
+  }
 };
 
 // functions[f-1] is Ff.

@@ -51,13 +51,13 @@ inline constexpr std::uint8_t kNoCyclicObject = 0xFF;
 inline constexpr int kCyclicObjectCount = 5;  // CyclicObj 1..5, RC index 0..4
 
 inline constexpr int kActuatorCount = 6;
-inline constexpr int kMotionFunctionCount = 10;          // F1..F10, fnc_ID 0..9
-inline constexpr std::uint8_t kEmergencyStopFnc = 19;    // F20
-inline constexpr std::uint8_t kBuzzerFnc = 10;           // F11
-inline constexpr std::uint8_t kBinaryOutput1Fnc = 16;    // F17
-inline constexpr std::uint8_t kBinaryOutput2Fnc = 17;    // F18
-inline constexpr std::uint8_t kLed1Fnc = 20;             // F21
-inline constexpr std::uint8_t kLed2Fnc = 21;             // F22
+inline constexpr int kMotionFunctionCount = 10;        // F1..F10, fnc_ID 0..9
+inline constexpr std::uint8_t kEmergencyStopFnc = 19;  // F20
+inline constexpr std::uint8_t kBuzzerFnc = 10;         // F11
+inline constexpr std::uint8_t kBinaryOutput1Fnc = 16;  // F17
+inline constexpr std::uint8_t kBinaryOutput2Fnc = 17;  // F18
+inline constexpr std::uint8_t kLed1Fnc = 20;           // F21
+inline constexpr std::uint8_t kLed2Fnc = 21;           // F22
 
 // RE's motion_direction (para_ID[0]) for F1..F10.
 enum class Direction : std::uint8_t {

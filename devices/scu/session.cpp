@@ -9,25 +9,36 @@ namespace cellctl::scu {
 
 const char* to_string(MoveOutcome o) noexcept {
   switch (o) {
-    case MoveOutcome::none: return "none";
-    case MoveOutcome::queued: return "queued";
-    case MoveOutcome::running: return "running";
-    case MoveOutcome::arrived: return "arrived";
-    case MoveOutcome::stopped_short: return "stopped short of the target";
-    case MoveOutcome::refused: return "refused by the SCU";
+    case MoveOutcome::none:
+      return "none";
+    case MoveOutcome::queued:
+      return "queued";
+    case MoveOutcome::running:
+      return "running";
+    case MoveOutcome::arrived:
+      return "arrived";
+    case MoveOutcome::stopped_short:
+      return "stopped short of the target";
+    case MoveOutcome::refused:
+      return "refused by the SCU";
   }
   return "?";
 }
 
 namespace {
-long long ms(link::Duration d) { return std::chrono::duration_cast<std::chrono::milliseconds>(d).count(); }
-std::uint8_t fnc(int function) { return static_cast<std::uint8_t>(function - 1); }
+long long ms(link::Duration d) {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
+}
+std::uint8_t fnc(int function) {
+  return static_cast<std::uint8_t>(function - 1);
+}
 }  // namespace
 
 Session::Session(link::Link& link, const SessionConfig& config)
     : link_(link), config_(config), layout_(config.actuators) {
   validate(config_);
-  for (std::size_t a = 0; a < kActuatorCount; ++a) snapshot_.actuators[a].configured = config_.actuators.test(a);
+  for (std::size_t a = 0; a < kActuatorCount; ++a)
+    snapshot_.actuators[a].configured = config_.actuators.test(a);
   keepalive_.purpose = Purpose::keepalive;
   const CyclicRequest rc{0, {}};
   (void)encode_request(rc, keepalive_.bytes);
@@ -39,7 +50,8 @@ bool Session::defined(int function) const noexcept {
          config_.functions[static_cast<std::size_t>(function - 1)].defined;
 }
 
-bool Session::enqueue(bool urgent, const Request& r, Purpose p, std::uint8_t function, std::uint16_t data_id) {
+bool Session::enqueue(bool urgent, const Request& r, Purpose p, std::uint8_t function,
+                      std::uint16_t data_id) {
   Pending pending;
   if (!encode_request(r, pending.bytes)) return false;
   pending.shape = reply_shape(r);
@@ -77,16 +89,19 @@ void Session::deactivate(link::TimePoint now) {
   state_ = link::Lifecycle::deactivating;
   for (int f = 1; f <= kMotionFunctionCount; ++f) {
     auto& fs = snapshot_.functions[static_cast<std::size_t>(f - 1)];
-    const bool in_flight_execute = in_flight_ && in_flight_->purpose == Purpose::execute &&
-                                   in_flight_->function == fnc(f);
+    const bool in_flight_execute =
+        in_flight_ && in_flight_->purpose == Purpose::execute && in_flight_->function == fnc(f);
     if ((fs.execution_open || in_flight_execute) && !stop_queued_.test(static_cast<std::size_t>(f - 1))) {
       (void)enqueue(true, StopRequest{fnc(f), kSoftStartStop}, Purpose::stop, fnc(f));
       stop_queued_.set(static_cast<std::size_t>(f - 1));
     }
   }
-  if (snapshot_.emergency_stop_open) (void)enqueue(true, StopRequest{kEmergencyStopFnc, kUnusedParam}, Purpose::release_emergency);
-  if (snapshot_.remote_open || in_flight_) (void)enqueue(false, AbortRequest{}, Purpose::close);
-  else state_ = link::Lifecycle::inactive;
+  if (snapshot_.emergency_stop_open)
+    (void)enqueue(true, StopRequest{kEmergencyStopFnc, kUnusedParam}, Purpose::release_emergency);
+  if (snapshot_.remote_open || in_flight_)
+    (void)enqueue(false, AbortRequest{}, Purpose::close);
+  else
+    state_ = link::Lifecycle::inactive;
 }
 
 link::Lifecycle Session::poll(link::TimePoint now) {
@@ -119,8 +134,8 @@ void Session::receive(link::TimePoint now) {
   for (;;) {
     const auto r = link_.read(buf);
     if (r.status != link::IoStatus::ok) {
-      fault("SCU link " + link_.describe() + " " + (r.status == link::IoStatus::closed ? "closed" : "failed") +
-            ": check the port");
+      fault("SCU link " + link_.describe() + " " +
+            (r.status == link::IoStatus::closed ? "closed" : "failed") + ": check the port");
       return;
     }
     if (r.count == 0) return;
@@ -161,15 +176,22 @@ void Session::on_reply(const Reply& reply, link::TimePoint now) {
 void Session::on_ack(const Reply& reply, const Pending& p, link::TimePoint now) {
   auto& fs = snapshot_.functions[p.function < kMotionFunctionCount ? p.function : 0];
   switch (p.purpose) {
-    case Purpose::open: snapshot_.remote_open = true; break;
-    case Purpose::first_keepalive: break;
+    case Purpose::open:
+      snapshot_.remote_open = true;
+      break;
+    case Purpose::first_keepalive:
+      break;
     case Purpose::setup_cyclic:
       keepalive_armed_ = true;
       last_keepalive_sent_ = now - config_.keepalive_period;  // the first refresh at once
       break;
-    case Purpose::keepalive: on_refresh(reply.data, now); break;
-    case Purpose::position: break;
-    case Purpose::speed: break;
+    case Purpose::keepalive:
+      on_refresh(reply.data, now);
+      break;
+    case Purpose::position:
+      break;
+    case Purpose::speed:
+      break;
     case Purpose::execute:
       fs.execution_open = true;
       fs.outcome = MoveOutcome::running;
@@ -178,10 +200,15 @@ void Session::on_ack(const Reply& reply, const Pending& p, link::TimePoint now) 
     case Purpose::stop:
       fs.execution_open = false;
       stop_queued_.reset(p.function);
-      if (fs.outcome == MoveOutcome::running || fs.outcome == MoveOutcome::queued) fs.outcome = MoveOutcome::stopped_short;
+      if (fs.outcome == MoveOutcome::running || fs.outcome == MoveOutcome::queued)
+        fs.outcome = MoveOutcome::stopped_short;
       break;
-    case Purpose::emergency_stop: snapshot_.emergency_stop_open = true; break;
-    case Purpose::release_emergency: snapshot_.emergency_stop_open = false; break;
+    case Purpose::emergency_stop:
+      snapshot_.emergency_stop_open = true;
+      break;
+    case Purpose::release_emergency:
+      snapshot_.emergency_stop_open = false;
+      break;
     case Purpose::read:
       snapshot_.last_read.data_id = p.data_id;
       snapshot_.last_read.valid = true;
@@ -200,8 +227,8 @@ void Session::on_refusal(const Reply& reply, const Pending& p) {
   ++health_.error_replies;
   ++snapshot_.refusals;
   snapshot_.last_refusal = Refusal{reply.command, reply.status};
-  const auto what = std::string(to_string(reply.command)) + " refused with " + std::string(to_string(reply.status)) +
-                    " (" + std::string(describe(reply.status)) + ")";
+  const auto what = std::string(to_string(reply.command)) + " refused with " +
+                    std::string(to_string(reply.status)) + " (" + std::string(describe(reply.status)) + ")";
   switch (p.purpose) {
     case Purpose::open:
     case Purpose::first_keepalive:
@@ -224,7 +251,8 @@ void Session::on_refusal(const Reply& reply, const Pending& p) {
       stop_queued_.reset(p.function);
       return;
     case Purpose::emergency_stop:
-    case Purpose::release_emergency: return;
+    case Purpose::release_emergency:
+      return;
     case Purpose::read:
       snapshot_.last_read.data_id = p.data_id;
       snapshot_.last_read.valid = false;
@@ -265,13 +293,15 @@ void Session::close_finished_executions() {
       const auto& act = snapshot_.actuators[static_cast<std::size_t>(a - 1)];
       moving = moving || act.status.motion_active;
       if (fs.targeted.test(static_cast<std::size_t>(a - 1)) &&
-          std::abs(act.position_edges - fs.targets[static_cast<std::size_t>(a - 1)]) > config_.arrival_tolerance_edges)
+          std::abs(act.position_edges - fs.targets[static_cast<std::size_t>(a - 1)]) >
+              config_.arrival_tolerance_edges)
         on_target = false;
     }
     if (moving) continue;
     // The motion ended (at the target, stopped, or never started because the speed was below the
     // actuator's threshold): the manual wants the RE closed with RS in every case.
-    if (fs.outcome == MoveOutcome::running) fs.outcome = on_target ? MoveOutcome::arrived : MoveOutcome::stopped_short;
+    if (fs.outcome == MoveOutcome::running)
+      fs.outcome = on_target ? MoveOutcome::arrived : MoveOutcome::stopped_short;
     if (enqueue(true, StopRequest{static_cast<std::uint8_t>(f), kUnusedParam}, Purpose::stop,
                 static_cast<std::uint8_t>(f)))
       stop_queued_.set(f);
@@ -293,13 +323,15 @@ void Session::retry_or_give_up(link::TimePoint now, const char* why) {
     case Purpose::first_keepalive:
     case Purpose::setup_cyclic:
     case Purpose::close:
-      fault("SCU on " + link_.describe() + ": " + std::string(to_string(failed.shape.command)) + " got " + why +
-            " after " + std::to_string(attempts_) + " attempts: check the cable, the port and the baud rate");
+      fault("SCU on " + link_.describe() + ": " + std::string(to_string(failed.shape.command)) + " got " +
+            why + " after " + std::to_string(attempts_) +
+            " attempts: check the cable, the port and the baud rate");
       return;
     case Purpose::stop:
     case Purpose::emergency_stop:
     case Purpose::release_emergency:
-      (void)urgent_.push_front(failed);  // a stop is never given up; the link fault ends it if the SCU is gone
+      (void)urgent_.push_front(
+          failed);  // a stop is never given up; the link fault ends it if the SCU is gone
       return;
     case Purpose::position:
     case Purpose::speed:
@@ -308,7 +340,8 @@ void Session::retry_or_give_up(link::TimePoint now, const char* why) {
       drop_queued_moves(failed.function);
       return;
     case Purpose::keepalive:
-    case Purpose::read: return;  // the next refresh or the caller's next read will do
+    case Purpose::read:
+      return;  // the next refresh or the caller's next read will do
   }
 }
 
@@ -352,12 +385,14 @@ void Session::transmit(const Pending& p, link::TimePoint now) {
 
 void Session::drop_queued_moves(std::optional<std::uint8_t> function) {
   (void)normal_.remove_if([&](const Pending& p) {
-    const bool move = p.purpose == Purpose::position || p.purpose == Purpose::speed || p.purpose == Purpose::execute;
+    const bool move =
+        p.purpose == Purpose::position || p.purpose == Purpose::speed || p.purpose == Purpose::execute;
     return move && (!function || p.function == *function);
   });
   for (std::size_t f = 0; f < kMotionFunctionCount; ++f) {
     if (function && f != *function) continue;
-    if (snapshot_.functions[f].outcome == MoveOutcome::queued) snapshot_.functions[f].outcome = MoveOutcome::stopped_short;
+    if (snapshot_.functions[f].outcome == MoveOutcome::queued)
+      snapshot_.functions[f].outcome = MoveOutcome::stopped_short;
   }
 }
 
@@ -371,8 +406,10 @@ void Session::fault(std::string reason) {
   keepalive_armed_ = false;
 }
 
-bool Session::move_to(int function, std::span<const ActuatorTarget> targets, std::uint16_t speed_percent, bool soft) {
-  if (!accepting() || !defined(function) || speed_percent > 100 || snapshot_.emergency_stop_open) return false;
+bool Session::move_to(int function, std::span<const ActuatorTarget> targets, std::uint16_t speed_percent,
+                      bool soft) {
+  if (!accepting() || !defined(function) || speed_percent > 100 || snapshot_.emergency_stop_open)
+    return false;
   const auto f = static_cast<std::size_t>(function - 1);
   auto& fs = snapshot_.functions[f];
   if (fs.execution_open || stop_queued_.test(f) || fs.outcome == MoveOutcome::queued) return false;
@@ -387,13 +424,15 @@ bool Session::move_to(int function, std::span<const ActuatorTarget> targets, std
     std::array<std::uint8_t, 4> value{};
     wire::ByteWriter w(value);
     w.le(t.edges);
-    (void)enqueue(false, TransferRequest{data_id::remote_position(t.actuator), value}, Purpose::position, fnc(function));
+    (void)enqueue(false, TransferRequest{data_id::remote_position(t.actuator), value}, Purpose::position,
+                  fnc(function));
     fs.targets[static_cast<std::size_t>(t.actuator - 1)] = t.edges;
   }
   std::array<std::uint8_t, 2> speed{};
   wire::ByteWriter w(speed);
   w.le(speed_percent);
-  (void)enqueue(false, TransferRequest{data_id::remote_speed(function), speed}, Purpose::speed, fnc(function));
+  (void)enqueue(false, TransferRequest{data_id::remote_speed(function), speed}, Purpose::speed,
+                fnc(function));
   (void)enqueue(false,
                 ExecuteRequest{fnc(function), static_cast<std::uint8_t>(Direction::remote_position),
                                soft ? kSoftStartStop : kFastStartStop},
@@ -408,8 +447,10 @@ bool Session::stop(int function, bool soft) {
   if (!accepting() || !defined(function)) return false;
   const auto f = static_cast<std::size_t>(function - 1);
   drop_queued_moves(fnc(function));
-  (void)urgent_.remove_if([&](const Pending& p) { return p.purpose == Purpose::stop && p.function == fnc(function); });
-  if (!enqueue(true, StopRequest{fnc(function), soft ? kSoftStartStop : kFastStartStop}, Purpose::stop, fnc(function)))
+  (void)urgent_.remove_if(
+      [&](const Pending& p) { return p.purpose == Purpose::stop && p.function == fnc(function); });
+  if (!enqueue(true, StopRequest{fnc(function), soft ? kSoftStartStop : kFastStartStop}, Purpose::stop,
+               fnc(function)))
     return false;
   stop_queued_.set(f);
   return true;

@@ -48,8 +48,8 @@ class Session {
   // Move function f (1..10) to remote positions: RT 0x3021.. per actuator, RT 0x3011.. speed, RE(f, 9).
   // Every actuator of the function needs a target. Refused while the function has an RE open or a
   // move queued, during an emergency stop, or when not active.
-  [[nodiscard]] bool move_to(int function, std::span<const ActuatorTarget> targets, std::uint16_t speed_percent,
-                             bool soft);
+  [[nodiscard]] bool move_to(int function, std::span<const ActuatorTarget> targets,
+                             std::uint16_t speed_percent, bool soft);
   // RS for the function, ahead of everything queued; the function's queued move telegrams are dropped.
   [[nodiscard]] bool stop(int function, bool soft);
   // F20 ahead of everything; every queued move is dropped. Holds until release_emergency_stop().
@@ -68,8 +68,18 @@ class Session {
 
  private:
   enum class Purpose : std::uint8_t {
-    open, first_keepalive, setup_cyclic, keepalive, position, speed, execute, stop, emergency_stop,
-    release_emergency, read, close
+    open,
+    first_keepalive,
+    setup_cyclic,
+    keepalive,
+    position,
+    speed,
+    execute,
+    stop,
+    emergency_stop,
+    release_emergency,
+    read,
+    close
   };
   struct Pending {
     RequestBytes bytes;

@@ -6,19 +6,24 @@
 namespace cellctl::scu {
 
 namespace {
-long long ms(link::Duration d) { return std::chrono::duration_cast<std::chrono::milliseconds>(d).count(); }
+long long ms(link::Duration d) {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
+}
 }  // namespace
 
 void validate(const SessionConfig& c) {
   if (c.safety_id > 2)
-    throw std::invalid_argument("scu session: safety_id must be 0, 1 or 2, got " + std::to_string(c.safety_id));
+    throw std::invalid_argument("scu session: safety_id must be 0, 1 or 2, got " +
+                                std::to_string(c.safety_id));
   if (c.keepalive_period < link::Duration::zero() || c.keepalive_period >= kWatchdogPeriod)
-    throw std::invalid_argument("scu session: keepalive_ms must be 0..499 (the SCU watchdog is 500 ms), got " +
-                                std::to_string(ms(c.keepalive_period)));
+    throw std::invalid_argument(
+        "scu session: keepalive_ms must be 0..499 (the SCU watchdog is 500 ms), got " +
+        std::to_string(ms(c.keepalive_period)));
   if (c.reply_timeout <= link::Duration::zero())
     throw std::invalid_argument("scu session: reply_timeout_ms must be > 0, got " +
                                 std::to_string(ms(c.reply_timeout)));
-  if (c.retries < 0) throw std::invalid_argument("scu session: retries must be ≥ 0, got " + std::to_string(c.retries));
+  if (c.retries < 0)
+    throw std::invalid_argument("scu session: retries must be ≥ 0, got " + std::to_string(c.retries));
   if (c.link_fault_after <= c.reply_timeout)
     throw std::invalid_argument("scu session: link_fault_after_ms must exceed reply_timeout_ms, got " +
                                 std::to_string(ms(c.link_fault_after)));

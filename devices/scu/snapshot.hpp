@@ -52,13 +52,13 @@ struct Refusal {
 };
 
 struct Snapshot {
-  std::array<ActuatorState, kActuatorCount> actuators{};    // [a-1]
+  std::array<ActuatorState, kActuatorCount> actuators{};        // [a-1]
   std::array<FunctionState, kMotionFunctionCount> functions{};  // [f-1]
   ErrorWord errors;
   bool remote_open = false;
-  bool emergency_stop_open = false;   // F20 executed, its RS not yet sent
-  bool watchdog_lapse_seen = false;   // error bit 22 was reported at least once
-  std::uint64_t refreshes = 0;        // RC replies with position/status data
+  bool emergency_stop_open = false;  // F20 executed, its RS not yet sent
+  bool watchdog_lapse_seen = false;  // error bit 22 was reported at least once
+  std::uint64_t refreshes = 0;       // RC replies with position/status data
   std::optional<link::TimePoint> last_refresh;
   LastRead last_read;
   std::optional<Refusal> last_refusal;

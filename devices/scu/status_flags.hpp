@@ -37,14 +37,18 @@ inline constexpr int kTotalCurrent = 14;
 inline constexpr int kActuatorFault1 = 15;  // 15..20 for actuators 1..6
 inline constexpr int kPositionDifference = 21;
 inline constexpr int kRemoteTimeout = 22;
-[[nodiscard]] constexpr int actuator_fault(int actuator) noexcept { return kActuatorFault1 + actuator - 1; }
+[[nodiscard]] constexpr int actuator_fault(int actuator) noexcept {
+  return kActuatorFault1 + actuator - 1;
+}
 }  // namespace error_bit
 
 class ErrorWord {
  public:
   constexpr ErrorWord() = default;
   constexpr explicit ErrorWord(std::uint32_t raw) noexcept : raw_(raw) {}
-  [[nodiscard]] static constexpr std::uint32_t mask(int bit) noexcept { return std::uint32_t{1} << (bit - 1); }
+  [[nodiscard]] static constexpr std::uint32_t mask(int bit) noexcept {
+    return std::uint32_t{1} << (bit - 1);
+  }
   [[nodiscard]] constexpr bool has(int bit) const noexcept { return (raw_ & mask(bit)) != 0; }
   constexpr void set(int bit) noexcept { raw_ |= mask(bit); }
   constexpr void clear(int bit) noexcept { raw_ &= ~mask(bit); }
@@ -52,7 +56,9 @@ class ErrorWord {
   [[nodiscard]] constexpr bool any() const noexcept { return raw_ != 0; }
 
   [[nodiscard]] bool over_current() const noexcept { return has(error_bit::kTotalCurrent); }
-  [[nodiscard]] bool actuator_fault(int actuator) const noexcept { return has(error_bit::actuator_fault(actuator)); }
+  [[nodiscard]] bool actuator_fault(int actuator) const noexcept {
+    return has(error_bit::actuator_fault(actuator));
+  }
   [[nodiscard]] bool position_difference() const noexcept { return has(error_bit::kPositionDifference); }
   [[nodiscard]] bool remote_timeout() const noexcept { return has(error_bit::kRemoteTimeout); }
 

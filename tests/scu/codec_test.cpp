@@ -13,7 +13,9 @@
 namespace cellctl::scu {
 namespace {
 
-std::vector<std::uint8_t> hex(const char* text) { return *wire::parse_hex(text); }
+std::vector<std::uint8_t> hex(const char* text) {
+  return *wire::parse_hex(text);
+}
 
 std::string encoded(const Request& r) {
   RequestBytes out;
@@ -121,9 +123,16 @@ TEST(ScuCodec, EveryRequestRoundTrips) {
   const std::uint8_t write[] = {1, 2, 3, 4, 5, 6};
   const std::uint8_t value[24] = {0x11, 0x00, 0x70, 0x01};
   const Request all[] = {
-      OpenRequest{2},         AbortRequest{},         CyclicRequest{},          CyclicRequest{0, {}},
-      CyclicRequest{4, write}, GetRequest{0x0010},    TransferRequest{0x3001, value},
-      ExecuteRequest{3, 1, 1}, ExecuteRequest{19, 0xFF, 0xFF}, StopRequest{9, 0},
+      OpenRequest{2},
+      AbortRequest{},
+      CyclicRequest{},
+      CyclicRequest{0, {}},
+      CyclicRequest{4, write},
+      GetRequest{0x0010},
+      TransferRequest{0x3001, value},
+      ExecuteRequest{3, 1, 1},
+      ExecuteRequest{19, 0xFF, 0xFF},
+      StopRequest{9, 0},
   };
   for (const auto& r : all) {
     RequestBytes out;

@@ -56,7 +56,9 @@ TEST(ScuStatusFlags, ErrorBitsCountFromOne) {
   EXPECT_TRUE(w.actuator_fault(2));
   EXPECT_TRUE(ErrorWord(1u << 13).over_current());
   std::string causes;
-  w.for_each_cause([&](int bit, std::string_view cause) { causes += std::to_string(bit) + ":" + std::string(cause) + ";"; });
+  w.for_each_cause([&](int bit, std::string_view cause) {
+    causes += std::to_string(bit) + ":" + std::string(cause) + ";";
+  });
   EXPECT_EQ(causes, "16:actuator 2 fault;22:remote communication time-out (watchdog);");
 }
 

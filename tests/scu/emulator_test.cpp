@@ -132,14 +132,16 @@ TEST(ScuEmulator, ErrorRepliesForBadParameters) {
   const auto pos = RawMaster::le<std::int32_t>(1);
   EXPECT_EQ(m.status_of(TransferRequest{0x0011, pos}), Status::permission_error) << "only 3xxx is writable";
   EXPECT_EQ(m.status_of(TransferRequest{0x3011, pos}), Status::parameter_count_error) << "speed is UINT16";
-  EXPECT_EQ(m.status_of(TransferRequest{0x3011, RawMaster::le<std::uint16_t>(101)}), Status::parameter_data_error);
+  EXPECT_EQ(m.status_of(TransferRequest{0x3011, RawMaster::le<std::uint16_t>(101)}),
+            Status::parameter_data_error);
   EXPECT_EQ(m.status_of(ExecuteRequest{2, 9, 0xFF}), Status::parameter_data_error) << "F3 not parameterized";
   EXPECT_EQ(m.status_of(ExecuteRequest{0, 10, 0xFF}), Status::parameter_data_error) << "direction 0..9";
   EXPECT_EQ(m.status_of(ExecuteRequest{0, 9, 2}), Status::parameter_data_error);
   EXPECT_EQ(m.status_of(StopRequest{14, 0}), Status::parameter_data_error) << "no function 15";
   EXPECT_EQ(m.status_of(CyclicRequest{5, {}}), Status::parameter_data_error) << "CyclicObj 1..5 only";
   const std::uint8_t junk[] = {1};
-  EXPECT_EQ(m.status_of(CyclicRequest{0, junk}), Status::parameter_count_error) << "object 1 has no write IDs";
+  EXPECT_EQ(m.status_of(CyclicRequest{0, junk}), Status::parameter_count_error)
+      << "object 1 has no write IDs";
   // A damaged request: CSE for its command.
   auto rg = *wire::parse_hex("52 47 11 00 2c 31");
   EXPECT_EQ(m.send_raw(rg, {Command::get, true})->status, Status::checksum_error);
@@ -201,7 +203,8 @@ TEST(ScuEmulator, ReadsTheDataListWithPlausibleValues) {
   EXPECT_EQ(m.send(GetRequest{0x0002})->data.size(), 36u);
   EXPECT_EQ(m.send(GetRequest{0x00E1})->data, std::vector<std::uint8_t>{0x07}) << "initialized, released";
   EXPECT_EQ(m.send(GetRequest{0x3011})->data, RawMaster::le<std::uint16_t>(100)) << "default speed";
-  EXPECT_EQ(m.send(GetRequest{0x3021})->data, RawMaster::le<std::int32_t>(4000)) << "Memory 1 = 20 % of 200 mm";
+  EXPECT_EQ(m.send(GetRequest{0x3021})->data, RawMaster::le<std::int32_t>(4000))
+      << "Memory 1 = 20 % of 200 mm";
 }
 
 TEST(ScuEmulator, FaultInjectionSetsTheManualsBitsAndStops) {
@@ -217,7 +220,8 @@ TEST(ScuEmulator, FaultInjectionSetsTheManualsBitsAndStops) {
   EXPECT_TRUE(m.emulator.error_word().actuator_fault(1));
   m.emulator.inject_over_current();
   EXPECT_TRUE(m.emulator.error_word().over_current());
-  EXPECT_EQ(m.send(GetRequest{0x00D2})->data, RawMaster::le<std::uint32_t>(1u << 14)) << "history keeps the earlier word";
+  EXPECT_EQ(m.send(GetRequest{0x00D2})->data, RawMaster::le<std::uint32_t>(1u << 14))
+      << "history keeps the earlier word";
   // The next motion resets bits 14..21.
   ASSERT_EQ(m.status_of(ExecuteRequest{0, 9, kFastStartStop}), Status::ack);
   EXPECT_FALSE(m.emulator.error_word().any());

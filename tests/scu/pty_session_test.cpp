@@ -37,13 +37,16 @@ TEST(ScuPty, MoveOverARealPseudoTerminal) {
   };
 
   session.activate(clock.now());
-  ASSERT_TRUE(run_until(3s, [&] { return session.state() == link::Lifecycle::active; })) << session.fault_reason();
+  ASSERT_TRUE(run_until(3s, [&] { return session.state() == link::Lifecycle::active; }))
+      << session.fault_reason();
   const ActuatorTarget target[] = {{1, 300}};  // 3 mm at 100 %: well under a second of motion
   ASSERT_TRUE(session.move_to(1, target, 100, true));
-  ASSERT_TRUE(run_until(5s, [&] {
-    const auto& f = session.snapshot().functions[0];
-    return f.outcome == MoveOutcome::arrived && !f.execution_open;
-  })) << to_string(session.snapshot().functions[0].outcome) << " " << session.fault_reason();
+  ASSERT_TRUE(run_until(5s,
+                        [&] {
+                          const auto& f = session.snapshot().functions[0];
+                          return f.outcome == MoveOutcome::arrived && !f.execution_open;
+                        }))
+      << to_string(session.snapshot().functions[0].outcome) << " " << session.fault_reason();
   EXPECT_FALSE(emulator.execution_open(1)) << "RS reached the SCU";
   EXPECT_NEAR(session.snapshot().actuators[0].position_edges, 300, 1);
   session.deactivate(clock.now());

@@ -36,7 +36,8 @@ struct Rig {
   }
   template <class Done>
   bool run_until(link::Duration limit, Done&& done, link::Duration dt = std::chrono::milliseconds(1)) {
-    return cellctl::testing::run_until(clock, dt, limit, [this](link::TimePoint t) { step(t); }, done);
+    return cellctl::testing::run_until(
+        clock, dt, limit, [this](link::TimePoint t) { step(t); }, done);
   }
   bool activate() {
     session.activate(clock.now());

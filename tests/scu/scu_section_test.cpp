@@ -81,12 +81,15 @@ TEST(ScuSection, MalformedInputsNameFileLineColumn) {
                "cell.yaml:2:14: scu.safety_id: 3 is out of range [0, 2]");
   expect_error("scu:\n  actuators:\n    - {index: 1, edges_per_mm: 10}\n    - {index: 1, edges_per_mm: 10}\n",
                "cell.yaml:4:15: scu.actuators[1].index: actuator 1 is listed twice");
-  expect_error("scu:\n  actuators:\n    - {index: 1, edges_per_mm: 10}\n  functions:\n    - {id: 1, actuators: [2]}\n",
-               "cell.yaml:5:27: scu.functions[0].actuators[0]: actuator 2 is not in scu.actuators");
+  expect_error(
+      "scu:\n  actuators:\n    - {index: 1, edges_per_mm: 10}\n  functions:\n    - {id: 1, actuators: [2]}\n",
+      "cell.yaml:5:27: scu.functions[0].actuators[0]: actuator 2 is not in scu.actuators");
   expect_error("scu:\n  actuators:\n    - {index: 7, edges_per_mm: 10}\n",
                "cell.yaml:3:15: scu.actuators[0].index: 7 is out of range [1, 6]");
-  expect_error("scu:\n  reply_timeout_ms: 500\n  link_fault_after_ms: 400\n  actuators: [{index: 1, edges_per_mm: 10}]\n",
-               "cell.yaml:3:24: scu.link_fault_after_ms: link_fault_after_ms must be longer than reply_timeout_ms");
+  expect_error(
+      "scu:\n  reply_timeout_ms: 500\n  link_fault_after_ms: 400\n  actuators: [{index: 1, edges_per_mm: "
+      "10}]\n",
+      "cell.yaml:3:24: scu.link_fault_after_ms: link_fault_after_ms must be longer than reply_timeout_ms");
 }
 
 TEST(ScuSection, RejectsUnknownKeysAndMissingActuators) {

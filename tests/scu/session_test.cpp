@@ -132,8 +132,10 @@ TEST(ScuSession, ASpeedBelowTheActuatorsThresholdIsDetectedNotWaitedOn) {
   ASSERT_TRUE(rig.activate());
   const ActuatorTarget t[] = {{1, 9000}};
   ASSERT_TRUE(rig.session.move_to(1, t, 2, true));  // 2 % of 20 mm/s = 0.4 mm/s < 0.8 mm/s minimum
-  ASSERT_TRUE(rig.run_until(2s, [&] { return !rig.session.snapshot().functions[0].execution_open &&
-                                              rig.session.snapshot().functions[0].outcome != MoveOutcome::queued; }));
+  ASSERT_TRUE(rig.run_until(2s, [&] {
+    return !rig.session.snapshot().functions[0].execution_open &&
+           rig.session.snapshot().functions[0].outcome != MoveOutcome::queued;
+  }));
   EXPECT_EQ(rig.session.snapshot().functions[0].outcome, MoveOutcome::stopped_short);
   EXPECT_FALSE(rig.emulator.execution_open(1));
 }
@@ -208,7 +210,8 @@ TEST(ScuSession, ZeroKeepalivePeriodRefreshesAsFastAsTheLineAllows) {
   Rig rig(1, config, false);
   ASSERT_TRUE(rig.activate());
   const auto before = rig.session.snapshot().refreshes;
-  rig.run_until(1s, [] { return false; }, 100us);
+  rig.run_until(
+      1s, [] { return false; }, 100us);
   // RC 7 B + reply 5+2+4+6+4 = 21 B = 28 chars of 260.4 µs: 137 round trips per second on the wire.
   const double limit = 1.0 / (28 * 10.0 / 38400.0);
   const auto got = static_cast<double>(rig.session.snapshot().refreshes - before);
@@ -235,11 +238,12 @@ TEST(ScuSession, RejectsCommandsItCannotCarryOut) {
   EXPECT_FALSE(rig.session.read(0x0017)) << "no such data ID";
   EXPECT_TRUE(rig.session.move_to(1, t, 50, true));
   EXPECT_FALSE(rig.session.move_to(1, t, 50, true)) << "a move is already queued";
-  EXPECT_THROW(Session(rig.sim.master(), [] {
-                 auto c = testing::session_config(1);
-                 c.keepalive_period = 600ms;
-                 return c;
-               }()),
+  EXPECT_THROW(Session(rig.sim.master(),
+                       [] {
+                         auto c = testing::session_config(1);
+                         c.keepalive_period = 600ms;
+                         return c;
+                       }()),
                std::invalid_argument);
 }
 

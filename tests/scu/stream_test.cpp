@@ -14,7 +14,9 @@ namespace {
 using Kind = ReplyStream::Event::Kind;
 using std::chrono::milliseconds;
 
-std::vector<std::uint8_t> hex(const char* text) { return *wire::parse_hex(text); }
+std::vector<std::uint8_t> hex(const char* text) {
+  return *wire::parse_hex(text);
+}
 
 TEST(ScuReplyStream, FramesAReplyFedOneByteAtATime) {
   ReplyStream s;
