@@ -227,19 +227,22 @@ void Session::on_refusal(const Reply& reply, const Pending& p) {
   ++health_.error_replies;
   ++snapshot_.refusals;
   snapshot_.last_refusal = Refusal{reply.command, reply.status};
-  const auto what = std::string(to_string(reply.command)) + " refused with " +
-                    std::string(to_string(reply.status)) + " (" + std::string(describe(reply.status)) + ")";
+  // Composed only on the fault paths: a refused command is no reason to allocate in poll().
+  const auto what = [&] {
+    return std::string(to_string(reply.command)) + " refused with " + std::string(to_string(reply.status)) +
+           " (" + std::string(describe(reply.status)) + ")";
+  };
   switch (p.purpose) {
     case Purpose::open:
     case Purpose::first_keepalive:
     case Purpose::setup_cyclic:
     case Purpose::close:
-      fault("SCU " + what + " while " + (state_ == link::Lifecycle::deactivating ? "leaving" : "entering") +
+      fault("SCU " + what() + " while " + (state_ == link::Lifecycle::deactivating ? "leaving" : "entering") +
             " remote mode: check safety_id and the SCU's parameterization, then activate again");
       return;
     case Purpose::keepalive:
       // Remote mode is gone (watchdog lapse with Safety_ID 0, or the SCU was reset): it must be opened again.
-      fault("SCU " + what + " on the keep-alive: remote mode was lost (watchdog?); activate again");
+      fault("SCU " + what() + " on the keep-alive: remote mode was lost (watchdog?); activate again");
       return;
     case Purpose::position:
     case Purpose::speed:
