@@ -42,6 +42,9 @@ struct SpindleState {
   double actual_hz = 0.0;
   bool running = false;  // commanded to run
   bool at_speed = false;
+  // At speed long enough that the frequency reading (polled slower than the status) is from after
+  // the set speed was reached: only then is "off the set-point" meaningful.
+  bool settled = false;
   bool at_rest = true;
   bool warning = false;
   bool fault = false;

@@ -17,7 +17,8 @@ struct AxisConfig {
   double edges_per_mm = 0.0;  // SCU edges per mm: from the scu section's actuator unless given here
   double min_mm = 0.0;   // the cell's travel limits for this axis (safety monitor and validator)
   double max_mm = 100.0;
-  double max_speed_mm_s = 20.0;  // what 100 % SCU speed means on this axis
+  double max_speed_mm_s = 20.0;  // the fastest the cell lets this axis go
+  double full_speed_mm_s = 0.0;  // what 100 % SCU speed is on this axis: the SCU actuator's (derived)
   double min_speed_mm_s = 0.5;   // below this the actuator may not move at all (checked before motion)
   double max_accel_mm_s2 = 40.0;
   double max_jerk_mm_s3 = 400.0;

@@ -17,6 +17,7 @@ void check_cell(const YamlNode& root, CellConfig& cell) {
     measured = measured || axis.encoder;
     if (!cell.scu) {
       if (axis.edges_per_mm <= 0.0) node.fail("edges_per_mm is needed when the cell has no scu section");
+      axis.full_speed_mm_s = axis.max_speed_mm_s;
       continue;
     }
     const auto& scu = *cell.scu;
@@ -38,6 +39,10 @@ void check_cell(const YamlNode& root, CellConfig& cell) {
     if (axis.max_mm > act.physics.stroke_mm)
       node.at("max_mm").fail(fmt::format("{:g} mm is beyond actuator {}'s stroke of {:g} mm", axis.max_mm,
                                          axis.actuator, act.physics.stroke_mm));
+    axis.full_speed_mm_s = act.physics.max_speed_mm_s;
+    if (axis.max_speed_mm_s > axis.full_speed_mm_s)
+      node.at("max_speed_mm_s").fail(fmt::format("{:g} mm/s is beyond actuator {}'s full speed of {:g} mm/s",
+                                                 axis.max_speed_mm_s, axis.actuator, axis.full_speed_mm_s));
     if (axis.min_mm < 0.0) node.at("min_mm").fail("an actuator's travel starts at 0 mm (fully in)");
   }
   if (cell.encoder && !measured)

@@ -80,7 +80,7 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
   if (f > cell_.limits.spindle_max_hz + tol)
     causes[idx(Rule::spindle_frequency)] =
         Text::format("spindle at {:.0f} Hz, above the cell's {:g} Hz", f, cell_.limits.spindle_max_hz);
-  else if (spindle_running_ && sp.at_speed && std::abs(f - spindle_set_hz_) > tol)
+  else if (spindle_running_ && sp.settled && std::abs(f - spindle_set_hz_) > tol)
     causes[idx(Rule::spindle_frequency)] =
         Text::format("spindle at {:.0f} Hz while set to {:.0f} Hz", f, spindle_set_hz_);
 

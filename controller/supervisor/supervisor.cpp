@@ -68,7 +68,8 @@ bool Supervisor::axes_still(const cell::CellState& s) const noexcept {
 }
 
 void Supervisor::apply_demanded(std::optional<config::StopCategory> demanded, double t) {
-  if (!demanded) return;
+  // Once the run has ended the cell is at rest and being closed; a later fault changes nothing.
+  if (!demanded || is_final(state_)) return;
   switch (*demanded) {
     case config::StopCategory::immediate:
       if (state_ != State::aborting && state_ != State::aborted) enter(State::aborting, t, Text::format("stop category 0"));

@@ -120,6 +120,8 @@ TEST_F(MonitorTest, SpindleOffItsSetPointAtSpeed) {
   auto s = healthy();
   s.spindle.at_speed = true;
   s.spindle.actual_hz = 390.0;
+  EXPECT_TRUE(m.evaluate(s, {}, 0.5).none()) << "a reading from before the set speed was reached";
+  s.spindle.settled = true;
   expect_only(s, Rule::spindle_frequency, StopCategory::controlled_off);
 }
 

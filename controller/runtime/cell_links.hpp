@@ -1,0 +1,55 @@
+#pragma once
+// The byte links of a run, by mode: in virtual time every device is an emulator on a SimLink; in an
+// emulated run every device is an emulator on a pseudo-terminal that the sessions open through
+// SerialLink (the same code path as hardware); on hardware each device's configured port is opened,
+// and a device whose port is "emulated" gets its emulator on a pseudo-terminal.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "config/cell_config.hpp"
+#include "link/clock.hpp"
+#include "link/pty_pair.hpp"
+#include "link/serial_link.hpp"
+#include "link/sim_link.hpp"
+#include "link/tracing_link.hpp"
+#include "runtime/cell_devices.hpp"
+#include "runtime/emulated_cell.hpp"
+
+namespace cellctl::runtime {
+
+enum class RunMode { hardware, emulated, virtual_time };
+[[nodiscard]] constexpr const char* to_string(RunMode m) noexcept {
+  return m == RunMode::hardware ? "hardware" : m == RunMode::emulated ? "emulated" : "virtual-time";
+}
+
+class CellLinks {
+ public:
+  // Throws link::LinkError naming the port when one cannot be opened.
+  CellLinks(const config::CellConfig& cell, RunMode mode, const link::Clock& clock, bool trace);
+
+  [[nodiscard]] MasterSideLinks master() const noexcept { return master_; }
+  [[nodiscard]] DeviceSideLinks device() const noexcept { return device_; }
+  [[nodiscard]] bool any_emulated() const noexcept { return device_.scu || device_.spindle || device_.encoder; }
+  // When the next byte on any SimLink arrives (virtual time), to step no further than that.
+  [[nodiscard]] std::optional<link::TimePoint> next_delivery() const noexcept;
+  // "scu: /dev/ttyUSB0 (38400 8N1)", one line per device, for the operator.
+  [[nodiscard]] std::vector<std::string> describe() const;
+
+ private:
+  link::Link* open(const std::string& name, const config::PortConfig& port, link::Link*& device_side);
+
+  const link::Clock& clock_;
+  RunMode mode_;
+  bool trace_;
+  link::LogTraceSink sink_;
+  std::vector<std::unique_ptr<link::SimLink>> sims_;
+  std::vector<std::unique_ptr<link::PtyPair>> ptys_;
+  std::vector<std::unique_ptr<link::Link>> owned_;
+  std::vector<std::string> descriptions_;
+  MasterSideLinks master_;
+  DeviceSideLinks device_;
+};
+
+}  // namespace cellctl::runtime

@@ -1,0 +1,188 @@
+#include "runtime/cell_run.hpp"
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+
+#include "loop/control_stages.hpp"
+#include "loop/realtime_setup.hpp"
+
+namespace cellctl::runtime {
+namespace {
+
+using loop::ControlStage;
+using loop::index;
+
+link::Duration period_of(const config::CellConfig& cell) {
+  return std::chrono::duration_cast<link::Duration>(std::chrono::duration<double, std::milli>(cell.loop.period_ms));
+}
+
+supervisor::SupervisorSettings settings_for(const config::CellConfig& cell, const RunOptions& o) {
+  auto s = o.supervisor;
+  s.mode = to_string(o.mode);
+  s.sample_s = cell.loop.sample_ms / 1000.0;
+  return s;
+}
+
+}  // namespace
+
+CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, RunOptions options)
+    : cell_(cell),
+      recipe_(recipe),
+      program_(recipe::unroll(recipe)),
+      options_(std::move(options)),
+      clock_(options_.mode == RunMode::virtual_time ? static_cast<const link::Clock&>(virtual_clock_)
+                                                    : static_cast<const link::Clock&>(real_clock_)),
+      journal_(options_.journal_dir, options_.mode == RunMode::virtual_time ? journal::WhenFull::wait
+                                                                            : journal::WhenFull::drop_and_count),
+      monitor_(cell) {
+  if (options_.mode == RunMode::virtual_time)
+    waiter_ = std::make_unique<loop::VirtualWaiter>(virtual_clock_);
+  else
+    waiter_ = std::make_unique<loop::MonotonicWaiter>();
+  links_ = std::make_unique<CellLinks>(cell, options_.mode, clock_, options_.trace);
+  if (links_->any_emulated()) emulated_ = std::make_unique<EmulatedCell>(cell, links_->device());
+  devices_ = std::make_unique<CellDevices>(cell, links_->master());
+  supervisor_ = std::make_unique<supervisor::Supervisor>(cell, recipe, program_, journal_,
+                                                         cell.loop.period_ms / 1000.0, settings_for(cell, options_));
+  loop_ = std::make_unique<loop::Loop>(clock_, *waiter_, period_of(cell));
+  state_.axis_count = static_cast<std::uint8_t>(cell.axes.size());
+}
+
+CellRun::~CellRun() {
+  emulators_stop_.store(true);
+  if (emulator_thread_.joinable()) emulator_thread_.join();
+}
+
+void CellRun::run_emulator_thread() {
+  // Emulated devices behind pseudo-terminals answer like hardware, on their own time.
+  while (!emulators_stop_.load()) {
+    emulated_->poll(real_clock_.now());
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+}
+
+void CellRun::take_commands(double t, std::atomic<bool>& interrupt) {
+  if (interrupt.exchange(false)) {
+    interrupted_ = true;
+    if (operator_stop_) emergency_stop_ = true;
+    operator_stop_ = true;
+  }
+  const int c = requested_.exchange(0);
+  if (c == 0) return;
+  const auto cmd = static_cast<supervisor::Command>(c - 1);
+  if (cmd == supervisor::Command::reset) {
+    const bool had_stop = operator_stop_ || emergency_stop_;
+    operator_stop_ = emergency_stop_ = false;
+    if (!monitor_.reset(state_, {})) {
+      journal_.post(t, journal::Note{journal::Text::format("reset refused: a latched fault's cause is still present")});
+      if (had_stop) operator_stop_ = true;
+      return;
+    }
+  }
+  if (!supervisor_->command(cmd, "operator", t)) journal_.post(t, journal::Note{supervisor_->refusal()});
+}
+
+void CellRun::publish_status(double t) {
+  StatusView v;
+  v.t = t;
+  v.state = supervisor_->state();
+  v.steps = static_cast<std::uint32_t>(supervisor_->step_count());
+  v.step = static_cast<std::uint32_t>(std::min(supervisor_->step_index() + 1, supervisor_->step_count()));
+  if (const auto* ins = supervisor_->current()) v.label = ins->label;
+  v.axes = state_.axis_count;
+  for (std::size_t i = 0; i < state_.axis_count; ++i) v.position_mm[i] = state_.axes[i].position_mm();
+  v.spindle_hz = state_.spindle.actual_hz;
+  for (std::size_t r = 0; r < monitor::kRuleCount; ++r) {
+    if (!monitor_.latch(static_cast<monitor::Rule>(r)).active) continue;
+    v.fault = true;
+    v.first_fault = static_cast<monitor::Rule>(r);
+    break;
+  }
+  board_.publish(v);
+}
+
+void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
+  const double t = link::to_seconds(now - start_);
+  if (hook_) hook_(t, *this);
+  take_commands(t, interrupt);
+  {
+    auto timer = loop_->time_stage(index(ControlStage::read_sessions));
+    if (emulated_ && options_.mode == RunMode::virtual_time) emulated_->poll(now);
+    devices_->poll(now);
+  }
+  {
+    auto timer = loop_->time_stage(index(ControlStage::state));
+    devices_->read(now, state_);
+  }
+  {
+    auto timer = loop_->time_stage(index(ControlStage::monitor));
+    const auto fresh = monitor_.evaluate(state_, {.stop = operator_stop_, .emergency_stop = emergency_stop_}, t);
+    for (std::size_t r = 0; r < monitor::kRuleCount; ++r) {
+      if (!fresh.test(r)) continue;
+      const auto rule = static_cast<monitor::Rule>(r);
+      const auto& latch = monitor_.latch(rule);
+      journal_.post(t, journal::Fault{monitor::to_string(rule), static_cast<std::uint8_t>(latch.category), latch.detail});
+    }
+  }
+  {
+    auto timer = loop_->time_stage(index(ControlStage::supervisor));
+    supervisor_->step(state_, monitor_.demanded_stop(), t);
+    const auto& sp = supervisor_->intents().spindle;
+    monitor_.expect_spindle(sp.run, sp.frequency_hz);
+    if (supervisor_->cell_up() && !monitor_.armed() && !shutdown_since_) monitor_.arm();
+    if (!supervisor_->cell_up() && monitor_.armed()) monitor_.disarm();
+  }
+  {
+    auto timer = loop_->time_stage(index(ControlStage::write_sessions));
+    if (!shutdown_since_) devices_->apply(supervisor_->intents(), now);
+  }
+  if (supervisor::is_final(supervisor_->state()) && !shutdown_since_) {
+    devices_->deactivate(now);  // axes stopped, remote mode closed, spindle stopped
+    monitor_.disarm();          // the devices go down on purpose now
+    shutdown_since_ = now;
+  }
+  if (shutdown_since_ && (devices_->all_inactive() || link::to_seconds(now - *shutdown_since_) > options_.shutdown_timeout_s))
+    loop_stop_.store(true);
+  publish_status(t);
+}
+
+RunResult CellRun::run(std::atomic<bool>& interrupt) {
+  if (options_.mode != RunMode::virtual_time && cell_.loop.realtime) {
+    const auto report = loop::apply_realtime({.fifo_priority = cell_.loop.priority, .lock_memory = true, .cpu = cell_.loop.cpu});
+    realtime_warnings_ = report.warnings();
+  }
+  if (emulated_ && options_.mode != RunMode::virtual_time)
+    emulator_thread_ = std::thread([this] { run_emulator_thread(); });
+
+  const auto wall_start = std::chrono::steady_clock::now();
+  start_ = clock_.now();
+  devices_->activate(start_);
+  (void)supervisor_->command(supervisor::Command::start, "cellctl run", 0.0);
+  loop_->run([this, &interrupt](link::TimePoint now, std::uint64_t) { cycle(now, interrupt); }, loop_stop_);
+
+  emulators_stop_.store(true);
+  if (emulator_thread_.joinable()) emulator_thread_.join();
+
+  RunResult r;
+  r.final_state = supervisor_->state();
+  r.failure = std::string(supervisor_->failure().view());
+  r.interrupted = interrupted_;
+  r.duration_s = link::to_seconds(clock_.now() - start_);
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  r.cycles = loop_->stats().cycles;
+  r.loop_summary = loop_->summary();
+  nlohmann::json extra;
+  extra["cycles"] = r.cycles;
+  extra["overrun_cycles"] = loop_->stats().overrun_cycles;
+  extra["missed_deadlines"] = loop_->stats().missed_deadlines;
+  extra["jitter_p99_us"] = std::chrono::duration<double, std::micro>(loop_->stats().jitter.percentile(0.99)).count();
+  extra["wall_s"] = r.wall_s;
+  extra["mode"] = to_string(options_.mode);
+  extra["corrections"] = supervisor_->corrections();
+  journal_.close(extra);
+  r.faults = journal_.summary().faults();
+  r.summary_text = journal_.summary().to_text();
+  return r;
+}
+
+}  // namespace cellctl::runtime

@@ -1,0 +1,118 @@
+#pragma once
+// One run of a recipe on the cell: the links for the chosen mode, the emulators where there are any,
+// the device sessions, the monitor, the supervisor and the journal, stepped by the control loop.
+// In virtual time everything — emulators included — is stepped by the loop on a virtual clock, as
+// fast as the machine allows; otherwise the loop runs on the monotonic clock and the emulators (if
+// any) on a thread of their own, behind pseudo-terminals, like real devices.
+
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cell/cell_state.hpp"
+#include "config/cell_config.hpp"
+#include "journal/journal.hpp"
+#include "link/clock.hpp"
+#include "loop/cycle_waiter.hpp"
+#include "loop/loop.hpp"
+#include "monitor/monitor.hpp"
+#include "recipe/program.hpp"
+#include "recipe/recipe.hpp"
+#include "runtime/cell_devices.hpp"
+#include "runtime/cell_links.hpp"
+#include "runtime/emulated_cell.hpp"
+#include "runtime/status_view.hpp"
+#include "supervisor/supervisor.hpp"
+
+namespace cellctl::runtime {
+
+struct RunOptions {
+  RunMode mode = RunMode::emulated;
+  std::filesystem::path journal_dir = "runs/latest";
+  bool trace = false;
+  supervisor::SupervisorSettings supervisor;  // mode and sample period are filled in from the config
+  double shutdown_timeout_s = 5.0;            // for sessions to close (RA, spindle stop) at the end
+};
+
+struct RunResult {
+  supervisor::State final_state = supervisor::State::idle;
+  std::string failure;               // why a step failed, if one did
+  std::vector<std::string> faults;   // latched monitor faults, in order
+  bool interrupted = false;          // an operator stop or abort ended it
+  double duration_s = 0.0;           // of the run, on the run's clock
+  double wall_s = 0.0;               // real time it took
+  std::uint64_t cycles = 0;
+  std::string loop_summary;
+  std::string summary_text;          // the journal's summary for the terminal
+};
+
+class CellRun {
+ public:
+  // Throws config::ConfigError, link::LinkError, std::invalid_argument (set-up problems: before motion).
+  CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, RunOptions options);
+  ~CellRun();
+  CellRun(const CellRun&) = delete;
+  CellRun& operator=(const CellRun&) = delete;
+
+  // Starts the recipe and steps the cell until it is Complete, Stopped or Aborted and the devices
+  // are closed. `interrupt` (Ctrl-C) is taken as a stop the first time and an abort the second.
+  RunResult run(std::atomic<bool>& interrupt);
+
+  // An operator command from any thread; carried out at the next cycle.
+  void request(supervisor::Command c) noexcept { requested_.store(static_cast<int>(c) + 1); }
+
+  // Tests in virtual time: called at the start of every cycle, on the loop's thread.
+  void on_cycle(std::function<void(double t, CellRun&)> hook) { hook_ = std::move(hook); }
+
+  [[nodiscard]] EmulatedCell* emulators() noexcept { return emulated_.get(); }
+  [[nodiscard]] const cell::CellState& state() const noexcept { return state_; }
+  [[nodiscard]] const supervisor::Supervisor& supervisor() const noexcept { return *supervisor_; }
+  [[nodiscard]] const monitor::Monitor& monitor() const noexcept { return monitor_; }
+  [[nodiscard]] const StatusBoard& status() const noexcept { return board_; }
+  [[nodiscard]] const CellLinks& links() const noexcept { return *links_; }
+  [[nodiscard]] std::vector<std::string> realtime_warnings() const { return realtime_warnings_; }
+
+ private:
+  void cycle(link::TimePoint now, std::atomic<bool>& interrupt);
+  void take_commands(double t, std::atomic<bool>& interrupt);
+  void publish_status(double t);
+  void run_emulator_thread();
+
+  const config::CellConfig& cell_;
+  const recipe::Recipe& recipe_;
+  recipe::Program program_;
+  RunOptions options_;
+
+  link::MonotonicClock real_clock_;
+  link::VirtualClock virtual_clock_;
+  const link::Clock& clock_;
+  std::unique_ptr<loop::CycleWaiter> waiter_;
+  std::unique_ptr<CellLinks> links_;
+  std::unique_ptr<EmulatedCell> emulated_;
+  std::unique_ptr<CellDevices> devices_;
+  journal::Journal journal_;
+  monitor::Monitor monitor_;
+  std::unique_ptr<supervisor::Supervisor> supervisor_;
+  std::unique_ptr<loop::Loop> loop_;
+
+  cell::CellState state_;
+  StatusBoard board_;
+  std::atomic<int> requested_{0};
+  bool interrupted_ = false;
+  link::TimePoint start_{};
+  std::function<void(double, CellRun&)> hook_;
+  std::atomic<bool> emulators_stop_{false};
+  std::thread emulator_thread_;
+  std::vector<std::string> realtime_warnings_;
+  bool operator_stop_ = false;  // Ctrl-C once: the monitor's operator stop
+  bool emergency_stop_ = false; // Ctrl-C twice: the monitor's emergency stop
+  std::optional<link::TimePoint> shutdown_since_;
+  std::atomic<bool> loop_stop_{false};
+};
+
+}  // namespace cellctl::runtime

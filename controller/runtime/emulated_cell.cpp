@@ -1,0 +1,41 @@
+#include "runtime/emulated_cell.hpp"
+
+#include <stdexcept>
+
+namespace cellctl::runtime {
+namespace {
+
+// The shaft's lead: what the encoder session takes a revolution to be, so that a perfect coupling
+// reads the axis exactly; slip is the plant's deviation from it.
+double mm_per_revolution(const config::EncoderSection& e) {
+  if (e.session.mm_per_revolution > 0.0) return e.session.mm_per_revolution;
+  return static_cast<double>(e.emulator.identity.physical.steps_per_revolution) / e.session.counts_per_mm;
+}
+
+}  // namespace
+
+EmulatedCell::EmulatedCell(const config::CellConfig& cell, DeviceSideLinks links) {
+  if (links.scu && cell.scu) scu_ = std::make_unique<scu::Emulator>(*links.scu, cell.scu->emulator);
+  if (links.spindle && cell.spindle) spindle_ = std::make_unique<spindle::Emulator>(*links.spindle, cell.spindle->emulator);
+  if (links.encoder && cell.encoder) {
+    const config::AxisConfig* measured = nullptr;
+    for (const auto& a : cell.axes)
+      if (a.encoder) measured = &a;
+    if (!measured || !scu_)
+      throw std::invalid_argument("an emulated encoder needs an emulated SCU axis to turn its shaft (axes[].encoder)");
+    const plant::Actuator& actuator = scu_->actuator(measured->actuator);
+    shaft_.emplace(plant::ShaftParams{.mm_per_revolution = mm_per_revolution(*cell.encoder),
+                                      .slip = cell.plant.encoder_slip,
+                                      .offset_revolutions = 0.0},
+                   [&actuator] { return actuator.true_position_mm(); });
+    encoder_ = std::make_unique<encoder::Emulator>(*links.encoder, cell.encoder->emulator, *shaft_);
+  }
+}
+
+void EmulatedCell::poll(link::TimePoint now) {
+  if (scu_) scu_->poll(now);
+  if (spindle_) spindle_->poll(now);
+  if (encoder_) encoder_->poll(now);
+}
+
+}  // namespace cellctl::runtime

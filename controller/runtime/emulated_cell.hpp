@@ -1,0 +1,48 @@
+#pragma once
+// The cell's devices as emulators, built from the cell config over whatever links they are given
+// (pseudo-terminals for `cellctl emulate` and `run --emulate`, SimLinks in virtual time), sharing one
+// plant: the encoder's shaft turns with the true position of the SCU actuator of the measured axis,
+// so a dry run is physically consistent (a scale error in the actuator shows up at the encoder).
+
+#include <memory>
+#include <optional>
+
+#include "config/cell_config.hpp"
+#include "encoder/emulator.hpp"
+#include "link/clock.hpp"
+#include "link/link.hpp"
+#include "plant/shaft.hpp"
+#include "scu/emulator.hpp"
+#include "spindle/emulator.hpp"
+
+namespace cellctl::runtime {
+
+// Device-side links; nullptr: that device is not emulated.
+struct DeviceSideLinks {
+  link::Link* scu = nullptr;
+  link::Link* spindle = nullptr;
+  link::Link* encoder = nullptr;
+};
+
+class EmulatedCell {
+ public:
+  // Throws std::invalid_argument / std::runtime_error from an emulator's set-up (config time).
+  EmulatedCell(const config::CellConfig& cell, DeviceSideLinks links);
+
+  // Steps every emulator (and so the plant) to `now` and answers what has arrived.
+  void poll(link::TimePoint now);
+
+  // Fault hooks and inspection, nullptr where the device is not emulated.
+  [[nodiscard]] scu::Emulator* scu() noexcept { return scu_.get(); }
+  [[nodiscard]] spindle::Emulator* spindle() noexcept { return spindle_.get(); }
+  [[nodiscard]] encoder::Emulator* encoder() noexcept { return encoder_.get(); }
+  [[nodiscard]] plant::Shaft* shaft() noexcept { return shaft_ ? &*shaft_ : nullptr; }
+
+ private:
+  std::unique_ptr<scu::Emulator> scu_;
+  std::unique_ptr<spindle::Emulator> spindle_;
+  std::optional<plant::Shaft> shaft_;
+  std::unique_ptr<encoder::Emulator> encoder_;
+};
+
+}  // namespace cellctl::runtime

@@ -1,0 +1,54 @@
+#pragma once
+// What the terminal shows while a run goes on, published by the control cycle and read by the
+// status printer on another thread. A sequence lock: the cycle never waits, a reader retries on a
+// torn copy.
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <string_view>
+
+#include "cell/cell_state.hpp"
+#include "monitor/rule.hpp"
+#include "supervisor/packml.hpp"
+
+namespace cellctl::runtime {
+
+struct StatusView {
+  double t = 0.0;
+  supervisor::State state = supervisor::State::idle;
+  std::uint32_t step = 0;   // 1-based, 0 before the first
+  std::uint32_t steps = 0;
+  std::string_view label;   // the program's label (lives as long as the run)
+  std::uint8_t axes = 0;
+  std::array<double, cell::kMaxAxes> position_mm{};
+  double spindle_hz = 0.0;
+  bool fault = false;
+  monitor::Rule first_fault = monitor::Rule::operator_stop;
+};
+
+class StatusBoard {
+ public:
+  void publish(const StatusView& v) noexcept {
+    const auto s = seq_.load(std::memory_order_relaxed);
+    seq_.store(s + 1, std::memory_order_relaxed);
+    std::atomic_thread_fence(std::memory_order_release);
+    view_ = v;
+    seq_.store(s + 2, std::memory_order_release);
+  }
+  [[nodiscard]] StatusView read() const noexcept {
+    for (;;) {
+      const auto before = seq_.load(std::memory_order_acquire);
+      if (before & 1u) continue;
+      StatusView copy = view_;
+      std::atomic_thread_fence(std::memory_order_acquire);
+      if (seq_.load(std::memory_order_relaxed) == before) return copy;
+    }
+  }
+
+ private:
+  std::atomic<std::uint64_t> seq_{0};
+  StatusView view_;
+};
+
+}  // namespace cellctl::runtime

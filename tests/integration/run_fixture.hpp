@@ -1,0 +1,73 @@
+#pragma once
+// Whole runs in virtual time: the shipped cell config and a recipe, through the real sessions,
+// emulators and SimLinks, with a journal in a fresh directory.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "config/cell_config.hpp"
+#include "recipe/recipe_loader.hpp"
+#include "runtime/cell_run.hpp"
+
+namespace cellctl::testing {
+
+inline std::filesystem::path source_dir() { return CELLCTL_SOURCE_DIR; }
+
+class RunFixture : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = std::filesystem::temp_directory_path() /
+           (std::string("cellctl-run-") + info->test_suite_name() + "-" + info->name() + "-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir_);
+    // The encoder's EEPROM file lives per test, so runs do not see each other's presets.
+    cell_ = config::load_cell_config(source_dir() / "config/cell.yaml");
+    if (cell_.encoder) cell_.encoder->emulator.state_file = dir_ / "encoder.eeprom";
+  }
+  void TearDown() override {
+    if (!HasFailure()) std::filesystem::remove_all(dir_);
+  }
+
+  void load_recipe(const std::filesystem::path& path) { recipe_ = recipe::load_recipe(path, cell_); }
+  void load_recipe_text(const std::string& text) {
+    recipe_ = recipe::parse_recipe(config::YamlNode::load_string(text, "test-recipe.yaml"), cell_);
+  }
+
+  runtime::CellRun& make_run() {
+    runtime::RunOptions o;
+    o.mode = runtime::RunMode::virtual_time;
+    o.journal_dir = dir_ / "journal";
+    run_ = std::make_unique<runtime::CellRun>(cell_, recipe_, o);
+    return *run_;
+  }
+
+  runtime::RunResult go() {
+    std::atomic<bool> interrupt{false};
+    return run_->run(interrupt);
+  }
+
+  std::vector<nlohmann::json> journal() const {
+    std::vector<nlohmann::json> out;
+    std::ifstream in(dir_ / "journal" / "journal.jsonl");
+    for (std::string line; std::getline(in, line);) out.push_back(nlohmann::json::parse(line));
+    return out;
+  }
+  std::vector<nlohmann::json> events(const std::string& kind) const {
+    std::vector<nlohmann::json> out;
+    for (auto& j : journal())
+      if (j["event"] == kind) out.push_back(j);
+    return out;
+  }
+
+  std::filesystem::path dir_;
+  config::CellConfig cell_;
+  recipe::Recipe recipe_;
+  std::unique_ptr<runtime::CellRun> run_;
+};
+
+}  // namespace cellctl::testing
