@@ -8,6 +8,8 @@
 #include <exception>
 
 #include "cli/check_command.hpp"
+#include "cli/emulate_command.hpp"
+#include "cli/run_command.hpp"
 #include "cli/commands.hpp"
 #include "cli/drive.hpp"
 #include "cli/encoder_commands.hpp"
@@ -40,7 +42,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--trace", global.trace, "Hex trace of every telegram on every device link (to stderr)");
 
+  add_run_command(app, commands);
   add_check_command(app, commands);
+  add_emulate_command(app, commands);
   add_spindle_commands(app, commands);
   add_encoder_commands(app, commands);
   add_scu_commands(app, commands);

@@ -117,7 +117,9 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
     sp.active = spindle_->lifecycle() == link::Lifecycle::active;
     const double sign = s.direction == spindle::Direction::clockwise ? 1.0 : -1.0;
     sp.set_hz = s.requested_frequency_hz;
-    sp.actual_hz = sign * s.actual_frequency_hz;
+    // STILLSTAND comes with every fast status poll, the frequency only with the slower value poll.
+    sp.at_rest = !s.status_valid || s.at_rest;
+    sp.actual_hz = sp.at_rest ? 0.0 : sign * s.actual_frequency_hz;
     sp.running = spindle_running_;
     sp.at_speed = s.status_valid && s.at_speed;
     if (!sp.at_speed) at_speed_since_.reset();
@@ -125,7 +127,6 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
     // Two value polls and a reply time after N_Soll_OK, the frequency reading is a fresh one.
     const auto settle = 2 * cell_.spindle->session.values_poll + cell_.spindle->session.reply_timeout;
     sp.settled = at_speed_since_ && now - *at_speed_since_ > settle;
-    sp.at_rest = !s.status_valid || s.at_rest;
     sp.warning = s.warning();
     sp.fault = s.fault();
     sp.fault_number = s.fault() ? s.error_number : 0;

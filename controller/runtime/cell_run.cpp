@@ -44,7 +44,7 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
   devices_ = std::make_unique<CellDevices>(cell, links_->master());
   supervisor_ = std::make_unique<supervisor::Supervisor>(cell, recipe, program_, journal_,
                                                          cell.loop.period_ms / 1000.0, settings_for(cell, options_));
-  loop_ = std::make_unique<loop::Loop>(clock_, *waiter_, period_of(cell));
+  loop_ = std::make_unique<loop::Loop>(clock_, *waiter_, period_of(cell), loop::kControlStages, &real_clock_);
   state_.axis_count = static_cast<std::uint8_t>(cell.axes.size());
 }
 

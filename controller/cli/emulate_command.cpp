@@ -1,0 +1,52 @@
+#include "cli/emulate_command.hpp"
+
+#include <fmt/format.h>
+
+#include <memory>
+#include <thread>
+
+#include "cli/drive.hpp"
+#include "cli/exit_codes.hpp"
+#include "config/cell_config.hpp"
+#include "link/clock.hpp"
+#include "link/pty_pair.hpp"
+#include "runtime/emulated_cell.hpp"
+
+namespace cellctl::cli {
+namespace {
+
+int run_emulate(const GlobalOptions& global) {
+  const auto cell = config::load_cell_config(global.config);
+  std::vector<std::unique_ptr<link::PtyPair>> ptys;
+  runtime::DeviceSideLinks links;
+  const auto publish = [&](const char* name, const config::PortConfig& port, link::Link*& side) {
+    auto& pty = *ptys.emplace_back(std::make_unique<link::PtyPair>(name, port.publish_as));
+    side = &pty.device();
+    fmt::print("{:<8} {} (also {}), {}\n", name, pty.peer_path(), port.publish_as, port.line.describe());
+  };
+  fmt::print("cellctl: emulating cell '{}' from {}\n", cell.name, global.config);
+  if (cell.scu) publish("scu", cell.scu->port, links.scu);
+  if (cell.spindle) publish("spindle", cell.spindle->port, links.spindle);
+  if (cell.encoder) publish("encoder", cell.encoder->port, links.encoder);
+  runtime::EmulatedCell emulated(cell, links);
+  fmt::print("Ctrl-C ends the emulation.\n");
+  std::fflush(stdout);
+
+  link::MonotonicClock clock;
+  while (!g_interrupted.load()) {
+    emulated.poll(clock.now());
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  fmt::print("cellctl: emulation ended\n");
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_emulate_command(CLI::App& app, Commands& commands) {
+  auto* sub = app.add_subcommand(
+      "emulate", "Run the cell's devices as emulators on pseudo-terminals (published at each device's publish_as) until Ctrl-C");
+  commands.on(sub, [&commands] { return run_emulate(commands.global); });
+}
+
+}  // namespace cellctl::cli

@@ -1,0 +1,98 @@
+#include "cli/run_command.hpp"
+
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <ctime>
+#include <memory>
+
+#include "cli/drive.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/operator_console.hpp"
+#include "cli/status_printer.hpp"
+#include "config/cell_config.hpp"
+#include "recipe/recipe_loader.hpp"
+#include "runtime/cell_run.hpp"
+
+namespace cellctl::cli {
+namespace {
+
+struct RunArgs {
+  std::string recipe;
+  bool emulate = false;
+  bool virtual_time = false;
+  std::string journal_dir;
+};
+
+std::string default_journal_dir(const recipe::Recipe& r) {
+  const auto now = std::chrono::system_clock::now();
+  return fmt::format("runs/{}-{:%Y%m%d-%H%M%S}", r.name, fmt::localtime(std::chrono::system_clock::to_time_t(now)));
+}
+
+int run_recipe(const GlobalOptions& global, const RunArgs& args) {
+  const auto cell = config::load_cell_config(global.config);
+  recipe::Recipe recipe;
+  try {
+    recipe = recipe::load_recipe(args.recipe, cell);
+  } catch (const recipe::RecipeErrors& e) {
+    for (const auto& err : e.errors()) spdlog::error("{}", err.what());
+    spdlog::error("{}: {} problem{}; nothing was moved", args.recipe, e.errors().size(), e.errors().size() == 1 ? "" : "s");
+    return kExitConfig;
+  }
+
+  runtime::RunOptions options;
+  options.mode = args.virtual_time ? runtime::RunMode::virtual_time
+                 : args.emulate    ? runtime::RunMode::emulated
+                                   : runtime::RunMode::hardware;
+  options.journal_dir = args.journal_dir.empty() ? default_journal_dir(recipe) : args.journal_dir;
+  options.trace = global.trace;
+
+  runtime::CellRun run(cell, recipe, options);
+  fmt::print("cellctl: running '{}' {} on cell '{}' ({})\n", recipe.name, recipe.version, cell.name,
+             to_string(options.mode));
+  for (const auto& d : run.links().describe()) fmt::print("  {}\n", d);
+  fmt::print("  run record: {}/journal.jsonl, plot: {}/plot.svg\n", options.journal_dir.string(),
+             options.journal_dir.string());
+
+  runtime::RunResult result;
+  {
+    StatusPrinter printer(run.status(), cell);
+    OperatorConsole console(run);
+    if (console.active()) fmt::print("  type hold, unhold, stop, abort or reset + Enter; Ctrl-C stops, twice aborts\n");
+    result = run.run(g_interrupted);
+  }
+  for (const auto& w : run.realtime_warnings()) spdlog::warn("real-time: {}", w);
+  fmt::print("\n{}", result.summary_text);
+  if (!result.failure.empty()) fmt::print("failed step: {}\n", result.failure);
+  fmt::print("{} cycles; {} s of cell time in {:.2f} s", result.cycles, fmt::format("{:.2f}", result.duration_s),
+             result.wall_s);
+  if (options.mode == runtime::RunMode::virtual_time) fmt::print(" ({:.0f}× real time)", result.duration_s / result.wall_s);
+  fmt::print("\n{}\n", result.loop_summary);
+  fmt::print("run record: {}\n", options.journal_dir.string());
+
+  if (result.final_state == supervisor::State::complete) return kExitOk;
+  return result.interrupted ? kExitInterrupted : kExitFailed;
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app, Commands& commands) {
+  auto* sub = app.add_subcommand("run", "Run a recipe on the cell (hardware, emulators on pseudo-terminals, or virtual time)");
+  sub->footer(
+      "Devices whose port is 'emulated' in the cell config run as emulators inside cellctl.\n"
+      "Exit status: 0 complete, 1 stopped or aborted by a fault or a failed step, 3 bad config or recipe\n"
+      "(nothing moved), 4 a port could not be opened, 130 stopped by Ctrl-C.\n"
+      "Ctrl-C once: operator stop (category from stops.operator); twice: emergency stop.");
+  auto args = std::make_shared<RunArgs>();
+  sub->add_option("recipe", args->recipe, "Recipe file (YAML)")->required()->check(CLI::ExistingFile);
+  auto* emulate = sub->add_flag("--emulate", args->emulate, "Every device on its emulator, on pseudo-terminals, in real time");
+  sub->add_flag("--virtual-time", args->virtual_time,
+                "Every device on its emulator over simulated lines, on a virtual clock, as fast as possible")
+      ->excludes(emulate);
+  sub->add_option("--journal", args->journal_dir, "Directory for the run record (default runs/<recipe>-<time>)");
+  commands.on(sub, [&commands, args] { return run_recipe(commands.global, *args); });
+}
+
+}  // namespace cellctl::cli
