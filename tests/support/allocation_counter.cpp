@@ -9,9 +9,11 @@
 namespace {
 
 std::atomic<std::size_t> g_allocations{0};
+thread_local std::size_t t_allocations = 0;  // constant-initialised: no TLS constructor in operator new
 
 void* counted_alloc(std::size_t size, std::size_t alignment) noexcept {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
+  ++t_allocations;
   if (size == 0) size = 1;
   if (alignment <= alignof(std::max_align_t)) return std::malloc(size);
   const std::size_t rounded = (size + alignment - 1) / alignment * alignment;
@@ -29,6 +31,9 @@ void* counted_alloc_or_throw(std::size_t size, std::size_t alignment) {
 namespace cellctl::testing {
 std::size_t allocation_count() noexcept {
   return g_allocations.load(std::memory_order_relaxed);
+}
+std::size_t thread_allocation_count() noexcept {
+  return t_allocations;
 }
 }  // namespace cellctl::testing
 

@@ -9,5 +9,7 @@ namespace cellctl::testing {
 
 // Allocations since the program started, on every thread.
 [[nodiscard]] std::size_t allocation_count() noexcept;
+// Allocations made by the calling thread only (a cycle's count without its helper threads').
+[[nodiscard]] std::size_t thread_allocation_count() noexcept;
 
 }  // namespace cellctl::testing

@@ -1,0 +1,328 @@
+// The whole cell's control cycle — sessions, emulators, monitor, supervisor, journal posting — on
+// the shipped cell config and demo recipe. Ratios against the same run's reference:
+//
+//   BM_CellVirtualTime   virtual duration of the run / wall time it took (goal >= 1000),
+//                        heap allocations on the loop's thread per cycle while the supervisor is in
+//                        Execute, i.e. after start-up (goal 0). Repeated; min and median reported.
+//   BM_CellRealTime      the same cycle on the monotonic clock with the emulators behind pseudo-
+//                        terminals: compute time of each stage (mean and p99) / the loop period.
+//                        In virtual time stages cost nothing by construction (their timers read the
+//                        virtual clock), so compute time is only meaningful here.
+//
+//   cell_bench [--repetitions=3] [--realtime_s=3] [--fifo] [--cell=config/cell.yaml]
+//              [--recipe=recipes/demo.yaml]
+//
+// --realtime_s=0 skips the real-time run; a recipe longer than that is stopped (operator stop) then.
+// --fifo keeps the config's SCHED_FIFO + mlockall request (off by default: a shared machine).
+//
+// Finding an allocation in the cycle: the loop runs on the main thread and cellbench_in_window is
+// 1 while the count is taken, so
+//   gdb -batch -ex 'break operator new(unsigned long) if cellbench_in_window && $_thread == 1'
+//       -ex 'commands 1' -ex 'bt 12' -ex 'cont' -ex 'end' -ex run --args cell_bench --repetitions=1
+//       --realtime_s=0
+// prints the stack of each one.
+
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "config/cell_config.hpp"
+#include "recipe/recipe_loader.hpp"
+#include "runtime/cell_run.hpp"
+#include "support/allocation_counter.hpp"
+
+// Read by a debugger's breakpoint condition (see above); a C name so that it is easy to spell.
+extern "C" {
+volatile int cellbench_in_window = 0;
+}
+
+namespace {
+
+using namespace cellctl;
+
+struct Options {
+  int repetitions = 3;
+  double realtime_s = 3.0;
+  bool fifo = false;
+  std::filesystem::path cell = std::filesystem::path(CELLCTL_SOURCE_DIR) / "config/cell.yaml";
+  std::filesystem::path recipe = std::filesystem::path(CELLCTL_SOURCE_DIR) / "recipes/demo.yaml";
+};
+
+Options g_options;
+
+// Takes the options Google Benchmark did not consume; unknown ones are an error.
+bool parse(int argc, char** argv, Options& o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view a = argv[i];
+    const auto value = [&](std::string_view key) -> const char* {
+      return a.substr(0, key.size()) == key ? argv[i] + key.size() : nullptr;
+    };
+    if (const char* r = value("--repetitions=")) {
+      o.repetitions = std::atoi(r);
+    } else if (const char* s = value("--realtime_s=")) {
+      o.realtime_s = std::atof(s);
+    } else if (const char* c = value("--cell=")) {
+      o.cell = c;
+    } else if (const char* p = value("--recipe=")) {
+      o.recipe = p;
+    } else if (a == "--fifo") {
+      o.fifo = true;
+    } else {
+      std::fprintf(stderr, "cell_bench: unknown option %s\n", argv[i]);
+      return false;
+    }
+  }
+  return o.repetitions > 0 && o.realtime_s >= 0.0;
+}
+
+// A fresh directory per run for the journal and the encoder's EEPROM file, removed afterwards.
+class ScratchDir {
+ public:
+  explicit ScratchDir(std::string_view tag)
+      : path_(std::filesystem::temp_directory_path() /
+              (std::string("cellctl-bench-") + std::string(tag) + "-" + std::to_string(::getpid()))) {
+    std::filesystem::remove_all(path_);
+  }
+  ~ScratchDir() { std::filesystem::remove_all(path_); }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  [[nodiscard]] const std::filesystem::path& path() const noexcept { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+struct Setup {
+  config::CellConfig cell;
+  recipe::Recipe recipe;
+};
+
+Setup load(const ScratchDir& dir) {
+  Setup s;
+  s.cell = config::load_cell_config(g_options.cell);
+  if (s.cell.encoder) s.cell.encoder->emulator.state_file = dir.path() / "encoder.eeprom";
+  s.cell.loop.realtime = g_options.fifo && s.cell.loop.realtime;
+  s.recipe = recipe::load_recipe(g_options.recipe, s.cell);
+  return s;
+}
+
+// Heap allocations of the loop's thread from the first cycle the supervisor is in Execute to the
+// first one it is not (the recipe's execution, after the devices are up). The hook runs at the
+// start of a cycle, so the window holds whole cycles. The cycles before it (start-up: sessions
+// activating) and after it (completing, devices closing) are counted apart: they may allocate, and
+// a non-zero start-up count also shows that the counter sees this thread.
+struct ExecuteWindow {
+  bool seen = false;
+  bool open = false;
+  bool closed = false;
+  std::uint64_t cycles = 0;
+  std::size_t at_first = 0;
+  std::size_t at_open = 0;
+  std::size_t at_close = 0;
+  std::size_t at_last = 0;
+  supervisor::State ended_in = supervisor::State::idle;
+
+  void on_cycle(supervisor::State s) noexcept {
+    const std::size_t now = testing::thread_allocation_count();
+    if (!seen) at_first = now;
+    seen = true;
+    at_last = now;
+    if (!open && !closed && s == supervisor::State::execute) {
+      open = true;
+      at_open = now;
+      cellbench_in_window = 1;
+    } else if (open && s != supervisor::State::execute) {
+      open = false;
+      closed = true;
+      at_close = now;
+      ended_in = s;
+      cellbench_in_window = 0;
+    }
+    if (open) ++cycles;
+  }
+  [[nodiscard]] std::size_t allocations() const noexcept { return closed ? at_close - at_open : 0; }
+  [[nodiscard]] std::size_t start_up() const noexcept { return at_open - at_first; }
+  [[nodiscard]] std::size_t after() const noexcept { return closed ? at_last - at_close : 0; }
+};
+
+double per(double x, double y) {
+  return y > 0.0 ? x / y : 0.0;
+}
+
+// One "stage <name> mean M us, p50 A us, p99 B us, p99.9 C us, max D us" line of Loop::summary().
+struct StageLine {
+  std::string name;
+  double mean_us = 0.0;
+  double p99_us = 0.0;
+  double max_us = 0.0;
+};
+
+// CellRun hands out the loop's statistics as Loop::summary() text only, so the stage lines are read
+// back from it; a line that does not parse fails the benchmark rather than report a zero.
+bool parse_stages(const std::string& summary, std::vector<StageLine>& out) {
+  constexpr std::string_view kPrefix = "stage ";
+  constexpr std::size_t kNameWidth = 16;  // "{:<16}" in Loop::summary()
+  std::size_t pos = 0;
+  while (pos < summary.size()) {
+    const std::size_t end = std::min(summary.find('\n', pos), summary.size());
+    const std::string line = summary.substr(pos, end - pos);
+    pos = end + 1;
+    if (line.rfind(kPrefix, 0) != 0) continue;
+    StageLine s;
+    s.name = line.substr(kPrefix.size(), kNameWidth);
+    s.name.erase(s.name.find_last_not_of(' ') + 1);
+    double p50 = 0.0;
+    double p999 = 0.0;
+    const std::string rest = line.substr(std::min(line.size(), kPrefix.size() + kNameWidth));
+    if (std::sscanf(rest.c_str(), " mean %lf us, p50 %lf us, p99 %lf us, p99.9 %lf us, max %lf us",
+                    &s.mean_us, &p50, &s.p99_us, &p999, &s.max_us) != 5)
+      return false;
+    for (char& c : s.name)
+      if (c == ' ') c = '_';
+    out.push_back(std::move(s));
+  }
+  return !out.empty();
+}
+
+// Each stage's mean and p99 compute time / the loop period as counters; false when the summary has
+// no stage lines.
+bool add_stage_counters(benchmark::State& state, const std::string& summary, double period_us) {
+  std::vector<StageLine> stages;
+  if (!parse_stages(summary, stages)) return false;
+  double mean_total = 0.0;
+  for (const auto& s : stages) {
+    state.counters[s.name + "_mean_per_period"] = s.mean_us / period_us;
+    state.counters[s.name + "_p99_per_period"] = s.p99_us / period_us;
+    mean_total += s.mean_us;
+  }
+  state.counters["compute_mean_per_period"] = mean_total / period_us;
+  return true;
+}
+
+void BM_CellVirtualTime(benchmark::State& state) {
+  const ScratchDir dir("virtual");
+  Setup setup = load(dir);
+  runtime::RunOptions o;
+  o.mode = runtime::RunMode::virtual_time;
+  o.journal_dir = dir.path() / "journal";
+  runtime::RunResult result;
+  ExecuteWindow window;
+  double end_to_end_s = 0.0;
+  for (auto _ : state) {
+    const auto begin = std::chrono::steady_clock::now();
+    runtime::CellRun run(setup.cell, setup.recipe, o);
+    run.on_cycle([&window](double, runtime::CellRun& r) { window.on_cycle(r.supervisor().state()); });
+    std::atomic<bool> interrupt{false};
+    result = run.run(interrupt);
+    end_to_end_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  }
+  cellbench_in_window = 0;
+  if (result.final_state != supervisor::State::complete || !window.closed) {
+    state.SkipWithError(("the recipe did not complete: " + result.failure).c_str());
+    return;
+  }
+  // The loop's wall time (RunResult), and the whole run with set-up and the journal's close.
+  state.counters["speedup"] = per(result.duration_s, result.wall_s);
+  state.counters["speedup_end_to_end"] = per(result.duration_s, end_to_end_s);
+  state.counters["virtual_s"] = result.duration_s;
+  state.counters["cycles"] = static_cast<double>(result.cycles);
+  state.counters["execute_cycles"] = static_cast<double>(window.cycles);
+  state.counters["allocs_execute"] = static_cast<double>(window.allocations());
+  state.counters["allocs_per_cycle"] =
+      per(static_cast<double>(window.allocations()), static_cast<double>(window.cycles));
+  state.counters["allocs_start_up"] = static_cast<double>(window.start_up());
+  state.counters["allocs_after_execute"] = static_cast<double>(window.after());
+  // Stage timers read the real clock here too; "read sessions" includes stepping the emulators.
+  if (!add_stage_counters(state, result.loop_summary, setup.cell.loop.period_ms * 1000.0)) {
+    state.SkipWithError("no stage lines in the loop summary");
+    return;
+  }
+  std::printf(
+      "virtual %.2f s in %.3f s wall (loop), %.3f s end to end; %zu allocations in %llu Execute cycles "
+      "(until %s)\n",
+      result.duration_s, result.wall_s, end_to_end_s, window.allocations(),
+      static_cast<unsigned long long>(window.cycles), std::string(to_string(window.ended_in)).c_str());
+}
+
+void BM_CellRealTime(benchmark::State& state) {
+  const ScratchDir dir("realtime");
+  Setup setup = load(dir);
+  runtime::RunOptions o;
+  o.mode = runtime::RunMode::emulated;
+  o.journal_dir = dir.path() / "journal";
+  runtime::RunResult result;
+  ExecuteWindow window;
+  for (auto _ : state) {
+    runtime::CellRun run(setup.cell, setup.recipe, o);
+    bool stop_sent = false;
+    run.on_cycle([&](double t, runtime::CellRun& r) {
+      window.on_cycle(r.supervisor().state());
+      if (!stop_sent && t >= g_options.realtime_s) {
+        r.request(supervisor::Command::stop);
+        stop_sent = true;
+      }
+    });
+    std::atomic<bool> interrupt{false};
+    result = run.run(interrupt);
+    for (const auto& w : run.realtime_warnings()) std::printf("warning: %s\n", w.c_str());
+  }
+  cellbench_in_window = 0;
+  if (!add_stage_counters(state, result.loop_summary, setup.cell.loop.period_ms * 1000.0)) {
+    state.SkipWithError("no stage lines in the loop summary");
+    return;
+  }
+  state.counters["cycles"] = static_cast<double>(result.cycles);
+  state.counters["execute_cycles"] = static_cast<double>(window.cycles);
+  state.counters["allocs_per_cycle"] =
+      per(static_cast<double>(window.allocations()), static_cast<double>(window.cycles));
+  std::printf("%s", result.loop_summary.c_str());
+  std::printf("ended %s after %.2f s; %zu allocations in %llu Execute cycles\n",
+              std::string(to_string(result.final_state)).c_str(), result.duration_s, window.allocations(),
+              static_cast<unsigned long long>(window.cycles));
+}
+
+// A zero count means something only if the counter sees an allocation on this thread.
+bool counter_sees_this_thread() {
+  const std::size_t before = testing::thread_allocation_count();
+  std::string probe(64, 'x');
+  benchmark::DoNotOptimize(probe.data());
+  return testing::thread_allocation_count() > before;
+}
+
+double minimum(const std::vector<double>& v) {
+  return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (!parse(argc, argv, g_options)) return 2;
+  if (!counter_sees_this_thread()) {
+    std::fprintf(stderr, "cell_bench: the allocation counter is not linked in\n");
+    return 1;
+  }
+  benchmark::RegisterBenchmark("BM_CellVirtualTime", BM_CellVirtualTime)
+      ->Iterations(1)
+      ->Repetitions(g_options.repetitions)
+      ->ComputeStatistics("min", minimum)
+      ->UseRealTime()
+      ->Unit(benchmark::kMillisecond);
+  if (g_options.realtime_s > 0.0)
+    benchmark::RegisterBenchmark("BM_CellRealTime", BM_CellRealTime)
+        ->Iterations(1)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
