@@ -34,9 +34,21 @@ std::uint8_t fnc(int function) {
 }
 }  // namespace
 
+template <class... Args>
+void Session::fault(fmt::format_string<Args...> format, Args&&... args) {
+  state_ = link::Lifecycle::fault;
+  link::assign_formatted(fault_reason_, format, std::forward<Args>(args)...);
+  urgent_.clear();
+  normal_.clear();
+  in_flight_.reset();
+  replies_.expect_nothing();
+  keepalive_armed_ = false;
+}
+
 Session::Session(link::Link& link, const SessionConfig& config)
-    : link_(link), config_(config), layout_(config.actuators) {
+    : link_(link), link_name_(link.describe()), config_(config), layout_(config.actuators) {
   validate(config_);
+  fault_reason_.reserve(link::kFaultReasonCapacity);
   for (std::size_t a = 0; a < kActuatorCount; ++a)
     snapshot_.actuators[a].configured = config_.actuators.test(a);
   keepalive_.purpose = Purpose::keepalive;
@@ -120,9 +132,10 @@ link::Lifecycle Session::poll(link::TimePoint now) {
   if (state_ == link::Lifecycle::fault) return state_;
   const auto silent = health_.silent_for(now, activated_at_);
   if (silent > config_.link_fault_after) {
-    fault("SCU on " + link_.describe() + " silent for " + std::to_string(ms(silent)) + " ms (limit " +
-          std::to_string(ms(config_.link_fault_after)) +
-          " ms): check the cable, the SCU's power, DTR/RTS and the baud rate");
+    fault(
+        "SCU on {} silent for {} ms (limit {} ms): check the cable, the SCU's power, DTR/RTS and the baud "
+        "rate",
+        link_name_, ms(silent), ms(config_.link_fault_after));
     return state_;
   }
   if (!in_flight_ && state_ != link::Lifecycle::inactive) send_next(now);
@@ -134,8 +147,8 @@ void Session::receive(link::TimePoint now) {
   for (;;) {
     const auto r = link_.read(buf);
     if (r.status != link::IoStatus::ok) {
-      fault("SCU link " + link_.describe() + " " +
-            (r.status == link::IoStatus::closed ? "closed" : "failed") + ": check the port");
+      fault("SCU link {} {}: check the port", link_name_,
+            r.status == link::IoStatus::closed ? "closed" : "failed");
       return;
     }
     if (r.count == 0) return;
@@ -227,22 +240,21 @@ void Session::on_refusal(const Reply& reply, const Pending& p) {
   ++health_.error_replies;
   ++snapshot_.refusals;
   snapshot_.last_refusal = Refusal{reply.command, reply.status};
-  // Composed only on the fault paths: a refused command is no reason to allocate in poll().
-  const auto what = [&] {
-    return std::string(to_string(reply.command)) + " refused with " + std::string(to_string(reply.status)) +
-           " (" + std::string(describe(reply.status)) + ")";
-  };
   switch (p.purpose) {
     case Purpose::open:
     case Purpose::first_keepalive:
     case Purpose::setup_cyclic:
     case Purpose::close:
-      fault("SCU " + what() + " while " + (state_ == link::Lifecycle::deactivating ? "leaving" : "entering") +
-            " remote mode: check safety_id and the SCU's parameterization, then activate again");
+      fault(
+          "SCU {} refused with {} ({}) while {} remote mode: check safety_id and the SCU's parameterization, "
+          "then activate again",
+          to_string(reply.command), to_string(reply.status), describe(reply.status),
+          state_ == link::Lifecycle::deactivating ? "leaving" : "entering");
       return;
     case Purpose::keepalive:
       // Remote mode is gone (watchdog lapse with Safety_ID 0, or the SCU was reset): it must be opened again.
-      fault("SCU " + what() + " on the keep-alive: remote mode was lost (watchdog?); activate again");
+      fault("SCU {} refused with {} ({}) on the keep-alive: remote mode was lost (watchdog?); activate again",
+            to_string(reply.command), to_string(reply.status), describe(reply.status));
       return;
     case Purpose::position:
     case Purpose::speed:
@@ -326,9 +338,8 @@ void Session::retry_or_give_up(link::TimePoint now, const char* why) {
     case Purpose::first_keepalive:
     case Purpose::setup_cyclic:
     case Purpose::close:
-      fault("SCU on " + link_.describe() + ": " + std::string(to_string(failed.shape.command)) + " got " +
-            why + " after " + std::to_string(attempts_) +
-            " attempts: check the cable, the port and the baud rate");
+      fault("SCU on {}: {} got {} after {} attempts: check the cable, the port and the baud rate", link_name_,
+            to_string(failed.shape.command), why, attempts_);
       return;
     case Purpose::stop:
     case Purpose::emergency_stop:
@@ -380,7 +391,7 @@ void Session::transmit(const Pending& p, link::TimePoint now) {
   const auto bytes = p.bytes.view();
   const auto r = link_.write(bytes);
   if (r.status != link::IoStatus::ok) {
-    fault("SCU link " + link_.describe() + " failed on write: check the port");
+    fault("SCU link {} failed on write: check the port", link_name_);
     return;
   }
   // A short write on a serial port is treated like a lost request: the reply time-out retries it.
@@ -397,16 +408,6 @@ void Session::drop_queued_moves(std::optional<std::uint8_t> function) {
     if (snapshot_.functions[f].outcome == MoveOutcome::queued)
       snapshot_.functions[f].outcome = MoveOutcome::stopped_short;
   }
-}
-
-void Session::fault(std::string reason) {
-  state_ = link::Lifecycle::fault;
-  fault_reason_ = std::move(reason);
-  urgent_.clear();
-  normal_.clear();
-  in_flight_.reset();
-  replies_.expect_nothing();
-  keepalive_armed_ = false;
 }
 
 bool Session::move_to(int function, std::span<const ActuatorTarget> targets, std::uint16_t speed_percent,

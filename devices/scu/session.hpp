@@ -19,6 +19,7 @@
 #include <string>
 
 #include "link/clock.hpp"
+#include "link/fault_reason.hpp"
 #include "link/lifecycle.hpp"
 #include "link/link.hpp"
 #include "link/link_health.hpp"
@@ -102,11 +103,15 @@ class Session {
   void transmit(const Pending& p, link::TimePoint now);
   void close_finished_executions();
   void drop_queued_moves(std::optional<std::uint8_t> function);
-  void fault(std::string reason);
+  // Formats the reason into fault_reason_, whose capacity is reserved at construction: a fault found
+  // in poll() allocates nothing.
+  template <class... Args>
+  void fault(fmt::format_string<Args...> format, Args&&... args);
   [[nodiscard]] bool defined(int function) const noexcept;
   [[nodiscard]] bool accepting() const noexcept { return state_ == link::Lifecycle::active; }
 
   link::Link& link_;
+  std::string link_name_;  // link_.describe(), taken once at construction
   SessionConfig config_;
   CyclicLayout layout_;
   ReplyStream replies_;

@@ -4,18 +4,13 @@
 
 #include <cmath>
 
+#include "link/fault_reason.hpp"
 #include "spindle/fault_numbers.hpp"
 
 namespace cellctl::spindle {
 namespace {
 
-// Formats into a string whose capacity was reserved at construction: no allocation in the cycle.
-template <class... Args>
-void assign_formatted(std::string& out, fmt::format_string<Args...> format, Args&&... args) {
-  std::array<char, 256> buffer{};
-  const auto r = fmt::format_to_n(buffer.data(), buffer.size(), format, std::forward<Args>(args)...);
-  out.assign(buffer.data(), std::min(r.size, buffer.size()));
-}
+using link::assign_formatted;
 
 std::string_view name_of(MsgId id) noexcept {
   switch (id) {
@@ -52,8 +47,8 @@ long long to_ms(link::Duration d) noexcept {
 
 Session::Session(link::Link& link, const SessionConfig& config)
     : link_(link), config_(config), link_name_(link.describe()) {
-  fault_reason_.reserve(256);
-  snapshot_.start_refused_reason.reserve(256);
+  fault_reason_.reserve(link::kFaultReasonCapacity);
+  snapshot_.start_refused_reason.reserve(link::kFaultReasonCapacity);
 }
 
 Session::Outgoing Session::make(const Message& m) {
@@ -83,7 +78,7 @@ void Session::activate(link::TimePoint now) {
   tx_.clear();
   decoder_.reset();
   snapshot_ = Snapshot{};
-  snapshot_.start_refused_reason.reserve(256);
+  snapshot_.start_refused_reason.reserve(link::kFaultReasonCapacity);
   activated_at_ = now;
   next_status_at_ = next_values_at_ = now;
   start_parameters_sent_ = false;  // the converter may have been switched off and on in between
