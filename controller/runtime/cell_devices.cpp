@@ -9,11 +9,13 @@ namespace {
 constexpr std::uint16_t kStatus2Group = 0x00E0;  // actuator status 2, A1..A6: bit 0 = initialised
 constexpr auto kHomedReadPeriod = std::chrono::seconds(2);
 
-cell::LinkState link_state(link::Lifecycle lc, const link::LinkHealth& h, link::TimePoint now) {
+// Silence counts from the last good reply, or from activation while there was none yet.
+cell::LinkState link_state(link::Lifecycle lc, const link::LinkHealth& h, link::TimePoint now,
+                           link::TimePoint activated) {
   cell::LinkState l;
   l.active = lc == link::Lifecycle::active;
   l.fault = lc == link::Lifecycle::fault;
-  l.silent_for = h.silent_for(now, now);
+  l.silent_for = h.silent_for(now, activated);
   return l;
 }
 
@@ -30,6 +32,7 @@ void CellDevices::activate(link::TimePoint now) {
   if (spindle_) spindle_->activate(now);
   if (encoder_) encoder_->activate(now);
   next_homed_read_ = now;
+  activated_at_ = now;
 }
 
 void CellDevices::deactivate(link::TimePoint now) {
@@ -72,7 +75,7 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
 
   if (scu_) {
     const auto& snap = scu_->snapshot();
-    out.links[static_cast<std::size_t>(cell::Device::scu)] = link_state(scu_->state(), scu_->health(), now);
+    out.links[static_cast<std::size_t>(cell::Device::scu)] = link_state(scu_->state(), scu_->health(), now, activated_at_);
     out.scu_error_word = snap.errors.raw();
     out.scu_remote = snap.remote_open && scu_->state() == link::Lifecycle::active;
     for (std::size_t i = 0; i < cell_.axes.size(); ++i) {
@@ -91,7 +94,7 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
   if (encoder_) {
     const auto& e = encoder_->snapshot();
     auto& enc = out.encoder;
-    out.links[static_cast<std::size_t>(cell::Device::encoder)] = link_state(e.lifecycle, encoder_->health(), now);
+    out.links[static_cast<std::size_t>(cell::Device::encoder)] = link_state(e.lifecycle, encoder_->health(), now, activated_at_);
     enc.data_exchange = e.data_exchange;
     enc.ready = e.data_exchange && (!e.has_status_bits || e.status.ready);
     enc.alarm = e.diagnosis && e.diagnosis->alarms != 0;
@@ -113,7 +116,7 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
   if (spindle_) {
     const auto& s = spindle_->snapshot();
     auto& sp = out.spindle;
-    out.links[static_cast<std::size_t>(cell::Device::spindle)] = link_state(spindle_->lifecycle(), spindle_->health(), now);
+    out.links[static_cast<std::size_t>(cell::Device::spindle)] = link_state(spindle_->lifecycle(), spindle_->health(), now, activated_at_);
     sp.active = spindle_->lifecycle() == link::Lifecycle::active;
     const double sign = s.direction == spindle::Direction::clockwise ? 1.0 : -1.0;
     sp.set_hz = s.requested_frequency_hz;

@@ -70,6 +70,7 @@ class CellDevices {
   std::uint8_t homed_bits_ = 0;           // actuator status 2 bit 0 per actuator, from RG 0x00E0
   std::uint64_t homed_read_sequence_ = 0;
   link::TimePoint next_homed_read_{};
+  link::TimePoint activated_at_{};
 };
 
 }  // namespace cellctl::runtime
