@@ -297,10 +297,17 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
       clear_motion();
       intents_.spindle.run = false;
       intents_.halt = abort ? cell::Halt::immediate : cell::Halt::controlled;
-      const bool rest = axes_still(s) && (s.spindle.at_rest || !s.links[1].active);
+      // A device whose session is down reports nothing more: waiting for it is pointless. An SCU that
+      // no longer hears the keep-alive stops every actuator by its own watchdog.
+      const bool scu_lost = !s.links[static_cast<std::size_t>(cell::Device::scu)].active;
+      const bool spindle_lost = !s.links[static_cast<std::size_t>(cell::Device::spindle)].active;
+      const bool rest = (axes_still(s) || scu_lost) && (s.spindle.at_rest || spindle_lost);
       if (rest || t - state_since_ > settings_.stop_timeout_s) {
-        const auto note = rest ? Text::format("cell at rest")
-                               : Text::format("not at rest after {:g} s; giving up waiting", settings_.stop_timeout_s);
+        const auto note = !rest ? Text::format("not at rest after {:g} s; giving up waiting", settings_.stop_timeout_s)
+                          : scu_lost || spindle_lost
+                              ? Text::format("cell at rest as far as can be known ({} link lost)",
+                                             scu_lost ? "SCU" : "spindle")
+                              : Text::format("cell at rest");
         enter(abort ? State::aborted : State::stopped, t, note);
         events_.post(t, journal::RunEnded{abort ? "aborted" : "stopped"});
       }
