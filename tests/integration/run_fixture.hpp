@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -42,14 +43,13 @@ class RunFixture : public ::testing::Test {
     runtime::RunOptions o;
     o.mode = runtime::RunMode::virtual_time;
     o.journal_dir = dir_ / "journal";
+    o.supervisor = supervisor_settings_;
     run_ = std::make_unique<runtime::CellRun>(cell_, recipe_, o);
     return *run_;
   }
 
-  runtime::RunResult go() {
-    std::atomic<bool> interrupt{false};
-    return run_->run(interrupt);
-  }
+  // `interrupt_` is the run's Ctrl-C flag: a test's cycle hook may raise it.
+  runtime::RunResult go() { return run_->run(interrupt_); }
 
   std::vector<nlohmann::json> journal() const {
     std::vector<nlohmann::json> out;
@@ -68,6 +68,8 @@ class RunFixture : public ::testing::Test {
   config::CellConfig cell_;
   recipe::Recipe recipe_;
   std::unique_ptr<runtime::CellRun> run_;
+  std::atomic<bool> interrupt_{false};
+  supervisor::SupervisorSettings supervisor_settings_;  // e.g. move.max_corrections, before make_run()
 };
 
 }  // namespace cellctl::testing
