@@ -1,13 +1,17 @@
 // The whole cell's control cycle — sessions, emulators, monitor, supervisor, journal posting — on
 // the shipped cell config and demo recipe. Ratios against the same run's reference:
 //
-//   BM_CellVirtualTime   virtual duration of the run / wall time it took (goal >= 1000),
-//                        heap allocations on the loop's thread per cycle while the supervisor is in
-//                        Execute, i.e. after start-up (goal 0). Repeated; min and median reported.
-//   BM_CellRealTime      the same cycle on the monotonic clock with the emulators behind pseudo-
-//                        terminals: compute time of each stage (mean and p99) / the loop period.
-//                        In virtual time stages cost nothing by construction (their timers read the
-//                        virtual clock), so compute time is only meaningful here.
+//   BM_CellVirtualTime    virtual duration of the run / wall time it took (goal >= 1000), and heap
+//                         allocations on the loop's thread per cycle while the supervisor is in
+//                         Execute, i.e. after start-up (goal 0). Repeated; min and median reported.
+//                         Stage compute / period too, where the loop times stages on the monotonic
+//                         clock ("read sessions" then includes stepping the emulators).
+//   BM_CellFaultReaction  a cause injected 15 s into Execute (a device falls silent, reports a fault,
+//                         drops replies): allocations on the loop's thread from the injection until
+//                         the run is Stopped/Aborted (goal 0: the fault paths are in the cycle too).
+//   BM_CellRealTime       the cycle on the monotonic clock, emulators behind pseudo-terminals on
+//                         their own thread as in `cellctl run --emulate`: compute time of each stage
+//                         (mean and p99) / the loop period.
 //
 //   cell_bench [--repetitions=3] [--realtime_s=3] [--fifo] [--cell=config/cell.yaml]
 //              [--recipe=recipes/demo.yaml]
@@ -16,11 +20,15 @@
 // --fifo keeps the config's SCHED_FIFO + mlockall request (off by default: a shared machine).
 //
 // Finding an allocation in the cycle: the loop runs on the main thread and cellbench_in_window is
-// 1 while the count is taken, so
-//   gdb -batch -ex 'break operator new(unsigned long) if cellbench_in_window && $_thread == 1'
-//       -ex 'commands 1' -ex 'bt 12' -ex 'cont' -ex 'end' -ex run --args cell_bench --repetitions=1
-//       --realtime_s=0
-// prints the stack of each one.
+// 1 while a count is taken, so with a gdb command file holding
+//   set pagination off
+//   break operator new(unsigned long) if cellbench_in_window && $_thread == 1
+//   commands 1
+//   bt 12
+//   cont
+//   end
+//   run
+// `gdb -batch -x that-file --args cell_bench --repetitions=1 --realtime_s=0` prints each one's stack.
 
 #include <benchmark/benchmark.h>
 #include <unistd.h>
@@ -31,6 +39,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <iterator>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -156,6 +166,83 @@ struct ExecuteWindow {
 
 double per(double x, double y) {
   return y > 0.0 ? x / y : 0.0;
+}
+
+// The causes a fault run injects, by benchmark argument.
+struct Cause {
+  const char* name;
+  void (*inject)(runtime::EmulatedCell&);
+};
+constexpr Cause kCauses[] = {
+    {"spindle silent", [](runtime::EmulatedCell& e) { e.spindle()->set_silent(true); }},
+    {"spindle fault 51", [](runtime::EmulatedCell& e) { e.spindle()->inject_fault(51); }},
+    {"scu replies dropped", [](runtime::EmulatedCell& e) { e.scu()->drop_next_replies(1 << 20); }},
+    {"scu actuator fault", [](runtime::EmulatedCell& e) { e.scu()->inject_actuator_fault(1); }},
+    {"encoder silent", [](runtime::EmulatedCell& e) { e.encoder()->set_silent(true); }},
+};
+constexpr double kInjectAfterExecute_s = 15.0;  // the spindle is up and the axes are moving by then
+
+// Heap allocations of the loop's thread from the cycle a cause is injected to the cycle the run is
+// final (Stopped/Aborted): the whole fault reaction — sessions faulting, monitor latching, journal
+// posting, the supervisor stopping — which the invariant wants allocation-free as well.
+struct FaultWindow {
+  std::optional<double> execute_t;
+  std::optional<double> injected_t;
+  std::optional<double> final_t;
+  std::uint64_t cycles = 0;
+  std::size_t at_inject = 0;
+  std::size_t allocations = 0;
+
+  void on_cycle(double t, runtime::CellRun& r, const Cause& cause) {
+    const supervisor::State s = r.supervisor().state();
+    if (!execute_t && s == supervisor::State::execute) execute_t = t;
+    if (execute_t && !injected_t && t >= *execute_t + kInjectAfterExecute_s) {
+      injected_t = t;
+      at_inject = testing::thread_allocation_count();
+      cellbench_in_window = 1;
+      cause.inject(*r.emulators());
+    }
+    if (injected_t && !final_t) {
+      if (supervisor::is_final(s)) {
+        final_t = t;
+        allocations = testing::thread_allocation_count() - at_inject;
+        cellbench_in_window = 0;
+      } else {
+        ++cycles;
+      }
+    }
+  }
+};
+
+void BM_CellFaultReaction(benchmark::State& state) {
+  const Cause& cause = kCauses[static_cast<std::size_t>(state.range(0))];
+  state.SetLabel(cause.name);
+  const ScratchDir dir("fault");
+  Setup setup = load(dir);
+  runtime::RunOptions o;
+  o.mode = runtime::RunMode::virtual_time;
+  o.journal_dir = dir.path() / "journal";
+  runtime::RunResult result;
+  FaultWindow window;
+  for (auto _ : state) {
+    runtime::CellRun run(setup.cell, setup.recipe, o);
+    run.on_cycle([&](double t, runtime::CellRun& r) { window.on_cycle(t, r, cause); });
+    std::atomic<bool> interrupt{false};
+    result = run.run(interrupt);
+  }
+  cellbench_in_window = 0;
+  if (!window.final_t) {
+    state.SkipWithError("the run did not end Stopped or Aborted after the cause");
+    return;
+  }
+  state.counters["allocs_reaction"] = static_cast<double>(window.allocations);
+  state.counters["allocs_per_cycle"] =
+      per(static_cast<double>(window.allocations), static_cast<double>(window.cycles));
+  state.counters["reaction_cycles"] = static_cast<double>(window.cycles);
+  std::printf("%s: %s after %.3f s, %zu allocations in %llu cycles; %s\n", cause.name,
+              std::string(to_string(result.final_state)).c_str(), *window.final_t - *window.injected_t,
+              window.allocations, static_cast<unsigned long long>(window.cycles),
+              result.faults.empty() ? "no fault latched" : result.faults.front().c_str());
 }
 
 // One "stage <name> mean M us, p50 A us, p99 B us, p99.9 C us, max D us" line of Loop::summary().
@@ -315,6 +402,11 @@ int main(int argc, char** argv) {
       ->Iterations(1)
       ->Repetitions(g_options.repetitions)
       ->ComputeStatistics("min", minimum)
+      ->UseRealTime()
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("BM_CellFaultReaction", BM_CellFaultReaction)
+      ->DenseRange(0, static_cast<int>(std::size(kCauses)) - 1)
+      ->Iterations(1)
       ->UseRealTime()
       ->Unit(benchmark::kMillisecond);
   if (g_options.realtime_s > 0.0)
