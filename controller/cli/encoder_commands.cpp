@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "cli/device_group.hpp"
 #include "cli/device_link.hpp"
 #include "cli/drive.hpp"
 #include "cli/exit_codes.hpp"
@@ -22,14 +23,14 @@ using namespace std::chrono_literals;
 
 enum class Action { status, diag, preset, direction, set_address, teach_in };
 
-struct EncoderOptions {
-  std::optional<std::string> port;
-  std::uint32_t value = 0;          // preset value, new address or Teach-In distance
+struct EncoderOptions : DeviceOptions {
+  EncoderOptions() { timeout_s = 10.0; }
+  std::uint32_t value = 0;  // preset value, new address or Teach-In distance
   std::string direction = "cw";
-  double timeout_s = 10.0;
 };
 
-std::string bits_text(std::uint16_t bits, std::initializer_list<std::pair<std::uint16_t, const char*>> names) {
+std::string bits_text(std::uint16_t bits,
+                      std::initializer_list<std::pair<std::uint16_t, const char*>> names) {
   std::string out;
   for (const auto& [mask, name] : names)
     if ((bits & mask) != 0) out += (out.empty() ? "" : ", ") + std::string(name);
@@ -52,7 +53,8 @@ void print_status(const encoder::Session& session) {
     fmt::print("status         {}, {}, {}, counting {}{}\n", s.status.ready ? "ready" : "NOT READY",
                s.status.commissioning ? "commissioning mode" : "normal mode",
                s.status.limit_switch ? "OUTSIDE LIMITS" : "within limits",
-               s.status.ccw ? "up counterclockwise" : "up clockwise", s.status.teach_in_start ? ", Teach-In running" : "");
+               s.status.ccw ? "up counterclockwise" : "up clockwise",
+               s.status.teach_in_start ? ", Teach-In running" : "");
 }
 
 void print_diag(const encoder::Snapshot& s) {
@@ -66,21 +68,25 @@ void print_diag(const encoder::Snapshot& s) {
                                                          {alarm::supply_voltage, "supply voltage"},
                                                          {alarm::current_too_high, "current too high"},
                                                          {alarm::memory_error, "memory error"}}));
-  fmt::print("operating      counting up {}, class 2 {}, scaling {}\n", d.status.ccw ? "counterclockwise" : "clockwise",
-             d.status.class2 ? "yes" : "no", d.status.scaling ? "on" : "off");
-  fmt::print("encoder        {}, {} steps/revolution × {} revolutions\n", d.multiturn() ? "multiturn" : "singleturn",
-             d.singleturn_resolution, d.revolutions);
+  fmt::print("operating      counting up {}, class 2 {}, scaling {}\n",
+             d.status.ccw ? "counterclockwise" : "clockwise", d.status.class2 ? "yes" : "no",
+             d.status.scaling ? "on" : "off");
+  fmt::print("encoder        {}, {} steps/revolution × {} revolutions\n",
+             d.multiturn() ? "multiturn" : "singleturn", d.singleturn_resolution, d.revolutions);
   if (!d.detail) return;
   const auto& x = *d.detail;
   const std::initializer_list<std::pair<std::uint16_t, const char*>> warnings = {
-      {warning::frequency_exceeded, "frequency exceeded"}, {warning::temperature_exceeded, "temperature above 65 °C"},
-      {warning::light_control_reserve, "LED light reserve low"}, {warning::cpu_watchdog, "CPU watchdog"},
-      {warning::operating_time_limit, "operating time above 87600 h"}, {warning::battery_charge, "battery low"},
+      {warning::frequency_exceeded, "frequency exceeded"},
+      {warning::temperature_exceeded, "temperature above 65 °C"},
+      {warning::light_control_reserve, "LED light reserve low"},
+      {warning::cpu_watchdog, "CPU watchdog"},
+      {warning::operating_time_limit, "operating time above 87600 h"},
+      {warning::battery_charge, "battery low"},
       {warning::reference_point, "reference point"}};
   fmt::print("warnings       {} (supported: {})\n", bits_text(x.warnings, warnings),
              bits_text(x.supported_warnings, warnings));
-  fmt::print("versions       profile {}.{}, software {}.{}\n", x.profile_version.major, x.profile_version.minor,
-             x.software_version.major, x.software_version.minor);
+  fmt::print("versions       profile {}.{}, software {}.{}\n", x.profile_version.major,
+             x.profile_version.minor, x.software_version.major, x.software_version.minor);
   fmt::print("operating time {:.1f} h\n", x.operating_time_tenth_h / 10.0);
   fmt::print("offset         {} (manufacturer {})\n", x.offset, x.manufacturer_offset);
   fmt::print("scaling        {} units/revolution, {} units total\n", x.units_per_revolution, x.total_range);
@@ -96,8 +102,8 @@ bool enter_pressed() {
 
 class Commissioning {
  public:
-  Commissioning(const GlobalOptions& global, const EncoderOptions& options, const config::EncoderSection& section,
-                Action action)
+  Commissioning(const GlobalOptions& global, const EncoderOptions& options,
+                const config::EncoderSection& section, Action action)
       : options_(options),
         device_(section.port, options.port, "encoder", clock_, global.trace),
         session_(device_.link(), with_station(section.session, action)) {}
@@ -105,19 +111,24 @@ class Commissioning {
   int run(Action action) {
     session_.activate(clock_.now());
     if (action == Action::set_address) return set_address();
-    if (!drive([&] { return snapshot().data_exchange && snapshot().exchanges > 2; })) return failed_to("exchange data");
+    if (!drive([&] { return snapshot().data_exchange && snapshot().exchanges > 2; }))
+      return failed_to("exchange data");
     switch (action) {
       case Action::preset:
-        if (!session_.preset(options_.value)) return refuse("preset (value beyond the total measuring range?)");
+        if (!session_.preset(options_.value))
+          return refuse("preset (value beyond the total measuring range?)");
         if (!finish_command()) return failed_to("acknowledge the preset");
         break;
       case Action::direction:
-        if (!session_.set_direction(options_.direction == "ccw" ? encoder::CodeSequence::ccw : encoder::CodeSequence::cw))
+        if (!session_.set_direction(options_.direction == "ccw" ? encoder::CodeSequence::ccw
+                                                                : encoder::CodeSequence::cw))
           return refuse("change direction (needs status bits and commissioning: true)");
         if (!finish_command()) return failed_to("acknowledge the direction change");
         break;
-      case Action::teach_in: return teach_in();
-      default: break;
+      case Action::teach_in:
+        return teach_in();
+      default:
+        break;
     }
     (void)drive_for(20ms);
     print_status(session_);
@@ -134,27 +145,32 @@ class Commissioning {
   const encoder::Snapshot& snapshot() const { return session_.snapshot(); }
 
   int set_address() {
-    if (!session_.set_slave_address(static_cast<std::uint8_t>(options_.value))) return refuse("set the address");
+    if (!session_.set_slave_address(static_cast<std::uint8_t>(options_.value)))
+      return refuse("set the address");
     if (!drive([&] { return session_.address_change_status() != profibus::RequestStatus::pending; }) ||
         session_.address_change_status() != profibus::RequestStatus::done)
       return failed_to("accept the new address");
-    fmt::print("encoder now answers at station {} (stored in its EEPROM); set station_address: {} in the config\n",
-               options_.value, options_.value);
+    fmt::print(
+        "encoder now answers at station {} (stored in its EEPROM); set station_address: {} in the config\n",
+        options_.value, options_.value);
     return kExitOk;
   }
 
   int teach_in() {
-    if (!session_.teach_in_start()) return refuse("start Teach-In (needs status bits and commissioning: true)");
+    if (!session_.teach_in_start())
+      return refuse("start Teach-In (needs status bits and commissioning: true)");
     if (!finish_command()) return failed_to("start Teach-In");
     session_.clear_command();
-    fmt::print("Teach-In started at {} (un-scaled). Move the axis to the end point without crossing the\n"
-               "encoder's zero, then press Enter.\n",
-               snapshot().position_counts);
+    fmt::print(
+        "Teach-In started at {} (un-scaled). Move the axis to the end point without crossing the\n"
+        "encoder's zero, then press Enter.\n",
+        snapshot().position_counts);
     if (!drive(enter_pressed, 3600s)) return failed_to("see Enter");
     if (!session_.teach_in_end(options_.value)) return refuse("end Teach-In");
     if (!finish_command()) return failed_to("end Teach-In");
-    fmt::print("total resolution {}: enter it as measuring_units (units_select: per_total_range) in the config\n",
-               snapshot().command.result);
+    fmt::print(
+        "total resolution {}: enter it as measuring_units (units_select: per_total_range) in the config\n",
+        snapshot().command.result);
     print_status(session_);
     return kExitOk;
   }
@@ -170,10 +186,10 @@ class Commissioning {
 
   template <class Done>
   bool drive(Done&& done, link::Duration timeout = link::Duration::zero()) {
-    if (timeout == link::Duration::zero())
-      timeout = std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.timeout_s));
-    return drive_until(clock_, timeout, [&](auto now) { state_ = session_.poll(now); },
-                       [&] { return state_ == link::Lifecycle::fault || done(); }) &&
+    if (timeout == link::Duration::zero()) timeout = options_.timeout();
+    return drive_until(
+               clock_, timeout, [&](auto now) { state_ = session_.poll(now); },
+               [&] { return state_ == link::Lifecycle::fault || done(); }) &&
            state_ != link::Lifecycle::fault;
   }
   bool drive_for(link::Duration span) {
@@ -220,29 +236,31 @@ int run_encoder(const GlobalOptions& global, const EncoderOptions& options, Acti
 
 void add_encoder_commands(CLI::App& app, Commands& commands) {
   auto options = std::make_shared<EncoderOptions>();
-  auto* group = app.add_subcommand("encoder", "Commission the Scancon SCH88BEX encoder (PROFIBUS DP, 8E1)");
-  group->require_subcommand(1);
-  group->add_option("--port", options->port, "Serial port (default: from the cell config)");
-  group->add_option("--timeout", options->timeout_s, "Seconds to wait for the encoder")
-      ->check(CLI::Range(0.1, 3600.0))
-      ->capture_default_str();
+  auto* group = add_device_group(app, "encoder", "Commission the Scancon SCH88BEX encoder (PROFIBUS DP, 8E1)",
+                                 *options, "Seconds to wait for the encoder");
   auto add = [&](const char* name, const char* help, Action action) {
     auto* sub = group->add_subcommand(name, help);
     commands.on(sub, [&commands, options, action] { return run_encoder(commands.global, *options, action); });
     return sub;
   };
   add("status", "Start the encoder up and print position, velocity and status bits", Action::status);
-  add("diag", "Print status and the decoded diagnosis (alarms, warnings, resolution, versions, …)", Action::diag);
+  add("diag", "Print status and the decoded diagnosis (alarms, warnings, resolution, versions, …)",
+      Action::diag);
   auto* preset = add("preset", "Preset the position to a value (in measuring units)", Action::preset);
   preset->add_option("value", options->value, "New position in measuring units")->required();
-  auto* direction = add("direction", "Change the counting direction on the fly (commissioning mode)", Action::direction);
+  auto* direction =
+      add("direction", "Change the counting direction on the fly (commissioning mode)", Action::direction);
   direction->add_option("sequence", options->direction, "cw or ccw: the direction in which counts increase")
       ->required()
       ->check(CLI::IsMember({"cw", "ccw"}));
-  auto* address = add("set-address", "Give an encoder at station 126 a new address (Set_Slave_Add)", Action::set_address);
-  address->add_option("address", options->value, "New station address")->required()->check(CLI::Range(1, 125));
-  auto* teach = add("teach-in", "Teach-In: start here, move to the end point, press Enter, get the total resolution",
-                    Action::teach_in);
+  auto* address =
+      add("set-address", "Give an encoder at station 126 a new address (Set_Slave_Add)", Action::set_address);
+  address->add_option("address", options->value, "New station address")
+      ->required()
+      ->check(CLI::Range(1, 125));
+  auto* teach =
+      add("teach-in", "Teach-In: start here, move to the end point, press Enter, get the total resolution",
+          Action::teach_in);
   teach->add_option("--distance", options->value, "The travelled distance in desired units")
       ->required()
       ->check(CLI::Range(1, (1 << 25) - 1));

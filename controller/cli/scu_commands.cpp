@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "cli/device_group.hpp"
 #include "cli/device_link.hpp"
 #include "cli/drive.hpp"
 #include "cli/exit_codes.hpp"
@@ -18,14 +19,13 @@ namespace {
 
 enum class Action { status, move, stop };
 
-struct ScuOptions {
-  std::optional<std::string> port;
+struct ScuOptions : DeviceOptions {
+  ScuOptions() { timeout_s = 60.0; }
   int function = 1;
   int actuator = 1;
   std::int32_t position_edges = 0;
   int speed = 50;
   bool fast = false;
-  double timeout_s = 60.0;
 };
 
 void print_snapshot(const scu::Snapshot& s) {
@@ -130,8 +130,7 @@ class Commissioning {
 
   template <class Done>
   bool drive(Done&& done) {
-    const auto timeout =
-        std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.timeout_s));
+    const auto timeout = options_.timeout();
     return drive_until(
                clock_, timeout, [&](auto now) { state_ = session_.poll(now); },
                [&] { return state_ == link::Lifecycle::fault || done(); }) &&
@@ -171,12 +170,8 @@ int run_scu(const GlobalOptions& global, const ScuOptions& options, Action actio
 void add_scu_commands(CLI::App& app, Commands& commands) {
   auto options = std::make_shared<ScuOptions>();
   auto* group =
-      app.add_subcommand("scu", "Commission the Ewellix SCU control unit and its actuators (RS232)");
-  group->require_subcommand(1);
-  group->add_option("--port", options->port, "Serial port (default: from the cell config)");
-  group->add_option("--timeout", options->timeout_s, "Seconds to wait for the SCU or the motion")
-      ->check(CLI::Range(0.1, 3600.0))
-      ->capture_default_str();
+      add_device_group(app, "scu", "Commission the Ewellix SCU control unit and its actuators (RS232)",
+                       *options, "Seconds to wait for the SCU or the motion");
 
   auto add = [&](const char* name, const char* help, Action action) {
     auto* sub = group->add_subcommand(name, help);

@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include "cli/device_group.hpp"
 #include "cli/device_link.hpp"
 #include "cli/drive.hpp"
 #include "cli/exit_codes.hpp"
@@ -22,11 +23,10 @@ using namespace std::chrono_literals;
 
 enum class Action { status, start, stop, set, reset };
 
-struct SpindleOptions {
-  std::optional<std::string> port;
+struct SpindleOptions : DeviceOptions {
+  SpindleOptions() { timeout_s = 30.0; }
   double frequency_hz = 0.0;
   std::string direction = "cw";
-  double timeout_s = 30.0;
 };
 
 std::string describe_state(const spindle::Snapshot& s) {
@@ -111,8 +111,7 @@ class Commissioning {
 
   template <class Done>
   bool drive(Done&& done) {
-    const auto timeout =
-        std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.timeout_s));
+    const auto timeout = options_.timeout();
     return drive_until(
                clock_, timeout, [&](auto now) { state_ = session_.poll(now); },
                [&] { return state_ == link::Lifecycle::fault || done(); }) &&
@@ -176,12 +175,8 @@ int run_spindle(const GlobalOptions& global, const SpindleOptions& options, Acti
 
 void add_spindle_commands(CLI::App& app, Commands& commands) {
   auto options = std::make_shared<SpindleOptions>();
-  auto* group = app.add_subcommand("spindle", "Commission the SycoTec spindle converter (RS232)");
-  group->require_subcommand(1);
-  group->add_option("--port", options->port, "Serial port (default: from the cell config)");
-  group->add_option("--timeout", options->timeout_s, "Seconds to wait for the converter")
-      ->check(CLI::Range(0.1, 3600.0))
-      ->capture_default_str();
+  auto* group = add_device_group(app, "spindle", "Commission the SycoTec spindle converter (RS232)", *options,
+                                 "Seconds to wait for the converter");
 
   auto add = [&](const char* name, const char* help, Action action) {
     auto* sub = group->add_subcommand(name, help);
