@@ -73,6 +73,7 @@ struct CellState {
   SpindleState spindle;
   std::array<LinkState, kDevices> links{};
   std::uint32_t scu_error_word = 0;  // error code 1, bits numbered from 1 = LSB
+  link::Duration scu_position_age{};  // since the SCU's positions arrived (its RC reply, every keep-alive)
   bool scu_remote = false;           // remote mode open (RO done, RC running)
 };
 

@@ -57,7 +57,11 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
       if (std::abs(a.encoder_mm_s) > cell_.limits.overspeed_mm_s)
         causes[idx(Rule::overspeed)] = Text::format("axis {} at {:.1f} mm/s by the encoder (limit {:g} mm/s)", c.name,
                                                     a.encoder_mm_s, cell_.limits.overspeed_mm_s);
-      if (std::abs(a.scu_mm - a.encoder_mm) > cell_.limits.disagreement_mm)
+      // The SCU's position is as old as its last RC reply (up to a keep-alive period), the encoder's is
+      // fresh: what the axis travelled meanwhile is no disagreement. Right after each reply the
+      // allowance is back to nothing, so a real one is caught within a keep-alive period.
+      const double travelled = std::abs(a.encoder_mm_s) * link::to_seconds(s.scu_position_age);
+      if (std::abs(a.scu_mm - a.encoder_mm) > cell_.limits.disagreement_mm + travelled)
         causes[idx(Rule::disagreement)] =
             Text::format("axis {}: SCU {:.2f} mm, encoder {:.2f} mm (tolerance {:g} mm)", c.name, a.scu_mm,
                          a.encoder_mm, cell_.limits.disagreement_mm);

@@ -62,7 +62,7 @@ void CellDevices::poll_homed(link::TimePoint now) {
     if (r.valid && r.data_id == kStatus2Group) {
       homed_bits_ = 0;
       for (std::size_t a = 0; a < r.value.size() && a < cell::kMaxAxes; ++a)
-        if (r.value[a] & 0x01u) homed_bits_ = static_cast<std::uint8_t>(homed_bits_ | (1u << a));
+        if ((r.value[a] & 0x01u) != 0) homed_bits_ = static_cast<std::uint8_t>(homed_bits_ | (1u << a));
     }
   }
   if (now >= next_homed_read_ && scu_->read(kStatus2Group)) next_homed_read_ = now + kHomedReadPeriod;
@@ -77,6 +77,7 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
     const auto& snap = scu_->snapshot();
     out.links[static_cast<std::size_t>(cell::Device::scu)] = link_state(scu_->state(), scu_->health(), now, activated_at_);
     out.scu_error_word = snap.errors.raw();
+    out.scu_position_age = snap.last_refresh ? now - *snap.last_refresh : link::Duration{};
     out.scu_remote = snap.remote_open && scu_->state() == link::Lifecycle::active;
     for (std::size_t i = 0; i < cell_.axes.size(); ++i) {
       const auto& axis = cell_.axes[i];
@@ -86,7 +87,7 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
       st.present = act.status.present;
       st.scu_mm = act.position_edges / axis.edges_per_mm;
       st.moving = act.status.motion_active;
-      st.homed = (homed_bits_ >> a) & 1u;
+      st.homed = ((static_cast<unsigned>(homed_bits_) >> a) & 1u) != 0;
       st.actuator_fault = snap.errors.actuator_fault(axis.actuator);
     }
   }
