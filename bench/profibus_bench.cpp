@@ -3,6 +3,7 @@
 //
 //   one cycle = TSYN (33 bit idle before the request) + request (SD2, 13 characters)
 //             + min_TSDR (11 bit before the reply) + reply (SD3, 14 characters), 11 bits per character
+//   (bench/dp_line_limit.hpp, shared with encoder_bench)
 //
 // ratio_vs_line = achieved cycles per virtual second / that limit (goal ≥ 0.9). The virtual clock
 // jumps from event to event (sim.next_delivery(), the master's and slave's deadlines), so polling
@@ -15,8 +16,8 @@
 #include <array>
 #include <chrono>
 
+#include "dp_line_limit.hpp"
 #include "link/sim_link.hpp"
-#include "profibus/bus_timing.hpp"
 #include "profibus/dp_master.hpp"
 #include "profibus/dp_slave.hpp"
 
@@ -40,12 +41,6 @@ struct CountingDevice final : SlaveBehaviour {
     return kInputs;
   }
 };
-
-// Frame lengths from the codec itself, so the reference follows the encoding rules.
-std::size_t frame_chars(std::size_t data) {
-  const std::array<std::uint8_t, kMaxData> zeros{};
-  return encoded_size(make_frame(5, 2, 0x7d, std::span<const std::uint8_t>(zeros.data(), data)));
-}
 
 void BM_DataExchangeOverSimLink(benchmark::State& state) {
   link::VirtualClock clock;
@@ -92,15 +87,13 @@ void BM_DataExchangeOverSimLink(benchmark::State& state) {
   if (master.health().timeouts != 0 || master.lifecycle() != link::Lifecycle::active)
     state.SkipWithError("the exchange did not run cleanly");
 
-  const double wire_s =
-      link::to_seconds(bit_times(line, kTsynBits) + bit_times(line, config.min_tsdr_bits)) +
-      static_cast<double>((frame_chars(kOutputs) + frame_chars(kInputs)) * line.bits_per_char()) / line.baud;
+  const double wire_s = bench::dx_cycle_wire_s(line, config.min_tsdr_bits, kOutputs, kInputs);
   const double rate = cycles / virtual_s;
   state.counters["cycles_per_virtual_s"] = rate;
   state.counters["line_limit_per_s"] = 1.0 / wire_s;
   state.counters["ratio_vs_line"] = rate * wire_s;
-  state.counters["request_chars"] = static_cast<double>(frame_chars(kOutputs));
-  state.counters["reply_chars"] = static_cast<double>(frame_chars(kInputs));
+  state.counters["request_chars"] = static_cast<double>(bench::dx_frame_chars(kOutputs));
+  state.counters["reply_chars"] = static_cast<double>(bench::dx_frame_chars(kInputs));
   const double cpu_per_cycle = link::to_seconds(master_cpu) / cycles;
   state.counters["master_cpu_us_per_cycle"] = cpu_per_cycle * 1e6;
   state.counters["master_cpu_vs_wire"] = cpu_per_cycle / wire_s;
