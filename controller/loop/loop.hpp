@@ -59,6 +59,8 @@ class Loop {
 
   // For the cycle body: `auto t = loop.time_stage(index(ControlStage::monitor));`
   [[nodiscard]] ScopedStageTimer time_stage(std::size_t stage) noexcept { return stages_.time(stage); }
+  // For a body whose stages follow each other: `auto seq = loop.stage_sequence(); seq.begin(…);`
+  [[nodiscard]] StageSequence stage_sequence() noexcept { return StageSequence(stages_); }
 
   [[nodiscard]] link::Duration period() const noexcept { return period_; }
   [[nodiscard]] const LoopStats& stats() const noexcept { return stats_; }

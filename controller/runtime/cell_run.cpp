@@ -114,36 +114,33 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
   const double t = link::to_seconds(now - start_);
   if (hook_) hook_(t, *this);
   take_commands(t, interrupt);
-  {
-    auto timer = loop_->time_stage(index(ControlStage::read_sessions));
-    if (emulated_ && options_.mode == RunMode::virtual_time) emulated_->poll(now);
-    devices_->poll(now);
+  {  // the stages, timed back to back; the last ends with this block
+  auto stages = loop_->stage_sequence();
+  stages.begin(index(ControlStage::read_sessions));
+  if (emulated_ && options_.mode == RunMode::virtual_time) emulated_->poll(now);
+  devices_->poll(now);
+
+  stages.begin(index(ControlStage::state));
+  devices_->read(now, state_);
+
+  stages.begin(index(ControlStage::monitor));
+  const auto fresh = monitor_.evaluate(state_, {.stop = operator_stop_, .emergency_stop = emergency_stop_}, t);
+  for (std::size_t r = 0; r < monitor::kRuleCount; ++r) {
+    if (!fresh.test(r)) continue;
+    const auto rule = static_cast<monitor::Rule>(r);
+    const auto& latch = monitor_.latch(rule);
+    journal_.post(t, journal::Fault{monitor::to_string(rule), static_cast<std::uint8_t>(latch.category), latch.detail});
   }
-  {
-    auto timer = loop_->time_stage(index(ControlStage::state));
-    devices_->read(now, state_);
-  }
-  {
-    auto timer = loop_->time_stage(index(ControlStage::monitor));
-    const auto fresh = monitor_.evaluate(state_, {.stop = operator_stop_, .emergency_stop = emergency_stop_}, t);
-    for (std::size_t r = 0; r < monitor::kRuleCount; ++r) {
-      if (!fresh.test(r)) continue;
-      const auto rule = static_cast<monitor::Rule>(r);
-      const auto& latch = monitor_.latch(rule);
-      journal_.post(t, journal::Fault{monitor::to_string(rule), static_cast<std::uint8_t>(latch.category), latch.detail});
-    }
-  }
-  {
-    auto timer = loop_->time_stage(index(ControlStage::supervisor));
-    supervisor_->step(state_, monitor_.demanded_stop(), t);
-    const auto& sp = supervisor_->intents().spindle;
-    monitor_.expect_spindle(sp.run, sp.frequency_hz);
-    if (supervisor_->cell_up() && !monitor_.armed() && !shutdown_since_) monitor_.arm();
-    if (!supervisor_->cell_up() && monitor_.armed()) monitor_.disarm();
-  }
-  {
-    auto timer = loop_->time_stage(index(ControlStage::write_sessions));
-    if (!shutdown_since_) devices_->apply(supervisor_->intents(), now);
+
+  stages.begin(index(ControlStage::supervisor));
+  supervisor_->step(state_, monitor_.demanded_stop(), t);
+  const auto& sp = supervisor_->intents().spindle;
+  monitor_.expect_spindle(sp.run, sp.frequency_hz);
+  if (supervisor_->cell_up() && !monitor_.armed() && !shutdown_since_) monitor_.arm();
+  if (!supervisor_->cell_up() && monitor_.armed()) monitor_.disarm();
+
+  stages.begin(index(ControlStage::write_sessions));
+  if (!shutdown_since_) devices_->apply(supervisor_->intents(), now);
   }
   if (supervisor::is_final(supervisor_->state()) && !shutdown_since_) {
     devices_->deactivate(now);  // axes stopped, remote mode closed, spindle stopped

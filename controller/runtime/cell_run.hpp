@@ -75,6 +75,7 @@ class CellRun {
   [[nodiscard]] const monitor::Monitor& monitor() const noexcept { return monitor_; }
   [[nodiscard]] const StatusBoard& status() const noexcept { return board_; }
   [[nodiscard]] const CellLinks& links() const noexcept { return *links_; }
+  [[nodiscard]] const loop::Loop& loop() const noexcept { return *loop_; }
   [[nodiscard]] std::vector<std::string> realtime_warnings() const { return realtime_warnings_; }
 
  private:
