@@ -1,0 +1,136 @@
+#!/usr/bin/env bash
+# End to end, as an integrator commissions an emulated cell: `cellctl emulate` publishes the three
+# devices' pseudo-terminals, then the commissioning commands talk to them through the cell config —
+# SCU status and a move, spindle start/status/stop, encoder status — and Ctrl-C ends the emulation
+# cleanly (exit 0, published links removed).
+#
+# usage: emulate_commissioning_test.sh <cellctl binary> <cell config>
+# The config is copied with publish_as and the encoder's EEPROM state file moved into a fresh temp
+# dir, so parallel runs (and a user's own `cellctl emulate`) do not collide.
+set -euo pipefail
+
+if [[ $# -ne 2 ]]; then
+  echo "usage: $0 <cellctl binary> <cell config>" >&2
+  exit 2
+fi
+cellctl=$1
+source_config=$2
+
+work=$(mktemp -d "${TMPDIR:-/tmp}/cellctl-e2e.XXXXXX")
+config=$work/cell.yaml
+emulate_log=$work/emulate.log
+emulate_pid=""
+
+cleanup() {
+  if [[ -n $emulate_pid ]] && kill -0 "$emulate_pid" 2>/dev/null; then
+    kill -TERM "$emulate_pid" 2>/dev/null || true
+    wait "$emulate_pid" 2>/dev/null || true
+  fi
+  rm -rf "$work"
+}
+trap cleanup EXIT
+
+fail() {
+  echo "FAIL: $*" >&2
+  if [[ -s $emulate_log ]]; then
+    echo "--- cellctl emulate output:" >&2
+    cat "$emulate_log" >&2
+  fi
+  exit 1
+}
+
+# --- the config copy -------------------------------------------------------------------------------
+# publish_as goes right after `port:` in each device section; the encoder emulator's state_file is
+# replaced. Top-level keys start in column 0, so the current section is the last one seen.
+awk -v dir="$work" '
+  /^[A-Za-z_]+:/ { section = $1; sub(":", "", section) }
+  { print }
+  /^  port:/ && (section == "scu" || section == "spindle" || section == "encoder") {
+    print "  publish_as: " dir "/" section
+  }
+' "$source_config" | sed -E "s|^(    state_file:).*|\1 $work/encoder.eeprom|" >"$config"
+[[ $(grep -c "^  publish_as: $work/" "$config") -eq 3 ]] ||
+  fail "could not point publish_as of scu, spindle and encoder into $work (does $source_config still have their port: keys?)"
+grep -q "^    state_file: $work/encoder.eeprom" "$config" ||
+  fail "could not move the encoder emulator's state_file into $work"
+links=("$work/scu" "$work/spindle" "$work/encoder")
+
+# --- cellctl emulate in the background -------------------------------------------------------------
+"$cellctl" -c "$config" emulate >"$emulate_log" 2>&1 &
+emulate_pid=$!
+
+# Condition wait (at most 10 s): all three links published and the emulation loop running.
+ready=false
+for _ in $(seq 100); do
+  kill -0 "$emulate_pid" 2>/dev/null || fail "cellctl emulate exited before publishing its pseudo-terminals"
+  if [[ -L ${links[0]} && -L ${links[1]} && -L ${links[2]} ]] && grep -q "Ctrl-C ends the emulation" "$emulate_log"; then
+    ready=true
+    break
+  fi
+  sleep 0.1
+done
+$ready || fail "cellctl emulate did not publish ${links[*]} within 10 s"
+for l in "${links[@]}"; do
+  [[ -c $(readlink "$l") ]] || fail "$l points to $(readlink "$l"), which is not a character device"
+done
+
+# --- the commissioning commands --------------------------------------------------------------------
+out=""
+# run <what> <cellctl arguments…>: the command must exit 0; its output is kept in $out.
+run() {
+  local what=$1
+  shift
+  local rc=0
+  local started=$SECONDS
+  out=$("$cellctl" -c "$config" "$@" 2>&1) || rc=$?
+  printf '$ cellctl %s   (exit %d, %d s)\n%s\n' "$*" "$rc" $((SECONDS - started)) "$out"
+  [[ $rc -eq 0 ]] || fail "$what: \`cellctl $*\` exited $rc, expected 0"
+}
+# expect <what> <extended regex>: the last command's output must match.
+expect() {
+  grep -Eq -- "$2" <<<"$out" || fail "$1: the output does not match /$2/"
+}
+
+run "SCU status" scu status
+expect "SCU status" "^actuator 1 +-?[0-9]+ edges, at rest"
+expect "SCU status" "^errors +none"
+
+run "SCU move" scu move --function 1 --actuator 1 --position-edges 200 --speed 100
+expect "SCU move" "^function F1 +arrived"
+# The SCU's own arrival tolerance (arrival_tolerance_edges in the config) is 2 edges.
+run "SCU status after the move" scu status
+expect "SCU status after the move" "^actuator 1 +(198|199|200|201|202) edges, at rest"
+
+run "spindle start" spindle start --frequency 400
+expect "spindle start" "^motion +at speed"
+expect "spindle start" "^frequency +set 400 Hz"
+run "spindle status while running" spindle status
+expect "spindle status while running" "^motion +at speed"
+expect "spindle status while running" "^frequency +set 400 Hz, actual (39[5-9]|40[0-5]) Hz"
+expect "spindle status while running" "^state +ok"
+run "spindle stop" spindle stop
+expect "spindle stop" "^motion +at rest"
+
+run "encoder status" encoder status
+expect "encoder status" "^bus +active \((data_exchange|diag_cyclic)\), [1-9][0-9]* exchanges"
+expect "encoder status" "^position +[0-9]+ counts = [0-9]+\.[0-9]{3} mm"
+# The encoder's shaft turns with axis 1, which the SCU moved to 200 edges = 20 mm by its own sensor;
+# that sensor reads 0.2 % long (scale_error in the config), so the encoder sees 20 / 1.002 = 19.96 mm.
+expect "encoder status: the axis the SCU moved" "^position +[0-9]+ counts = 19\.9[0-9]{2} mm"
+
+# --- Ctrl-C ends the emulation ---------------------------------------------------------------------
+kill -INT "$emulate_pid"
+for _ in $(seq 100); do
+  kill -0 "$emulate_pid" 2>/dev/null || break
+  sleep 0.1
+done
+kill -0 "$emulate_pid" 2>/dev/null && fail "cellctl emulate still runs 10 s after SIGINT"
+rc=0
+wait "$emulate_pid" || rc=$?
+emulate_pid=""
+[[ $rc -eq 0 ]] || fail "cellctl emulate exited $rc after SIGINT, expected 0"
+grep -q "emulation ended" "$emulate_log" || fail "cellctl emulate did not say the emulation ended"
+for l in "${links[@]}"; do
+  [[ ! -e $l && ! -L $l ]] || fail "cellctl emulate left $l behind"
+done
+echo "PASS: emulate + scu/spindle/encoder commissioning over published pseudo-terminals"
