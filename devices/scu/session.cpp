@@ -325,6 +325,9 @@ void Session::close_finished_executions() {
 
 void Session::retry_or_give_up(link::TimePoint now, const char* why) {
   if (!in_flight_) return;
+  const bool is_stop = in_flight_->purpose == Purpose::stop || in_flight_->purpose == Purpose::emergency_stop ||
+                       in_flight_->purpose == Purpose::release_emergency;
+  if (attempts_ <= config_.retries && !urgent_.empty() && !is_stop && defer_for_stop(now)) return;
   if (attempts_ <= config_.retries) {
     ++health_.retries;
     transmit(*in_flight_, now);
@@ -357,6 +360,22 @@ void Session::retry_or_give_up(link::TimePoint now, const char* why) {
     case Purpose::read:
       return;  // the next refresh or the caller's next read will do
   }
+}
+
+bool Session::defer_for_stop(link::TimePoint now) {
+  // A stop queued while this request waited for its reply must not wait for its retries as well
+  // (up to retries × reply_timeout): the stop goes now, the request is tried again after it. A
+  // keep-alive is not re-queued; the schedule sends the next one.
+  const Pending deferred = *in_flight_;
+  const bool requeue = deferred.purpose == Purpose::position || deferred.purpose == Purpose::speed ||
+                       deferred.purpose == Purpose::execute || deferred.purpose == Purpose::read;
+  if (!requeue && deferred.purpose != Purpose::keepalive) return false;
+  if (requeue && !normal_.push_front(deferred)) return false;
+  ++health_.retries;
+  in_flight_.reset();
+  replies_.expect_nothing();
+  send_next(now);
+  return true;
 }
 
 void Session::send_next(link::TimePoint now) {

@@ -99,6 +99,7 @@ class Session {
   void on_refusal(const Reply& reply, const Pending& p);
   void on_refresh(std::span<const std::uint8_t> data, link::TimePoint now);
   void retry_or_give_up(link::TimePoint now, const char* why);
+  [[nodiscard]] bool defer_for_stop(link::TimePoint now);
   void send_next(link::TimePoint now);
   void transmit(const Pending& p, link::TimePoint now);
   void close_finished_executions();

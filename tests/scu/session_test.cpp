@@ -247,5 +247,23 @@ TEST(ScuSession, RejectsCommandsItCannotCarryOut) {
                std::invalid_argument);
 }
 
+TEST(ScuSession, AnEmergencyStopOvertakesTheRetriesOfALostReply) {
+  Rig rig(1);
+  ASSERT_TRUE(rig.activate());
+  const ActuatorTarget far[] = {{1, 15000}};
+  ASSERT_TRUE(rig.session.move_to(1, far, 100, true));
+  ASSERT_TRUE(rig.run_until(2s, [&] { return rig.session.snapshot().actuators[0].status.motion_active; }));
+  // The replies to the next two requests are lost; an emergency stop comes while the first waits.
+  rig.emulator.drop_next_replies(2);
+  ASSERT_TRUE(rig.session.read(0x0011));
+  cellctl::testing::run_for(rig.clock, 1ms, 50ms, [&](link::TimePoint t) { rig.step(t); });  // the read is out
+  const auto asked = rig.clock.now();
+  ASSERT_TRUE(rig.session.emergency_stop());
+  ASSERT_TRUE(rig.run_until(1s, [&] { return rig.emulator.emergency_stop_active(); }));
+  // One reply time-out (150 ms) and the F20 on the line — not the retries of the lost request first.
+  EXPECT_LE(rig.clock.now() - asked, 200ms);
+  EXPECT_FALSE(rig.emulator.actuator(1).active()) << "the motion stopped";
+}
+
 }  // namespace
 }  // namespace cellctl::scu
