@@ -13,13 +13,13 @@ namespace cellctl::cell {
 inline constexpr std::size_t kMaxAxes = 6;
 
 struct AxisState {
-  bool present = false;      // the SCU reports the actuator
-  double scu_mm = 0.0;       // the SCU's own position (its edges ÷ edges_per_mm)
-  bool moving = false;       // SCU status 1: motion active
-  bool homed = false;        // SCU status 2: initialised
+  bool present = false;  // the SCU reports the actuator
+  double scu_mm = 0.0;   // the SCU's own position (its edges ÷ edges_per_mm)
+  bool moving = false;   // SCU status 1: motion active
+  bool homed = false;    // SCU status 2: initialised
   bool actuator_fault = false;
-  bool measured = false;     // the encoder measures this axis
-  double encoder_mm = 0.0;   // valid when measured and the encoder is in data exchange
+  bool measured = false;    // the encoder measures this axis
+  double encoder_mm = 0.0;  // valid when measured and the encoder is in data exchange
   double encoder_mm_s = 0.0;
 
   // The best position there is: the encoder's where it measures the axis, else the SCU's.
@@ -28,9 +28,9 @@ struct AxisState {
 
 struct EncoderState {
   bool data_exchange = false;
-  bool ready = false;           // status bit "Ready" (or data exchange in status-less modes)
-  bool alarm = false;           // diagnosis: an alarm is set
-  bool limit_switch = false;    // status bit "Limit switch"
+  bool ready = false;         // status bit "Ready" (or data exchange in status-less modes)
+  bool alarm = false;         // diagnosis: an alarm is set
+  bool limit_switch = false;  // status bit "Limit switch"
   bool diagnosis_pending = false;
   double mm = 0.0;
   double mm_s = 0.0;
@@ -60,9 +60,9 @@ inline constexpr std::size_t kDevices = 3;
 }
 
 struct LinkState {
-  bool active = false;           // the session is in its active state
-  bool fault = false;            // the session gave up (its own link-fault deadline)
-  link::Duration silent_for{};   // since the last good reply
+  bool active = false;          // the session is in its active state
+  bool fault = false;           // the session gave up (its own link-fault deadline)
+  link::Duration silent_for{};  // since the last good reply
 };
 
 struct CellState {
@@ -72,9 +72,9 @@ struct CellState {
   EncoderState encoder;
   SpindleState spindle;
   std::array<LinkState, kDevices> links{};
-  std::uint32_t scu_error_word = 0;  // error code 1, bits numbered from 1 = LSB
+  std::uint32_t scu_error_word = 0;   // error code 1, bits numbered from 1 = LSB
   link::Duration scu_position_age{};  // since the SCU's positions arrived (its RC reply, every keep-alive)
-  bool scu_remote = false;           // remote mode open (RO done, RC running)
+  bool scu_remote = false;            // remote mode open (RO done, RC running)
 };
 
 }  // namespace cellctl::cell

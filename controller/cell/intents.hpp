@@ -11,18 +11,18 @@
 namespace cellctl::cell {
 
 struct AxisIntent {
-  std::uint32_t move_id = 0;   // changes when a new move starts
-  bool move = false;           // a move to target_mm is wanted (false: the axis should be still)
-  double target_mm = 0.0;      // in the SCU's frame (corrections included)
-  double speed_mm_s = 0.0;     // may change during the move (speed modulation)
-  bool soft = true;            // ramps on start and stop
+  std::uint32_t move_id = 0;  // changes when a new move starts
+  bool move = false;          // a move to target_mm is wanted (false: the axis should be still)
+  double target_mm = 0.0;     // in the SCU's frame (corrections included)
+  double speed_mm_s = 0.0;    // may change during the move (speed modulation)
+  bool soft = true;           // ramps on start and stop
 };
 
 struct SpindleIntent {
   bool run = false;
   double frequency_hz = 0.0;
   bool clockwise = true;
-  bool reset = false;          // clear a converter fault (operator reset)
+  bool reset = false;  // clear a converter fault (operator reset)
 };
 
 enum class Halt : std::uint8_t {

@@ -30,11 +30,12 @@ int run_check(const GlobalOptions& global, const std::vector<std::string>& recip
     try {
       const auto recipe = recipe::load_recipe(path, cell);
       const auto program = recipe::unroll(recipe);
-      fmt::print("{}: ok — '{}' version {} for cell '{}', {} steps\n", path, recipe.name, recipe.version, recipe.cell,
-                 program.instructions.size());
+      fmt::print("{}: ok — '{}' version {} for cell '{}', {} steps\n", path, recipe.name, recipe.version,
+                 recipe.cell, program.instructions.size());
     } catch (const recipe::RecipeErrors& e) {
       fmt::print("{}\n", e.what());
-      fmt::print("{}: {} problem{}; nothing was moved\n", path, e.errors().size(), e.errors().size() == 1 ? "" : "s");
+      fmt::print("{}: {} problem{}; nothing was moved\n", path, e.errors().size(),
+                 e.errors().size() == 1 ? "" : "s");
       ++bad;
     } catch (const config::ConfigError& e) {
       fmt::print("{}\n", e.what());

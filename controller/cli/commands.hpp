@@ -3,7 +3,6 @@
 // the action main runs once parsing is done (after logging and signal handling are set up).
 
 #include <CLI/CLI.hpp>
-
 #include <functional>
 
 #include "cli/options.hpp"

@@ -14,9 +14,10 @@ DeviceLink::DeviceLink(const config::PortConfig& port, const std::optional<std::
     serial_ = link::SerialLink::open(path_, port.line);
   } catch (const link::LinkError& e) {
     if (!override_port && port.emulated())
-      throw link::LinkError(fmt::format("{} (the cell config says the {} is emulated: start `cellctl emulate` first, "
-                                        "or give --port)",
-                                        e.what(), name));
+      throw link::LinkError(
+          fmt::format("{} (the cell config says the {} is emulated: start `cellctl emulate` first, "
+                      "or give --port)",
+                      e.what(), name));
     throw;
   }
   if (trace) traced_ = std::make_unique<link::TracingLink>(*serial_, clock, sink_, std::move(name));
@@ -24,6 +25,8 @@ DeviceLink::DeviceLink(const config::PortConfig& port, const std::optional<std::
 
 DeviceLink::~DeviceLink() = default;
 
-link::Link& DeviceLink::link() noexcept { return traced_ ? static_cast<link::Link&>(*traced_) : *serial_; }
+link::Link& DeviceLink::link() noexcept {
+  return traced_ ? static_cast<link::Link&>(*traced_) : *serial_;
+}
 
 }  // namespace cellctl::cli

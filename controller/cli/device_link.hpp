@@ -17,8 +17,8 @@ namespace cellctl::cli {
 class DeviceLink {
  public:
   // Throws link::LinkError with advice when the port cannot be opened.
-  DeviceLink(const config::PortConfig& port, const std::optional<std::string>& override_port, std::string name,
-             const link::Clock& clock, bool trace);
+  DeviceLink(const config::PortConfig& port, const std::optional<std::string>& override_port,
+             std::string name, const link::Clock& clock, bool trace);
   ~DeviceLink();
   [[nodiscard]] link::Link& link() noexcept;
   [[nodiscard]] const std::string& path() const noexcept { return path_; }

@@ -44,8 +44,9 @@ int run_emulate(const GlobalOptions& global) {
 }  // namespace
 
 void add_emulate_command(CLI::App& app, Commands& commands) {
-  auto* sub = app.add_subcommand(
-      "emulate", "Run the cell's devices as emulators on pseudo-terminals (published at each device's publish_as) until Ctrl-C");
+  auto* sub = app.add_subcommand("emulate",
+                                 "Run the cell's devices as emulators on pseudo-terminals (published at each "
+                                 "device's publish_as) until Ctrl-C");
   commands.on(sub, [&commands] { return run_emulate(commands.global); });
 }
 

@@ -1,20 +1,20 @@
 // cellctl: the motion-cell controller's command line. Each command group registers itself here.
 
-#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
 #include <exception>
 
 #include "cli/check_command.hpp"
-#include "cli/emulate_command.hpp"
-#include "cli/run_command.hpp"
 #include "cli/commands.hpp"
 #include "cli/drive.hpp"
+#include "cli/emulate_command.hpp"
 #include "cli/encoder_commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/logging.hpp"
+#include "cli/run_command.hpp"
 #include "cli/scu_commands.hpp"
 #include "cli/spindle_commands.hpp"
 #include "config/yaml_node.hpp"
@@ -25,12 +25,15 @@ std::atomic<bool> g_interrupted{false};
 }
 
 namespace {
-extern "C" void on_signal(int) { cellctl::cli::g_interrupted.store(true); }
+extern "C" void on_signal(int) {
+  cellctl::cli::g_interrupted.store(true);
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace cellctl::cli;
-  CLI::App app{"cellctl — controller for a motion cell (Ewellix SCU actuators, SycoTec spindle, Scancon encoder)"};
+  CLI::App app{
+      "cellctl — controller for a motion cell (Ewellix SCU actuators, SycoTec spindle, Scancon encoder)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "cellctl 0.1.0");
 

@@ -28,7 +28,8 @@ struct RunArgs {
 
 std::string default_journal_dir(const recipe::Recipe& r) {
   const auto now = std::chrono::system_clock::now();
-  return fmt::format("runs/{}-{:%Y%m%d-%H%M%S}", r.name, fmt::localtime(std::chrono::system_clock::to_time_t(now)));
+  return fmt::format("runs/{}-{:%Y%m%d-%H%M%S}", r.name,
+                     fmt::localtime(std::chrono::system_clock::to_time_t(now)));
 }
 
 int run_recipe(const GlobalOptions& global, const RunArgs& args) {
@@ -38,7 +39,8 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
     recipe = recipe::load_recipe(args.recipe, cell);
   } catch (const recipe::RecipeErrors& e) {
     for (const auto& err : e.errors()) spdlog::error("{}", err.what());
-    spdlog::error("{}: {} problem{}; nothing was moved", args.recipe, e.errors().size(), e.errors().size() == 1 ? "" : "s");
+    spdlog::error("{}: {} problem{}; nothing was moved", args.recipe, e.errors().size(),
+                  e.errors().size() == 1 ? "" : "s");
     return kExitConfig;
   }
 
@@ -60,15 +62,17 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   {
     StatusPrinter printer(run.status(), cell);
     OperatorConsole console(run);
-    if (console.active()) fmt::print("  type hold, unhold, stop, abort or reset + Enter; Ctrl-C stops, twice aborts\n");
+    if (console.active())
+      fmt::print("  type hold, unhold, stop, abort or reset + Enter; Ctrl-C stops, twice aborts\n");
     result = run.run(g_interrupted);
   }
   for (const auto& w : run.realtime_warnings()) spdlog::warn("real-time: {}", w);
   fmt::print("\n{}", result.summary_text);
   if (!result.failure.empty()) fmt::print("failed step: {}\n", result.failure);
-  fmt::print("{} cycles; {} s of cell time in {:.2f} s", result.cycles, fmt::format("{:.2f}", result.duration_s),
-             result.wall_s);
-  if (options.mode == runtime::RunMode::virtual_time) fmt::print(" ({:.0f}× real time)", result.duration_s / result.wall_s);
+  fmt::print("{} cycles; {} s of cell time in {:.2f} s", result.cycles,
+             fmt::format("{:.2f}", result.duration_s), result.wall_s);
+  if (options.mode == runtime::RunMode::virtual_time)
+    fmt::print(" ({:.0f}× real time)", result.duration_s / result.wall_s);
   fmt::print("\n{}\n", result.loop_summary);
   fmt::print("run record: {}\n", options.journal_dir.string());
 
@@ -79,7 +83,8 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
 }  // namespace
 
 void add_run_command(CLI::App& app, Commands& commands) {
-  auto* sub = app.add_subcommand("run", "Run a recipe on the cell (hardware, emulators on pseudo-terminals, or virtual time)");
+  auto* sub = app.add_subcommand(
+      "run", "Run a recipe on the cell (hardware, emulators on pseudo-terminals, or virtual time)");
   sub->footer(
       "Devices whose port is 'emulated' in the cell config run as emulators inside cellctl.\n"
       "Exit status: 0 complete, 1 stopped or aborted by a fault or a failed step, 3 bad config or recipe\n"
@@ -87,11 +92,13 @@ void add_run_command(CLI::App& app, Commands& commands) {
       "Ctrl-C once: operator stop (category from stops.operator); twice: emergency stop.");
   auto args = std::make_shared<RunArgs>();
   sub->add_option("recipe", args->recipe, "Recipe file (YAML)")->required()->check(CLI::ExistingFile);
-  auto* emulate = sub->add_flag("--emulate", args->emulate, "Every device on its emulator, on pseudo-terminals, in real time");
+  auto* emulate = sub->add_flag("--emulate", args->emulate,
+                                "Every device on its emulator, on pseudo-terminals, in real time");
   sub->add_flag("--virtual-time", args->virtual_time,
                 "Every device on its emulator over simulated lines, on a virtual clock, as fast as possible")
       ->excludes(emulate);
-  sub->add_option("--journal", args->journal_dir, "Directory for the run record (default runs/<recipe>-<time>)");
+  sub->add_option("--journal", args->journal_dir,
+                  "Directory for the run record (default runs/<recipe>-<time>)");
   commands.on(sub, [&commands, args] { return run_recipe(commands.global, *args); });
 }
 

@@ -11,7 +11,8 @@ namespace cellctl::cli {
 namespace {
 
 std::string line(const runtime::StatusView& v, const config::CellConfig& cell) {
-  std::string s = fmt::format("[{:7.1f} s] {:<10} step {}/{}", v.t, supervisor::to_string(v.state), v.step, v.steps);
+  std::string s =
+      fmt::format("[{:7.1f} s] {:<10} step {}/{}", v.t, supervisor::to_string(v.state), v.step, v.steps);
   if (!v.label.empty()) s += fmt::format(" {}", v.label);
   s += " |";
   for (std::size_t i = 0; i < v.axes && i < cell.axes.size(); ++i)

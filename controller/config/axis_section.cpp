@@ -16,14 +16,16 @@ std::vector<AxisConfig> parse_axes(const YamlNode& list) {
                  "min_speed_mm_s", "max_accel_mm_s2", "max_jerk_mm_s3", "encoder"});
     AxisConfig a;
     a.name = n.string_at("name");
-    if (a.name.empty() || !std::all_of(a.name.begin(), a.name.end(), [](char c) { return std::isalnum(c) || c == '_'; }))
+    if (a.name.empty() ||
+        !std::all_of(a.name.begin(), a.name.end(), [](char c) { return std::isalnum(c) || c == '_'; }))
       n.at("name").fail("an axis name is letters, digits and '_'");
     for (const auto& other : axes)
       if (other.name == a.name) n.at("name").fail(fmt::format("axis '{}' is defined twice", a.name));
     a.actuator = n.int_in<int>("actuator", 1, 6);
     for (const auto& other : axes)
       if (other.actuator == a.actuator)
-        n.at("actuator").fail(fmt::format("actuator {} already belongs to axis '{}'", a.actuator, other.name));
+        n.at("actuator")
+            .fail(fmt::format("actuator {} already belongs to axis '{}'", a.actuator, other.name));
     a.function = n.int_in<int>("function", 1, 10);
     a.edges_per_mm = n.double_in_or("edges_per_mm", 0.001, 1e6, 0.0);  // 0: the SCU section's
     a.min_mm = n.at("min_mm").as_double();
@@ -36,7 +38,8 @@ std::vector<AxisConfig> parse_axes(const YamlNode& list) {
     a.encoder = n.bool_or("encoder", false);
     if (a.encoder)
       for (const auto& other : axes)
-        if (other.encoder) n.at("encoder").fail(fmt::format("the encoder already measures axis '{}'", other.name));
+        if (other.encoder)
+          n.at("encoder").fail(fmt::format("the encoder already measures axis '{}'", other.name));
     axes.push_back(std::move(a));
   }
   return axes;

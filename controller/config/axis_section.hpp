@@ -12,17 +12,17 @@ namespace cellctl::config {
 
 struct AxisConfig {
   std::string name;
-  int actuator = 1;   // SCU actuator 1..6
-  int function = 1;   // SCU function F1..F10 that moves it (remote position + remote speed)
+  int actuator = 1;           // SCU actuator 1..6
+  int function = 1;           // SCU function F1..F10 that moves it (remote position + remote speed)
   double edges_per_mm = 0.0;  // SCU edges per mm: from the scu section's actuator unless given here
-  double min_mm = 0.0;   // the cell's travel limits for this axis (safety monitor and validator)
+  double min_mm = 0.0;        // the cell's travel limits for this axis (safety monitor and validator)
   double max_mm = 100.0;
   double max_speed_mm_s = 20.0;  // the fastest the cell lets this axis go
   double full_speed_mm_s = 0.0;  // what 100 % SCU speed is on this axis: the SCU actuator's (derived)
   double min_speed_mm_s = 0.5;   // below this the actuator may not move at all (checked before motion)
   double max_accel_mm_s2 = 40.0;
   double max_jerk_mm_s3 = 400.0;
-  bool encoder = false;          // measured by the cell's encoder
+  bool encoder = false;  // measured by the cell's encoder
 };
 
 [[nodiscard]] std::vector<AxisConfig> parse_axes(const YamlNode& list);

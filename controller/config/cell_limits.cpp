@@ -18,8 +18,7 @@ CellLimits parse_cell_limits(const YamlNode& n) {
   l.link_silence_ms = n.double_in_or("link_silence_ms", 10.0, 10000.0, l.link_silence_ms);
   l.spindle_min_hz = n.double_in_or("spindle_min_hz", 0.0, 100000.0, l.spindle_min_hz);
   l.spindle_max_hz = n.double_in_or("spindle_max_hz", 0.0, 100000.0, l.spindle_max_hz);
-  if (l.spindle_max_hz <= l.spindle_min_hz)
-    n.at("spindle_max_hz").fail("must be above spindle_min_hz");
+  if (l.spindle_max_hz <= l.spindle_min_hz) n.at("spindle_max_hz").fail("must be above spindle_min_hz");
   l.spindle_tolerance_hz = n.double_in_or("spindle_tolerance_hz", 0.1, 1000.0, l.spindle_tolerance_hz);
   return l;
 }

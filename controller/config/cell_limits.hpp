@@ -12,26 +12,26 @@ namespace cellctl::config {
 enum class StopCategory : std::uint8_t { immediate = 0, controlled_off = 1, controlled_hold = 2 };
 
 struct CellLimits {
-  double overspeed_mm_s = 25.0;         // encoder velocity above this stops the cell
-  double disagreement_mm = 2.0;         // SCU-reported vs encoder position on the measured axis
-  double link_silence_ms = 300.0;       // any device link silent longer than this is a fault
-  double spindle_min_hz = 0.0;          // the spindle's allowed running range
+  double overspeed_mm_s = 25.0;    // encoder velocity above this stops the cell
+  double disagreement_mm = 2.0;    // SCU-reported vs encoder position on the measured axis
+  double link_silence_ms = 300.0;  // any device link silent longer than this is a fault
+  double spindle_min_hz = 0.0;     // the spindle's allowed running range
   double spindle_max_hz = 1000.0;
-  double spindle_tolerance_hz = 5.0;    // actual vs set frequency while at speed
+  double spindle_tolerance_hz = 5.0;  // actual vs set frequency while at speed
 };
 
 struct StopReactions {
-  StopCategory fault = StopCategory::controlled_off;       // a limit or device fault
-  StopCategory link = StopCategory::immediate;             // a device that stopped answering
+  StopCategory fault = StopCategory::controlled_off;  // a limit or device fault
+  StopCategory link = StopCategory::immediate;        // a device that stopped answering
   StopCategory operator_stop = StopCategory::controlled_hold;
 };
 
 struct LoopConfig {
   double period_ms = 1.0;
-  bool realtime = true;      // try SCHED_FIFO + mlockall (warn and go on when not permitted)
+  bool realtime = true;  // try SCHED_FIFO + mlockall (warn and go on when not permitted)
   int priority = 80;
-  int cpu = -1;              // pin to this CPU when ≥ 0
-  double sample_ms = 20.0;   // journal sample period
+  int cpu = -1;             // pin to this CPU when ≥ 0
+  double sample_ms = 20.0;  // journal sample period
 };
 
 // The emulated cell's physics beyond each device's own (what couples them): the encoder's shaft

@@ -18,7 +18,8 @@ Functionality parse_functionality(const YamlNode& n) {
 
 encoder::PhysicalResolution parse_physical(const YamlNode& s, encoder::PhysicalResolution fallback) {
   encoder::PhysicalResolution phys;
-  phys.steps_per_revolution = s.int_in_or<std::uint32_t>("singleturn_steps", 2, 1u << 16, fallback.steps_per_revolution);
+  phys.steps_per_revolution =
+      s.int_in_or<std::uint32_t>("singleturn_steps", 2, 1u << 16, fallback.steps_per_revolution);
   phys.revolutions = s.int_in_or<std::uint32_t>("revolutions", 1, 1u << 15, fallback.revolutions);
   if (auto v = encoder::validate(phys))
     (s.has("singleturn_steps") ? s.at("singleturn_steps") : s.at("revolutions")).fail(v->describe());
@@ -28,7 +29,9 @@ encoder::PhysicalResolution parse_physical(const YamlNode& s, encoder::PhysicalR
 encoder::EncoderParameters parse_parameters(const YamlNode& s) {
   encoder::EncoderParameters p;
   p.functionality = s.has("functionality") ? parse_functionality(s.at("functionality")) : p.functionality;
-  if (const auto n = s.maybe("code_sequence")) p.code_sequence = n->as_choice({"cw", "ccw"}) == "ccw" ? encoder::CodeSequence::ccw : encoder::CodeSequence::cw;
+  if (const auto n = s.maybe("code_sequence"))
+    p.code_sequence =
+        n->as_choice({"cw", "ccw"}) == "ccw" ? encoder::CodeSequence::ccw : encoder::CodeSequence::cw;
   p.scaling = s.bool_or("scaling", p.scaling);
   p.measuring_units = s.int_in_or<std::uint32_t>("measuring_units", 1, 1u << 31, p.measuring_units);
   p.total_range = s.int_in_or<std::uint32_t>("total_range", 1, 1u << 31, p.total_range);
@@ -80,7 +83,8 @@ profibus::DpMasterConfig parse_bus(const YamlNode& s, const link::LineFormat& li
 }
 
 // The emulated encoder is the one the session expects unless the `emulator:` block says otherwise.
-encoder::EmulatorConfig parse_emulator(const std::optional<YamlNode>& block, const encoder::SessionConfig& session) {
+encoder::EmulatorConfig parse_emulator(const std::optional<YamlNode>& block,
+                                       const encoder::SessionConfig& session) {
   encoder::EmulatorConfig c;
   c.address = session.station_address;
   c.functionality = session.parameters.functionality;
@@ -103,11 +107,32 @@ encoder::EmulatorConfig parse_emulator(const std::optional<YamlNode>& block, con
 }  // namespace
 
 EncoderSection parse_encoder_section(const YamlNode& section) {
-  section.only_keys({"station_address", "master_address", "functionality", "code_sequence", "scaling",
-                     "measuring_units", "total_range", "units_select", "commissioning", "short_diagnosis",
-                     "without_status_bits", "lower_limit", "upper_limit", "physical_impulses", "time_base", "endless",
-                     "singleturn_steps", "revolutions", "counts_per_mm", "mm_per_revolution", "watchdog_ms",
-                     "slot_time_bits", "retries", "lost_after_ms", "cycle_ms", "emulator"},
+  section.only_keys({"station_address",
+                     "master_address",
+                     "functionality",
+                     "code_sequence",
+                     "scaling",
+                     "measuring_units",
+                     "total_range",
+                     "units_select",
+                     "commissioning",
+                     "short_diagnosis",
+                     "without_status_bits",
+                     "lower_limit",
+                     "upper_limit",
+                     "physical_impulses",
+                     "time_base",
+                     "endless",
+                     "singleturn_steps",
+                     "revolutions",
+                     "counts_per_mm",
+                     "mm_per_revolution",
+                     "watchdog_ms",
+                     "slot_time_bits",
+                     "retries",
+                     "lost_after_ms",
+                     "cycle_ms",
+                     "emulator"},
                     kPortKeys);
   EncoderSection out;
   out.port = parse_port(section, "encoder", link::line_8e1(19200));
@@ -118,9 +143,12 @@ EncoderSection parse_encoder_section(const YamlNode& section) {
   if (auto v = encoder::validate(s.parameters, s.physical)) section.fail("parameters: " + v->describe());
   s.bus = parse_bus(section, out.port.line);
   const bool per_count = section.has("counts_per_mm");
-  if (per_count == section.has("mm_per_revolution")) section.fail("give exactly one of counts_per_mm and mm_per_revolution");
-  if (per_count) s.counts_per_mm = section.double_in("counts_per_mm", 1e-6, 1e9);
-  else s.mm_per_revolution = section.double_in("mm_per_revolution", 1e-6, 1e6);
+  if (per_count == section.has("mm_per_revolution"))
+    section.fail("give exactly one of counts_per_mm and mm_per_revolution");
+  if (per_count)
+    s.counts_per_mm = section.double_in("counts_per_mm", 1e-6, 1e9);
+  else
+    s.mm_per_revolution = section.double_in("mm_per_revolution", 1e-6, 1e6);
   out.emulator = parse_emulator(section.maybe("emulator"), s);
   return out;
 }

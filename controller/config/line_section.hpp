@@ -22,7 +22,9 @@ struct PortConfig {
 
 // Reads port, publish_as, baud and the framing (data_bits/parity/stop_bits), defaulting to
 // `defaults` and to /tmp/cellctl-<device> for publish_as. Callers list these keys in only_keys().
-[[nodiscard]] PortConfig parse_port(const YamlNode& section, std::string_view device, const link::LineFormat& defaults);
-inline constexpr std::array<std::string_view, 6> kPortKeys = {"port", "publish_as", "baud", "data_bits", "parity", "stop_bits"};
+[[nodiscard]] PortConfig parse_port(const YamlNode& section, std::string_view device,
+                                    const link::LineFormat& defaults);
+inline constexpr std::array<std::string_view, 6> kPortKeys = {"port",      "publish_as", "baud",
+                                                              "data_bits", "parity",     "stop_bits"};
 
 }  // namespace cellctl::config

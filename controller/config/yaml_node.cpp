@@ -25,7 +25,9 @@ std::size_t distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-std::string format_number(double v) { return fmt::format("{:g}", v); }
+std::string format_number(double v) {
+  return fmt::format("{:g}", v);
+}
 
 }  // namespace
 
@@ -67,7 +69,9 @@ std::string YamlNode::child_field(std::string_view key) const {
   return field_.empty() ? std::string(key) : fmt::format("{}.{}", field_, key);
 }
 
-bool YamlNode::has(std::string_view key) const { return node_.IsMap() && node_[std::string(key)].IsDefined(); }
+bool YamlNode::has(std::string_view key) const {
+  return node_.IsMap() && node_[std::string(key)].IsDefined();
+}
 
 YamlNode YamlNode::at(std::string_view key) const {
   if (!node_.IsMap()) fail("expected a mapping of fields");
@@ -92,7 +96,8 @@ std::vector<YamlNode> YamlNode::items() const {
   if (!node_.IsSequence()) fail("expected a list");
   std::vector<YamlNode> out;
   out.reserve(node_.size());
-  for (std::size_t i = 0; i < node_.size(); ++i) out.push_back(YamlNode(node_[i], file_, fmt::format("{}[{}]", field_, i)));
+  for (std::size_t i = 0; i < node_.size(); ++i)
+    out.push_back(YamlNode(node_[i], file_, fmt::format("{}[{}]", field_, i)));
   return out;
 }
 
@@ -103,7 +108,8 @@ std::vector<std::string> YamlNode::keys() const {
   return out;
 }
 
-void YamlNode::only_keys(std::initializer_list<std::string_view> allowed, std::span<const std::string_view> also) const {
+void YamlNode::only_keys(std::initializer_list<std::string_view> allowed,
+                         std::span<const std::string_view> also) const {
   if (!node_.IsMap()) fail("expected a mapping of fields");
   std::vector<std::string_view> all(allowed);
   all.insert(all.end(), also.begin(), also.end());
@@ -127,7 +133,9 @@ std::string YamlNode::scalar_text(const char* what) const {
   return node_.Scalar();
 }
 
-std::string YamlNode::as_string() const { return scalar_text("a text value"); }
+std::string YamlNode::as_string() const {
+  return scalar_text("a text value");
+}
 
 bool YamlNode::as_bool() const {
   const auto text = scalar_text("true or false");
@@ -165,7 +173,8 @@ long long YamlNode::as_integer_in(long long min, long long max) const {
 double YamlNode::as_double_in(double min, double max) const {
   const double v = as_double();
   if (v < min || v > max)
-    fail(fmt::format("{} is out of range [{}, {}]", format_number(v), format_number(min), format_number(max)));
+    fail(
+        fmt::format("{} is out of range [{}, {}]", format_number(v), format_number(min), format_number(max)));
   return v;
 }
 

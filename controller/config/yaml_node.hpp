@@ -60,7 +60,8 @@ class YamlNode {
   // The keys of a map, in file order.
   [[nodiscard]] std::vector<std::string> keys() const;
   // Fails on the first key in neither list, naming the closest allowed one when it looks like a typo.
-  void only_keys(std::initializer_list<std::string_view> allowed, std::span<const std::string_view> also = {}) const;
+  void only_keys(std::initializer_list<std::string_view> allowed,
+                 std::span<const std::string_view> also = {}) const;
 
   [[nodiscard]] std::string as_string() const;
   [[nodiscard]] bool as_bool() const;

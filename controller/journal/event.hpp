@@ -3,12 +3,12 @@
 // hand them to the journal without allocating: names are views of strings that outlive the run
 // (state names, program labels), free text goes into a fixed buffer.
 
+#include <fmt/format.h>
+
 #include <array>
 #include <cstdint>
 #include <string_view>
 #include <variant>
-
-#include <fmt/format.h>
 
 namespace cellctl::journal {
 
@@ -78,8 +78,8 @@ struct RunEnded {
   std::string_view outcome;  // complete, stopped, aborted
 };
 
-using Payload = std::variant<RunStarted, StateChanged, StepStarted, StepEnded, Command, Fault, FaultCleared, Sample,
-                             Note, RunEnded>;
+using Payload = std::variant<RunStarted, StateChanged, StepStarted, StepEnded, Command, Fault, FaultCleared,
+                             Sample, Note, RunEnded>;
 
 struct Event {
   double t = 0.0;  // seconds since the run started (the loop's clock: real or virtual)

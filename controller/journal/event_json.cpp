@@ -8,7 +8,9 @@ namespace {
 
 using nlohmann::json;
 
-std::string str(std::string_view s) { return std::string(s); }
+std::string str(std::string_view s) {
+  return std::string(s);
+}
 
 json axes_array(const std::array<float, kMaxAxes>& v, std::uint8_t n) {
   json a = json::array();

@@ -17,11 +17,14 @@ Journal::Journal(const std::filesystem::path& dir, WhenFull when_full)
   std::filesystem::create_directories(dir_, ec);
   const auto path = dir_ / "journal.jsonl";
   file_ = std::fopen(path.c_str(), "w");
-  if (file_ == nullptr) throw std::runtime_error(fmt::format("cannot write the run record {}", path.string()));
+  if (file_ == nullptr)
+    throw std::runtime_error(fmt::format("cannot write the run record {}", path.string()));
   writer_ = std::thread([this] { run_writer(); });
 }
 
-Journal::~Journal() { close(); }
+Journal::~Journal() {
+  close();
+}
 
 void Journal::post(double t, const Payload& payload) noexcept {
   const Event e{t, payload};

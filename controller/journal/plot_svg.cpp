@@ -31,17 +31,20 @@ class Panel {
   Panel(double top, Range t, Range y, std::string title, std::string unit)
       : top_(top), t_(t), y_(y), title_(std::move(title)), unit_(std::move(unit)) {}
 
-  [[nodiscard]] double x(double t) const { return kLeft + (t - t_.lo) / (t_.hi - t_.lo) * (kWidth - kLeft - kRight); }
+  [[nodiscard]] double x(double t) const {
+    return kLeft + (t - t_.lo) / (t_.hi - t_.lo) * (kWidth - kLeft - kRight);
+  }
   [[nodiscard]] double y(double v) const { return top_ + kPanel - (v - y_.lo) / (y_.hi - y_.lo) * kPanel; }
 
   std::string frame() const {
-    std::string s = fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#999"/>)", kLeft,
-                                top_, kWidth - kLeft - kRight, kPanel);
-    s += fmt::format(R"(<text x="{}" y="{}" font-size="14" font-weight="bold">{}</text>)", kLeft, top_ - 8, title_);
+    std::string s = fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#999"/>)",
+                                kLeft, top_, kWidth - kLeft - kRight, kPanel);
+    s += fmt::format(R"(<text x="{}" y="{}" font-size="14" font-weight="bold">{}</text>)", kLeft, top_ - 8,
+                     title_);
     for (int i = 0; i <= 4; ++i) {
       const double v = y_.lo + (y_.hi - y_.lo) * i / 4.0;
-      s += fmt::format(R"(<text x="{}" y="{:.1f}" font-size="11" text-anchor="end">{:.1f} {}</text>)", kLeft - 4,
-                       y(v) + 4, v, unit_);
+      s += fmt::format(R"(<text x="{}" y="{:.1f}" font-size="11" text-anchor="end">{:.1f} {}</text>)",
+                       kLeft - 4, y(v) + 4, v, unit_);
       s += fmt::format(R"(<line x1="{}" y1="{:.1f}" x2="{}" y2="{:.1f}" stroke="#eee"/>)", kLeft, y(v),
                        kWidth - kRight, y(v));
     }
@@ -58,8 +61,9 @@ class Panel {
                    const char* dash) const {
     std::string pts;
     for (const auto& [t, s] : samples) pts += fmt::format("{:.1f},{:.1f} ", x(t), y(get(s)));
-    return fmt::format(R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-dasharray="{}" points="{}"/>)",
-                       colour, dash, pts);
+    return fmt::format(
+        R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-dasharray="{}" points="{}"/>)", colour,
+        dash, pts);
   }
 
  private:
@@ -69,9 +73,10 @@ class Panel {
 };
 
 std::string legend(double x, double y, const char* colour, const char* dash, const std::string& text) {
-  return fmt::format(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="2" stroke-dasharray="{}"/>)"
-                     R"(<text x="{}" y="{}" font-size="12">{}</text>)",
-                     x, y, x + 24, y, colour, dash, x + 30, y + 4, text);
+  return fmt::format(
+      R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="2" stroke-dasharray="{}"/>)"
+      R"(<text x="{}" y="{}" font-size="12">{}</text>)",
+      x, y, x + 24, y, colour, dash, x + 30, y + 4, text);
 }
 
 }  // namespace
@@ -92,18 +97,23 @@ std::string render_svg(const std::vector<std::pair<double, Sample>>& samples, co
       R"(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" font-family="sans-serif">)"
       R"(<rect width="100%" height="100%" fill="white"/>)",
       kWidth, height);
-  svg += fmt::format(R"(<text x="{}" y="20" font-size="13">outcome: {} after {:.2f} s, {} faults</text>)", kLeft,
-                     summary.outcome(), summary.duration_s(), summary.faults().size());
+  svg += fmt::format(R"(<text x="{}" y="20" font-size="13">outcome: {} after {:.2f} s, {} faults</text>)",
+                     kLeft, summary.outcome(), summary.duration_s(), summary.faults().size());
   const Panel p1(kTop + 10, t, pos, "Axis positions", "mm");
   const Panel p2(kTop + 10 + kPanel + kGap, t, hz, "Spindle frequency", "Hz");
   svg += p1.frame() + p2.frame();
   for (std::uint8_t a = 0; a < axes; ++a) {
-    svg += p1.line(samples, [a](const Sample& s) { return s.planned_mm[a]; }, kColours[a], "6,3");
-    svg += p1.line(samples, [a](const Sample& s) { return s.scu_mm[a]; }, kColours[a], "none");
+    svg += p1.line(
+        samples, [a](const Sample& s) { return s.planned_mm[a]; }, kColours[a], "6,3");
+    svg += p1.line(
+        samples, [a](const Sample& s) { return s.scu_mm[a]; }, kColours[a], "none");
   }
-  svg += p1.line(samples, [](const Sample& s) { return s.encoder_mm; }, "#000", "2,2");
-  svg += p2.line(samples, [](const Sample& s) { return s.spindle_set_hz; }, "#ff7f0e", "6,3");
-  svg += p2.line(samples, [](const Sample& s) { return s.spindle_actual_hz; }, "#ff7f0e", "none");
+  svg += p1.line(
+      samples, [](const Sample& s) { return s.encoder_mm; }, "#000", "2,2");
+  svg += p2.line(
+      samples, [](const Sample& s) { return s.spindle_set_hz; }, "#ff7f0e", "6,3");
+  svg += p2.line(
+      samples, [](const Sample& s) { return s.spindle_actual_hz; }, "#ff7f0e", "none");
   const double ly = height - 30;
   double lx = kLeft;
   for (std::uint8_t a = 0; a < axes; ++a) {

@@ -11,6 +11,7 @@
 
 namespace cellctl::journal {
 
-[[nodiscard]] std::string render_svg(const std::vector<std::pair<double, Sample>>& samples, const RunSummary& summary);
+[[nodiscard]] std::string render_svg(const std::vector<std::pair<double, Sample>>& samples,
+                                     const RunSummary& summary);
 
 }  // namespace cellctl::journal

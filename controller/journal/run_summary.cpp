@@ -47,7 +47,8 @@ void RunSummary::add(const Event& e) {
     step.seconds += e.t - began;
     if (!en->ok) ++step.failed;
   } else if (const auto* f = std::get_if<Fault>(&e.payload)) {
-    faults_.push_back(fmt::format("{:.3f}s {} (category {}): {}", e.t, f->rule, f->category, f->detail.view()));
+    faults_.push_back(
+        fmt::format("{:.3f}s {} (category {}): {}", e.t, f->rule, f->category, f->detail.view()));
   } else if (const auto* r = std::get_if<RunEnded>(&e.payload)) {
     outcome_ = std::string(r->outcome);
   }
@@ -59,7 +60,8 @@ nlohmann::json RunSummary::to_json() const {
   j["duration_s"] = duration_s();
   j["steps"] = nlohmann::json::array();
   for (const auto& s : steps_)
-    j["steps"].push_back({{"label", s.label}, {"count", s.count}, {"seconds", s.seconds}, {"failed", s.failed}});
+    j["steps"].push_back(
+        {{"label", s.label}, {"count", s.count}, {"seconds", s.seconds}, {"failed", s.failed}});
   j["faults"] = faults_;
   return j;
 }

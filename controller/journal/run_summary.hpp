@@ -3,10 +3,9 @@
 // the faults, how it ended. Lives on the journal's writer thread.
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "journal/event.hpp"
 
@@ -32,7 +31,7 @@ class RunSummary {
   [[nodiscard]] std::string to_text() const;
 
  private:
-  std::vector<StepTime> steps_;           // in order of first appearance
+  std::vector<StepTime> steps_;  // in order of first appearance
   std::map<std::string, std::size_t> by_label_;
   std::map<std::uint32_t, double> open_;  // step index → start time
   std::vector<std::string> faults_;

@@ -20,7 +20,10 @@ std::string percentiles(const LatencyHistogram& h) {
 
 Loop::Loop(const link::Clock& clock, CycleWaiter& waiter, link::Duration period,
            std::span<const std::string_view> stage_names, const link::Clock* stage_clock)
-    : clock_(clock), waiter_(waiter), period_(period), stages_(stage_clock ? *stage_clock : clock, stage_names) {
+    : clock_(clock),
+      waiter_(waiter),
+      period_(period),
+      stages_(stage_clock ? *stage_clock : clock, stage_names) {
   if (period <= link::Duration{0}) {
     throw std::invalid_argument(fmt::format("loop period: must be > 0, got {} ns", period.count()));
   }

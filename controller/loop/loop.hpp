@@ -35,7 +35,8 @@ class Loop {
   // stage_clock times the stages (compute time); by default the loop's clock. A cycle on a virtual
   // clock passes the monotonic clock here: its compute time is real even when its time is not.
   Loop(const link::Clock& clock, CycleWaiter& waiter, link::Duration period,
-       std::span<const std::string_view> stage_names = kControlStages, const link::Clock* stage_clock = nullptr);
+       std::span<const std::string_view> stage_names = kControlStages,
+       const link::Clock* stage_clock = nullptr);
 
   // Runs body(now, cycle_index) once per period until `stop` is set (checked at each cycle
   // boundary: before waiting and on waking) or max_cycles bodies have run (0: no limit). The first

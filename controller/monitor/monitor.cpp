@@ -8,13 +8,17 @@
 namespace cellctl::monitor {
 namespace {
 
-constexpr std::size_t idx(Rule r) noexcept { return static_cast<std::size_t>(r); }
+constexpr std::size_t idx(Rule r) noexcept {
+  return static_cast<std::size_t>(r);
+}
 
 // An axis may overshoot its travel limit by this much before it counts as outside (encoder noise,
 // the last edge of a soft stop); anything beyond is a fault.
 constexpr double kPositionMarginMm = 0.5;
 
-double ms(link::Duration d) noexcept { return std::chrono::duration<double, std::milli>(d).count(); }
+double ms(link::Duration d) noexcept {
+  return std::chrono::duration<double, std::milli>(d).count();
+}
 
 }  // namespace
 
@@ -22,10 +26,14 @@ Monitor::Monitor(const config::CellConfig& cell) : cell_(cell) {}
 
 StopCategory Monitor::category_of(Rule r) const noexcept {
   switch (r) {
-    case Rule::emergency_stop: return StopCategory::immediate;
-    case Rule::operator_stop: return cell_.stops.operator_stop;
-    case Rule::link_silent: return cell_.stops.link;
-    default: return cell_.stops.fault;
+    case Rule::emergency_stop:
+      return StopCategory::immediate;
+    case Rule::operator_stop:
+      return cell_.stops.operator_stop;
+    case Rule::link_silent:
+      return cell_.stops.link;
+    default:
+      return cell_.stops.fault;
   }
 }
 
@@ -40,10 +48,11 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
     const auto& l = s.links[d];
     const auto name = cell::to_string(static_cast<cell::Device>(d));
     if (l.fault || !l.active)
-      causes[idx(Rule::link_silent)] = Text::format("{} link lost (session {})", name, l.fault ? "fault" : "inactive");
-    else if (ms(l.silent_for) > cell_.limits.link_silence_ms)
       causes[idx(Rule::link_silent)] =
-          Text::format("{} silent for {:.0f} ms (limit {:.0f} ms)", name, ms(l.silent_for), cell_.limits.link_silence_ms);
+          Text::format("{} link lost (session {})", name, l.fault ? "fault" : "inactive");
+    else if (ms(l.silent_for) > cell_.limits.link_silence_ms)
+      causes[idx(Rule::link_silent)] = Text::format("{} silent for {:.0f} ms (limit {:.0f} ms)", name,
+                                                    ms(l.silent_for), cell_.limits.link_silence_ms);
   }
 
   for (std::size_t i = 0; i < s.axis_count && i < cell_.axes.size(); ++i) {
@@ -55,8 +64,8 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
           Text::format("axis {} at {:.2f} mm, outside [{:g}, {:g}] mm", c.name, p, c.min_mm, c.max_mm);
     if (a.measured) {
       if (std::abs(a.encoder_mm_s) > cell_.limits.overspeed_mm_s)
-        causes[idx(Rule::overspeed)] = Text::format("axis {} at {:.1f} mm/s by the encoder (limit {:g} mm/s)", c.name,
-                                                    a.encoder_mm_s, cell_.limits.overspeed_mm_s);
+        causes[idx(Rule::overspeed)] = Text::format("axis {} at {:.1f} mm/s by the encoder (limit {:g} mm/s)",
+                                                    c.name, a.encoder_mm_s, cell_.limits.overspeed_mm_s);
       // The SCU's position is as old as its last RC reply (up to a keep-alive period), the encoder's is
       // fresh: what the axis travelled meanwhile is no disagreement. Right after each reply the
       // allowance is back to nothing, so a real one is caught within a keep-alive period.
@@ -73,12 +82,16 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
     causes[idx(Rule::encoder_not_ready)] =
         Text::format("encoder {}", e.data_exchange ? "dropped its Ready bit" : "left data exchange");
   if (e.alarm) causes[idx(Rule::encoder_alarm)] = Text::format("encoder diagnosis reports an alarm");
-  if (e.limit_switch) causes[idx(Rule::encoder_limit_switch)] = Text::format("encoder limit switch at {:.2f} mm", e.mm);
-  if (e.diagnosis_pending) causes[idx(Rule::encoder_diagnosis)] = Text::format("encoder signals new diagnosis");
+  if (e.limit_switch)
+    causes[idx(Rule::encoder_limit_switch)] = Text::format("encoder limit switch at {:.2f} mm", e.mm);
+  if (e.diagnosis_pending)
+    causes[idx(Rule::encoder_diagnosis)] = Text::format("encoder signals new diagnosis");
 
   const auto& sp = s.spindle;
-  if (sp.fault) causes[idx(Rule::spindle_fault)] = Text::format("spindle converter fault {}", sp.fault_number);
-  if (sp.over_temperature) causes[idx(Rule::spindle_temperature)] = Text::format("spindle motor over-temperature (PTC)");
+  if (sp.fault)
+    causes[idx(Rule::spindle_fault)] = Text::format("spindle converter fault {}", sp.fault_number);
+  if (sp.over_temperature)
+    causes[idx(Rule::spindle_temperature)] = Text::format("spindle motor over-temperature (PTC)");
   const double f = std::abs(sp.actual_hz);
   const double tol = cell_.limits.spindle_tolerance_hz;
   if (f > cell_.limits.spindle_max_hz + tol)
@@ -94,8 +107,8 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
     word.for_each_cause([&](int bit, std::string_view) {
       if (first == 0) first = bit;
     });
-    causes[idx(Rule::scu_error)] =
-        Text::format("SCU error bit {}: {} (word 0x{:08x})", first, scu::ErrorWord::cause(first), s.scu_error_word);
+    causes[idx(Rule::scu_error)] = Text::format("SCU error bit {}: {} (word 0x{:08x})", first,
+                                                scu::ErrorWord::cause(first), s.scu_error_word);
   }
 }
 

@@ -26,7 +26,7 @@ struct Latch {
 
 // Requests that do not come from the cell's state.
 struct OperatorInputs {
-  bool stop = false;            // Ctrl-C / stop command
+  bool stop = false;  // Ctrl-C / stop command
   bool emergency_stop = false;
 };
 
@@ -46,7 +46,8 @@ class Monitor {
   }
 
   // Evaluates every rule at `t` (seconds since start); returns the rules that latched in this call.
-  std::bitset<kRuleCount> evaluate(const cell::CellState& state, const OperatorInputs& inputs, double t) noexcept;
+  std::bitset<kRuleCount> evaluate(const cell::CellState& state, const OperatorInputs& inputs,
+                                   double t) noexcept;
 
   // The strongest stop the latched faults demand (lowest category), or none.
   [[nodiscard]] std::optional<StopCategory> demanded_stop() const noexcept;

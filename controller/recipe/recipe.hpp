@@ -51,10 +51,16 @@ struct Dwell {
 
 // Waits for a condition on the cell, failing the run after the time-out.
 struct Wait {
-  enum class Condition : std::uint8_t { position_above, position_below, encoder_ready, spindle_at_speed, spindle_at_rest };
+  enum class Condition : std::uint8_t {
+    position_above,
+    position_below,
+    encoder_ready,
+    spindle_at_speed,
+    spindle_at_rest
+  };
   Condition condition = Condition::encoder_ready;
-  int axis = -1;               // for position conditions
-  double threshold_mm = 0.0;   // for position conditions (encoder-measured where the axis has it)
+  int axis = -1;              // for position conditions
+  double threshold_mm = 0.0;  // for position conditions (encoder-measured where the axis has it)
   double timeout_s = 10.0;
 };
 

@@ -68,8 +68,8 @@ class Parser {
     r.version = h.string_at("version");
     r.cell = h.string_at("cell");
     if (r.cell != cell_.name)
-      h.at("cell").fail(fmt::format("the recipe is for cell '{}', but this cell is '{}' ({})", r.cell, cell_.name,
-                                    cell_.source.string()));
+      h.at("cell").fail(fmt::format("the recipe is for cell '{}', but this cell is '{}' ({})", r.cell,
+                                    cell_.name, cell_.source.string()));
   }
 
   int axis_index(const YamlNode& key_node, const std::string& axis_name) const {
@@ -94,7 +94,8 @@ class Parser {
         AxisLimits al;
         al.min_mm = a.double_in("min_mm", cell_axis.min_mm, cell_axis.max_mm);
         al.max_mm = a.double_in("max_mm", cell_axis.min_mm, cell_axis.max_mm);
-        if (al.max_mm <= al.min_mm) a.at("max_mm").fail(fmt::format("must be above min_mm ({:g})", al.min_mm));
+        if (al.max_mm <= al.min_mm)
+          a.at("max_mm").fail(fmt::format("must be above min_mm ({:g})", al.min_mm));
         al.max_speed_mm_s = a.double_in("max_speed_mm_s", cell_axis.min_speed_mm_s, cell_axis.max_speed_mm_s);
         // Tighter than one SCU edge cannot be reached; wider than 5 mm is no process tolerance.
         al.tolerance_mm = a.double_in("tolerance_mm", 1.0 / cell_axis.edges_per_mm, 5.0);
@@ -124,15 +125,18 @@ class Parser {
     return steps;
   }
 
-  static constexpr std::array<std::string_view, 6> kActions = {"move", "spindle", "dwell", "wait", "repeat", "require"};
+  static constexpr std::array<std::string_view, 6> kActions = {"move", "spindle", "dwell",
+                                                               "wait", "repeat",  "require"};
 
   Step parse_step(const YamlNode& item, int depth, long& count) {
-    if (!item.is_map()) item.fail("a step is a mapping with one of: move, spindle, dwell, wait, repeat, require");
+    if (!item.is_map())
+      item.fail("a step is a mapping with one of: move, spindle, dwell, wait, repeat, require");
     item.only_keys({"name", "move", "spindle", "dwell", "wait", "repeat", "require"});
     std::string action;
     for (auto a : kActions) {
       if (!item.has(a)) continue;
-      if (!action.empty()) item.fail(fmt::format("a step does one thing: both '{}' and '{}' given", action, a));
+      if (!action.empty())
+        item.fail(fmt::format("a step does one thing: both '{}' and '{}' given", action, a));
       action = a;
     }
     if (action.empty()) item.fail("a step needs one of: move, spindle, dwell, wait, repeat, require");
@@ -172,8 +176,9 @@ class Parser {
         speed.fail(fmt::format("{:g} mm/s is above axis '{}''s recipe limit {:g} mm/s", m.speed_mm_s, name,
                                lim->max_speed_mm_s));
       if (m.speed_mm_s < cell_axis.min_speed_mm_s)
-        speed.fail(fmt::format("{:g} mm/s is below axis '{}''s minimum {:g} mm/s: the actuator would not move",
-                               m.speed_mm_s, name, cell_axis.min_speed_mm_s));
+        speed.fail(
+            fmt::format("{:g} mm/s is below axis '{}''s minimum {:g} mm/s: the actuator would not move",
+                        m.speed_mm_s, name, cell_axis.min_speed_mm_s));
     }
     return m;
   }
@@ -220,12 +225,14 @@ class Parser {
     }
     if (conditions != 1)
       n.fail("a wait needs exactly one condition: position_above_mm, position_below_mm, encoder or spindle");
-    const bool positional = w.condition == Wait::Condition::position_above || w.condition == Wait::Condition::position_below;
+    const bool positional =
+        w.condition == Wait::Condition::position_above || w.condition == Wait::Condition::position_below;
     if (positional) {
       const auto axis = n.at("axis");
       w.axis = axis_index(axis, axis.as_string());
       const auto& ca = cell_.axes[static_cast<std::size_t>(w.axis)];
-      const auto key = w.condition == Wait::Condition::position_above ? "position_above_mm" : "position_below_mm";
+      const auto key =
+          w.condition == Wait::Condition::position_above ? "position_above_mm" : "position_below_mm";
       (void)n.at(key).as_double_in(ca.min_mm, ca.max_mm);
     } else if (n.has("axis")) {
       n.at("axis").fail("only position conditions take an axis");
@@ -273,6 +280,8 @@ Recipe load_recipe(const std::filesystem::path& path, const config::CellConfig& 
   return parse_recipe(YamlNode::load_file(path), cell);
 }
 
-Recipe parse_recipe(const config::YamlNode& root, const config::CellConfig& cell) { return Parser(cell).parse(root); }
+Recipe parse_recipe(const config::YamlNode& root, const config::CellConfig& cell) {
+  return Parser(cell).parse(root);
+}
 
 }  // namespace cellctl::recipe

@@ -23,8 +23,10 @@ cell::LinkState link_state(link::Lifecycle lc, const link::LinkHealth& h, link::
 
 CellDevices::CellDevices(const config::CellConfig& cell, MasterSideLinks links) : cell_(cell) {
   if (links.scu && cell.scu) scu_ = std::make_unique<scu::Session>(*links.scu, cell.scu->session);
-  if (links.spindle && cell.spindle) spindle_ = std::make_unique<spindle::Session>(*links.spindle, cell.spindle->session);
-  if (links.encoder && cell.encoder) encoder_ = std::make_unique<encoder::Session>(*links.encoder, cell.encoder->session);
+  if (links.spindle && cell.spindle)
+    spindle_ = std::make_unique<spindle::Session>(*links.spindle, cell.spindle->session);
+  if (links.encoder && cell.encoder)
+    encoder_ = std::make_unique<encoder::Session>(*links.encoder, cell.encoder->session);
 }
 
 void CellDevices::activate(link::TimePoint now) {
@@ -49,7 +51,9 @@ void CellDevices::poll(link::TimePoint now) {
 }
 
 bool CellDevices::all_inactive() const noexcept {
-  const auto quiet = [](link::Lifecycle s) { return s == link::Lifecycle::inactive || s == link::Lifecycle::fault; };
+  const auto quiet = [](link::Lifecycle s) {
+    return s == link::Lifecycle::inactive || s == link::Lifecycle::fault;
+  };
   return (!scu_ || quiet(scu_->state())) && (!spindle_ || quiet(spindle_->lifecycle())) &&
          (!encoder_ || quiet(encoder_->snapshot().lifecycle));
 }
@@ -71,11 +75,13 @@ void CellDevices::poll_homed(link::TimePoint now) {
 void CellDevices::read(link::TimePoint now, cell::CellState& out) {
   out.now = now;
   out.axis_count = static_cast<std::uint8_t>(cell_.axes.size());
-  for (auto& l : out.links) l = {.active = true, .fault = false, .silent_for = {}};  // absent devices: no rule
+  for (auto& l : out.links)
+    l = {.active = true, .fault = false, .silent_for = {}};  // absent devices: no rule
 
   if (scu_) {
     const auto& snap = scu_->snapshot();
-    out.links[static_cast<std::size_t>(cell::Device::scu)] = link_state(scu_->state(), scu_->health(), now, activated_at_);
+    out.links[static_cast<std::size_t>(cell::Device::scu)] =
+        link_state(scu_->state(), scu_->health(), now, activated_at_);
     out.scu_error_word = snap.errors.raw();
     out.scu_position_age = snap.last_refresh ? now - *snap.last_refresh : link::Duration{};
     out.scu_remote = snap.remote_open && scu_->state() == link::Lifecycle::active;
@@ -95,7 +101,8 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
   if (encoder_) {
     const auto& e = encoder_->snapshot();
     auto& enc = out.encoder;
-    out.links[static_cast<std::size_t>(cell::Device::encoder)] = link_state(e.lifecycle, encoder_->health(), now, activated_at_);
+    out.links[static_cast<std::size_t>(cell::Device::encoder)] =
+        link_state(e.lifecycle, encoder_->health(), now, activated_at_);
     enc.data_exchange = e.data_exchange;
     enc.ready = e.data_exchange && (!e.has_status_bits || e.status.ready);
     enc.alarm = e.diagnosis && e.diagnosis->alarms != 0;
@@ -117,7 +124,8 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
   if (spindle_) {
     const auto& s = spindle_->snapshot();
     auto& sp = out.spindle;
-    out.links[static_cast<std::size_t>(cell::Device::spindle)] = link_state(spindle_->lifecycle(), spindle_->health(), now, activated_at_);
+    out.links[static_cast<std::size_t>(cell::Device::spindle)] =
+        link_state(spindle_->lifecycle(), spindle_->health(), now, activated_at_);
     sp.active = spindle_->lifecycle() == link::Lifecycle::active;
     const double sign = s.direction == spindle::Direction::clockwise ? 1.0 : -1.0;
     sp.set_hz = s.requested_frequency_hz;
@@ -126,8 +134,10 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
     sp.actual_hz = sp.at_rest ? 0.0 : sign * s.actual_frequency_hz;
     sp.running = spindle_running_;
     sp.at_speed = s.status_valid && s.at_speed;
-    if (!sp.at_speed) at_speed_since_.reset();
-    else if (!at_speed_since_) at_speed_since_ = now;
+    if (!sp.at_speed)
+      at_speed_since_.reset();
+    else if (!at_speed_since_)
+      at_speed_since_ = now;
     // Two value polls and a reply time after N_Soll_OK, the frequency reading is a fresh one.
     const auto settle = 2 * cell_.spindle->session.values_poll + cell_.spindle->session.reply_timeout;
     sp.settled = at_speed_since_ && now - *at_speed_since_ > settle;
@@ -170,8 +180,8 @@ void CellDevices::apply_axes(const cell::Intents& in) {
     }
     const auto pct = percent(i, intent.speed_mm_s);
     if (intent.move_id != cmd.applied_move) {
-      const scu::ActuatorTarget target{axis.actuator,
-                                       static_cast<std::int32_t>(std::lround(intent.target_mm * axis.edges_per_mm))};
+      const scu::ActuatorTarget target{
+          axis.actuator, static_cast<std::int32_t>(std::lround(intent.target_mm * axis.edges_per_mm))};
       // Refused while the function's previous RE is still open: tried again next cycle.
       if (scu_->move_to(axis.function, std::span(&target, 1), pct, intent.soft)) {
         cmd.applied_move = intent.move_id;
@@ -192,7 +202,8 @@ void CellDevices::apply_spindle(const cell::Intents& in) {
     if (spindle_running_ && spindle_->stop()) spindle_running_ = false;
     return;
   }
-  const auto dir = in.spindle.clockwise ? spindle::Direction::clockwise : spindle::Direction::counter_clockwise;
+  const auto dir =
+      in.spindle.clockwise ? spindle::Direction::clockwise : spindle::Direction::counter_clockwise;
   if (!spindle_running_ || in.spindle.clockwise != spindle_cw_) {
     if (spindle_->start(in.spindle.frequency_hz, dir)) {
       spindle_running_ = true;

@@ -47,9 +47,9 @@ class CellDevices {
 
  private:
   struct AxisCommand {
-    std::uint32_t applied_move = 0;  // the last move id the SCU accepted
-    std::uint16_t speed_percent = 0; // the last speed sent for it
-    bool stop_sent = false;          // a stop went out for the motion now ending
+    std::uint32_t applied_move = 0;   // the last move id the SCU accepted
+    std::uint16_t speed_percent = 0;  // the last speed sent for it
+    bool stop_sent = false;           // a stop went out for the motion now ending
   };
   [[nodiscard]] std::uint16_t percent(std::size_t axis, double mm_s) const noexcept;
   void apply_axes(const cell::Intents& in);
@@ -67,7 +67,7 @@ class CellDevices {
   bool spindle_cw_ = true;
   std::optional<link::TimePoint> at_speed_since_;
   std::uint64_t encoder_diag_reads_ = 0;
-  std::uint8_t homed_bits_ = 0;           // actuator status 2 bit 0 per actuator, from RG 0x00E0
+  std::uint8_t homed_bits_ = 0;  // actuator status 2 bit 0 per actuator, from RG 0x00E0
   std::uint64_t homed_read_sequence_ = 0;
   link::TimePoint next_homed_read_{};
   link::TimePoint activated_at_{};

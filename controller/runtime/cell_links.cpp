@@ -11,13 +11,15 @@ CellLinks::CellLinks(const config::CellConfig& cell, RunMode mode, const link::C
   if (cell.encoder) master_.encoder = open("encoder", cell.encoder->port, device_.encoder);
 }
 
-link::Link* CellLinks::open(const std::string& name, const config::PortConfig& port, link::Link*& device_side) {
+link::Link* CellLinks::open(const std::string& name, const config::PortConfig& port,
+                            link::Link*& device_side) {
   link::Link* master = nullptr;
   if (mode_ == RunMode::virtual_time) {
     auto& sim = *sims_.emplace_back(std::make_unique<link::SimLink>(clock_, port.line, name));
     master = &sim.master();
     device_side = &sim.device();
-    descriptions_.push_back(fmt::format("{}: emulator on a simulated {} line (virtual time)", name, port.line.describe()));
+    descriptions_.push_back(
+        fmt::format("{}: emulator on a simulated {} line (virtual time)", name, port.line.describe()));
   } else if (mode_ == RunMode::emulated || port.emulated()) {
     // A pty of our own (not the published one: `cellctl emulate` may be running beside us).
     auto& pty = *ptys_.emplace_back(std::make_unique<link::PtyPair>(name));
@@ -42,6 +44,8 @@ std::optional<link::TimePoint> CellLinks::next_delivery() const noexcept {
   return next;
 }
 
-std::vector<std::string> CellLinks::describe() const { return descriptions_; }
+std::vector<std::string> CellLinks::describe() const {
+  return descriptions_;
+}
 
 }  // namespace cellctl::runtime

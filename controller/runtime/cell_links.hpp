@@ -31,7 +31,9 @@ class CellLinks {
 
   [[nodiscard]] MasterSideLinks master() const noexcept { return master_; }
   [[nodiscard]] DeviceSideLinks device() const noexcept { return device_; }
-  [[nodiscard]] bool any_emulated() const noexcept { return device_.scu || device_.spindle || device_.encoder; }
+  [[nodiscard]] bool any_emulated() const noexcept {
+    return device_.scu || device_.spindle || device_.encoder;
+  }
   // When the next byte on any SimLink arrives (virtual time), to step no further than that.
   [[nodiscard]] std::optional<link::TimePoint> next_delivery() const noexcept;
   // "scu: /dev/ttyUSB0 (38400 8N1)", one line per device, for the operator.

@@ -13,7 +13,8 @@ using loop::ControlStage;
 using loop::index;
 
 link::Duration period_of(const config::CellConfig& cell) {
-  return std::chrono::duration_cast<link::Duration>(std::chrono::duration<double, std::milli>(cell.loop.period_ms));
+  return std::chrono::duration_cast<link::Duration>(
+      std::chrono::duration<double, std::milli>(cell.loop.period_ms));
 }
 
 supervisor::SupervisorSettings settings_for(const config::CellConfig& cell, const RunOptions& o) {
@@ -32,8 +33,9 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
       options_(std::move(options)),
       clock_(options_.mode == RunMode::virtual_time ? static_cast<const link::Clock&>(virtual_clock_)
                                                     : static_cast<const link::Clock&>(real_clock_)),
-      journal_(options_.journal_dir, options_.mode == RunMode::virtual_time ? journal::WhenFull::wait
-                                                                            : journal::WhenFull::drop_and_count),
+      journal_(options_.journal_dir, options_.mode == RunMode::virtual_time
+                                         ? journal::WhenFull::wait
+                                         : journal::WhenFull::drop_and_count),
       monitor_(cell) {
   if (options_.mode == RunMode::virtual_time)
     waiter_ = std::make_unique<loop::VirtualWaiter>(virtual_clock_);
@@ -42,8 +44,8 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
   links_ = std::make_unique<CellLinks>(cell, options_.mode, clock_, options_.trace);
   if (links_->any_emulated()) emulated_ = std::make_unique<EmulatedCell>(cell, links_->device());
   devices_ = std::make_unique<CellDevices>(cell, links_->master());
-  supervisor_ = std::make_unique<supervisor::Supervisor>(cell, recipe, program_, journal_,
-                                                         cell.loop.period_ms / 1000.0, settings_for(cell, options_));
+  supervisor_ = std::make_unique<supervisor::Supervisor>(
+      cell, recipe, program_, journal_, cell.loop.period_ms / 1000.0, settings_for(cell, options_));
   loop_ = std::make_unique<loop::Loop>(clock_, *waiter_, period_of(cell), loop::kControlStages, &real_clock_);
   state_.axis_count = static_cast<std::uint8_t>(cell.axes.size());
 }
@@ -76,15 +78,18 @@ void CellRun::take_commands(double t, std::atomic<bool>& interrupt) {
     if (!monitor_.reset(state_, {})) {
       std::string_view still = "?";
       for (std::size_t r = 0; r < monitor::kRuleCount && still == "?"; ++r)
-        if (monitor_.latch(static_cast<monitor::Rule>(r)).active) still = monitor::to_string(static_cast<monitor::Rule>(r));
-      journal_.post(t, journal::Note{journal::Text::format("reset refused: the cause of {} is still present", still)});
+        if (monitor_.latch(static_cast<monitor::Rule>(r)).active)
+          still = monitor::to_string(static_cast<monitor::Rule>(r));
+      journal_.post(
+          t, journal::Note{journal::Text::format("reset refused: the cause of {} is still present", still)});
       if (had_stop) operator_stop_ = true;
       return;
     }
     // Held by a category-2 stop, the run goes on: a reset clears the latches, unhold resumes. Only a
     // run that has ended goes back to Idle.
     if (!supervisor::is_final(supervisor_->state())) {
-      journal_.post(t, journal::Note{journal::Text::format("faults reset in state {}", to_string(supervisor_->state()))});
+      journal_.post(t, journal::Note{journal::Text::format("faults reset in state {}",
+                                                           to_string(supervisor_->state()))});
       return;
     }
   }
@@ -115,46 +120,50 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
   if (hook_) hook_(t, *this);
   take_commands(t, interrupt);
   {  // the stages, timed back to back; the last ends with this block
-  auto stages = loop_->stage_sequence();
-  stages.begin(index(ControlStage::read_sessions));
-  if (emulated_ && options_.mode == RunMode::virtual_time) emulated_->poll(now);
-  devices_->poll(now);
+    auto stages = loop_->stage_sequence();
+    stages.begin(index(ControlStage::read_sessions));
+    if (emulated_ && options_.mode == RunMode::virtual_time) emulated_->poll(now);
+    devices_->poll(now);
 
-  stages.begin(index(ControlStage::state));
-  devices_->read(now, state_);
+    stages.begin(index(ControlStage::state));
+    devices_->read(now, state_);
 
-  stages.begin(index(ControlStage::monitor));
-  const auto fresh = monitor_.evaluate(state_, {.stop = operator_stop_, .emergency_stop = emergency_stop_}, t);
-  for (std::size_t r = 0; r < monitor::kRuleCount; ++r) {
-    if (!fresh.test(r)) continue;
-    const auto rule = static_cast<monitor::Rule>(r);
-    const auto& latch = monitor_.latch(rule);
-    journal_.post(t, journal::Fault{monitor::to_string(rule), static_cast<std::uint8_t>(latch.category), latch.detail});
-  }
+    stages.begin(index(ControlStage::monitor));
+    const auto fresh =
+        monitor_.evaluate(state_, {.stop = operator_stop_, .emergency_stop = emergency_stop_}, t);
+    for (std::size_t r = 0; r < monitor::kRuleCount; ++r) {
+      if (!fresh.test(r)) continue;
+      const auto rule = static_cast<monitor::Rule>(r);
+      const auto& latch = monitor_.latch(rule);
+      journal_.post(t, journal::Fault{monitor::to_string(rule), static_cast<std::uint8_t>(latch.category),
+                                      latch.detail});
+    }
 
-  stages.begin(index(ControlStage::supervisor));
-  supervisor_->step(state_, monitor_.demanded_stop(), t);
-  const auto& sp = supervisor_->intents().spindle;
-  monitor_.expect_spindle(sp.run, sp.frequency_hz);
-  if (supervisor_->cell_up() && !monitor_.armed() && !shutdown_since_) monitor_.arm();
-  if (!supervisor_->cell_up() && monitor_.armed()) monitor_.disarm();
+    stages.begin(index(ControlStage::supervisor));
+    supervisor_->step(state_, monitor_.demanded_stop(), t);
+    const auto& sp = supervisor_->intents().spindle;
+    monitor_.expect_spindle(sp.run, sp.frequency_hz);
+    if (supervisor_->cell_up() && !monitor_.armed() && !shutdown_since_) monitor_.arm();
+    if (!supervisor_->cell_up() && monitor_.armed()) monitor_.disarm();
 
-  stages.begin(index(ControlStage::write_sessions));
-  if (!shutdown_since_) devices_->apply(supervisor_->intents(), now);
+    stages.begin(index(ControlStage::write_sessions));
+    if (!shutdown_since_) devices_->apply(supervisor_->intents(), now);
   }
   if (supervisor::is_final(supervisor_->state()) && !shutdown_since_) {
     devices_->deactivate(now);  // axes stopped, remote mode closed, spindle stopped
     monitor_.disarm();          // the devices go down on purpose now
     shutdown_since_ = now;
   }
-  if (shutdown_since_ && (devices_->all_inactive() || link::to_seconds(now - *shutdown_since_) > options_.shutdown_timeout_s))
+  if (shutdown_since_ &&
+      (devices_->all_inactive() || link::to_seconds(now - *shutdown_since_) > options_.shutdown_timeout_s))
     loop_stop_.store(true);
   publish_status(t);
 }
 
 RunResult CellRun::run(std::atomic<bool>& interrupt) {
   if (options_.mode != RunMode::virtual_time && cell_.loop.realtime) {
-    const auto report = loop::apply_realtime({.fifo_priority = cell_.loop.priority, .lock_memory = true, .cpu = cell_.loop.cpu});
+    const auto report = loop::apply_realtime(
+        {.fifo_priority = cell_.loop.priority, .lock_memory = true, .cpu = cell_.loop.cpu});
     realtime_warnings_ = report.warnings();
   }
   if (emulated_ && options_.mode != RunMode::virtual_time)
@@ -181,7 +190,8 @@ RunResult CellRun::run(std::atomic<bool>& interrupt) {
   extra["cycles"] = r.cycles;
   extra["overrun_cycles"] = loop_->stats().overrun_cycles;
   extra["missed_deadlines"] = loop_->stats().missed_deadlines;
-  extra["jitter_p99_us"] = std::chrono::duration<double, std::micro>(loop_->stats().jitter.percentile(0.99)).count();
+  extra["jitter_p99_us"] =
+      std::chrono::duration<double, std::micro>(loop_->stats().jitter.percentile(0.99)).count();
   extra["wall_s"] = r.wall_s;
   extra["mode"] = to_string(options_.mode);
   extra["corrections"] = supervisor_->corrections();

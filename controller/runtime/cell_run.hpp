@@ -41,14 +41,14 @@ struct RunOptions {
 
 struct RunResult {
   supervisor::State final_state = supervisor::State::idle;
-  std::string failure;               // why a step failed, if one did
-  std::vector<std::string> faults;   // latched monitor faults, in order
-  bool interrupted = false;          // an operator stop or abort ended it
-  double duration_s = 0.0;           // of the run, on the run's clock
-  double wall_s = 0.0;               // real time it took
+  std::string failure;              // why a step failed, if one did
+  std::vector<std::string> faults;  // latched monitor faults, in order
+  bool interrupted = false;         // an operator stop or abort ended it
+  double duration_s = 0.0;          // of the run, on the run's clock
+  double wall_s = 0.0;              // real time it took
   std::uint64_t cycles = 0;
   std::string loop_summary;
-  std::string summary_text;          // the journal's summary for the terminal
+  std::string summary_text;  // the journal's summary for the terminal
 };
 
 class CellRun {
@@ -110,8 +110,8 @@ class CellRun {
   std::atomic<bool> emulators_stop_{false};
   std::thread emulator_thread_;
   std::vector<std::string> realtime_warnings_;
-  bool operator_stop_ = false;  // Ctrl-C once: the monitor's operator stop
-  bool emergency_stop_ = false; // Ctrl-C twice: the monitor's emergency stop
+  bool operator_stop_ = false;   // Ctrl-C once: the monitor's operator stop
+  bool emergency_stop_ = false;  // Ctrl-C twice: the monitor's emergency stop
   std::optional<link::TimePoint> shutdown_since_;
   std::atomic<bool> loop_stop_{false};
 };

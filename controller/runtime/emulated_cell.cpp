@@ -16,13 +16,15 @@ double mm_per_revolution(const config::EncoderSection& e) {
 
 EmulatedCell::EmulatedCell(const config::CellConfig& cell, DeviceSideLinks links) {
   if (links.scu && cell.scu) scu_ = std::make_unique<scu::Emulator>(*links.scu, cell.scu->emulator);
-  if (links.spindle && cell.spindle) spindle_ = std::make_unique<spindle::Emulator>(*links.spindle, cell.spindle->emulator);
+  if (links.spindle && cell.spindle)
+    spindle_ = std::make_unique<spindle::Emulator>(*links.spindle, cell.spindle->emulator);
   if (links.encoder && cell.encoder) {
     const config::AxisConfig* measured = nullptr;
     for (const auto& a : cell.axes)
       if (a.encoder) measured = &a;
     if (!measured || !scu_)
-      throw std::invalid_argument("an emulated encoder needs an emulated SCU axis to turn its shaft (axes[].encoder)");
+      throw std::invalid_argument(
+          "an emulated encoder needs an emulated SCU axis to turn its shaft (axes[].encoder)");
     const plant::Actuator& actuator = scu_->actuator(measured->actuator);
     shaft_.emplace(plant::ShaftParams{.mm_per_revolution = mm_per_revolution(*cell.encoder),
                                       .slip = cell.plant.encoder_slip,

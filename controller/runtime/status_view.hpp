@@ -17,9 +17,9 @@ namespace cellctl::runtime {
 struct StatusView {
   double t = 0.0;
   supervisor::State state = supervisor::State::idle;
-  std::uint32_t step = 0;   // 1-based, 0 before the first
+  std::uint32_t step = 0;  // 1-based, 0 before the first
   std::uint32_t steps = 0;
-  std::string_view label;   // the program's label (lives as long as the run)
+  std::string_view label;  // the program's label (lives as long as the run)
   std::uint8_t axes = 0;
   std::array<double, cell::kMaxAxes> position_mm{};
   double spindle_hz = 0.0;

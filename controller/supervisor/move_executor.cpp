@@ -13,7 +13,8 @@ double MoveExecutor::best_position(const cell::CellState& s, std::size_t i) cons
   return s.axes[i].position_mm();
 }
 
-void MoveExecutor::start(const recipe::Move& move, const cell::CellState& s, double t, std::uint32_t& move_id) {
+void MoveExecutor::start(const recipe::Move& move, const cell::CellState& s, double t,
+                         std::uint32_t& move_id) {
   axes_ = {};
   speed_ = move.speed_mm_s;
   reason_ = {};
@@ -83,7 +84,8 @@ void MoveExecutor::command(cell::Intents& out) const noexcept {
   }
 }
 
-MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents& out, std::uint32_t& move_id) {
+MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents& out,
+                              std::uint32_t& move_id) {
   // The profile: where the axes should be, and the pace the modulation keeps them on.
   // An invalid profile (it cannot be: limits are validated at load) would leave the plan where it is.
   if (!planner::is_error(planner_.update(input_, output_))) output_.pass_to_input(input_);
@@ -107,8 +109,8 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
     last_progress_t_ = t;
   }
   if (t - started_t_ > limits_.move_timeout_s) {
-    reason_ = journal::Text::format("move not done after {:.1f} s (time-out); {:.2f} mm still to go", t - started_t_,
-                                    worst_remaining);
+    reason_ = journal::Text::format("move not done after {:.1f} s (time-out); {:.2f} mm still to go",
+                                    t - started_t_, worst_remaining);
     return MoveStatus::failed;
   }
 
@@ -123,7 +125,8 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
       const auto& a = axes_[i];
       if (!a.in_move || std::abs(a.target_mm - best_position(s, i)) <= a.tolerance_mm) continue;
       reason_ = journal::Text::format(
-          "no motion: axis {} stayed at {:.2f} mm for {:.1f} s at {:.2f} mm/s (below the actuator's threshold, or "
+          "no motion: axis {} stayed at {:.2f} mm for {:.1f} s at {:.2f} mm/s (below the actuator's "
+          "threshold, or "
           "blocked?)",
           cell_.axes[i].name, best_position(s, i), t - last_progress_t_, speed_sent_[i]);
       break;
@@ -140,9 +143,10 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
       if (!a.in_move || std::abs(span) < 1e-9 || a.corrections > 0) continue;
       const double progress = (best_position(s, i) - a.start_mm) / span;
       const double factor = std::clamp(1.0 + settings_.sync_gain * (plan_progress - progress), 0.5, 1.5);
-      const double axis_max = limits_.axes[i] ? limits_.axes[i]->max_speed_mm_s : cell_.axes[i].max_speed_mm_s;
-      const double v = std::clamp(a.nominal_speed * factor, std::min(cell_.axes[i].min_speed_mm_s * 1.2, axis_max),
-                                  axis_max);
+      const double axis_max =
+          limits_.axes[i] ? limits_.axes[i]->max_speed_mm_s : cell_.axes[i].max_speed_mm_s;
+      const double v = std::clamp(a.nominal_speed * factor,
+                                  std::min(cell_.axes[i].min_speed_mm_s * 1.2, axis_max), axis_max);
       if (std::abs(v - speed_sent_[i]) > 0.03 * a.nominal_speed) speed_sent_[i] = v;
     }
   }

@@ -22,23 +22,25 @@ namespace cellctl::supervisor {
 
 struct MoveSettings {
   int max_corrections = 3;
-  double no_motion_s = 1.5;         // no measurable progress for this long → "no motion"
-  double settle_s = 0.15;           // the SCU must show no motion for this long before we judge
-  double speed_update_s = 0.1;      // at most this often a new speed goes to the SCU
-  double sync_gain = 2.0;           // speed correction per unit of normalised lag
+  double no_motion_s = 1.5;     // no measurable progress for this long → "no motion"
+  double settle_s = 0.15;       // the SCU must show no motion for this long before we judge
+  double speed_update_s = 0.1;  // at most this often a new speed goes to the SCU
+  double sync_gain = 2.0;       // speed correction per unit of normalised lag
 };
 
 enum class MoveStatus : std::uint8_t { running, done, failed };
 
 class MoveExecutor {
  public:
-  MoveExecutor(const config::CellConfig& cell, const recipe::Limits& limits, double dt, MoveSettings settings = {});
+  MoveExecutor(const config::CellConfig& cell, const recipe::Limits& limits, double dt,
+               MoveSettings settings = {});
 
   // Starts `move` from the state's current positions. `move_id` is the cell's move counter: every
   // command to an axis takes the next value, so CellDevices sees each new command exactly once.
   void start(const recipe::Move& move, const cell::CellState& s, double t, std::uint32_t& move_id);
   // One cycle: updates the intents of the axes in the move. On failure, reason() says why.
-  [[nodiscard]] MoveStatus step(const cell::CellState& s, double t, cell::Intents& out, std::uint32_t& move_id);
+  [[nodiscard]] MoveStatus step(const cell::CellState& s, double t, cell::Intents& out,
+                                std::uint32_t& move_id);
 
   [[nodiscard]] const journal::Text& reason() const noexcept { return reason_; }
   [[nodiscard]] int corrections() const noexcept { return corrections_total_; }

@@ -10,14 +10,14 @@ namespace cellctl::supervisor {
 
 enum class State : std::uint8_t {
   idle,
-  starting,    // waiting for every device session to be up and the encoder ready
-  execute,     // running the recipe's steps
-  holding,     // axes coming to a controlled stop, spindle kept (stop category 2)
+  starting,  // waiting for every device session to be up and the encoder ready
+  execute,   // running the recipe's steps
+  holding,   // axes coming to a controlled stop, spindle kept (stop category 2)
   held,
-  unholding,   // resuming the interrupted step
-  stopping,    // axes and spindle coming to a controlled stop (category 1)
+  unholding,  // resuming the interrupted step
+  stopping,   // axes and spindle coming to a controlled stop (category 1)
   stopped,
-  aborting,    // SCU emergency stop and spindle stop at once (category 0)
+  aborting,  // SCU emergency stop and spindle stop at once (category 0)
   aborted,
   completing,  // recipe done, making sure everything is at rest
   complete,
@@ -27,8 +27,8 @@ enum class State : std::uint8_t {
 enum class Command : std::uint8_t { start, hold, unhold, stop, abort, reset };
 
 [[nodiscard]] constexpr std::string_view to_string(State s) noexcept {
-  constexpr std::string_view names[] = {"Idle",    "Starting", "Execute",    "Holding",  "Held",
-                                        "Unholding", "Stopping", "Stopped",  "Aborting", "Aborted",
+  constexpr std::string_view names[] = {"Idle",       "Starting", "Execute",  "Holding",  "Held",
+                                        "Unholding",  "Stopping", "Stopped",  "Aborting", "Aborted",
                                         "Completing", "Complete", "Resetting"};
   return names[static_cast<std::size_t>(s)];
 }

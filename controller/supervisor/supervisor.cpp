@@ -15,8 +15,9 @@ bool is_running_state(State s) noexcept {
 
 }  // namespace
 
-Supervisor::Supervisor(const config::CellConfig& cell, const recipe::Recipe& recipe, const recipe::Program& program,
-                       journal::EventSink& events, double dt, SupervisorSettings settings)
+Supervisor::Supervisor(const config::CellConfig& cell, const recipe::Recipe& recipe,
+                       const recipe::Program& program, journal::EventSink& events, double dt,
+                       SupervisorSettings settings)
     : cell_(cell),
       recipe_(recipe),
       program_(program),
@@ -31,11 +32,21 @@ const recipe::Instruction* Supervisor::current() const noexcept {
 bool Supervisor::command(Command c, std::string_view source, double t) {
   bool allowed = false;
   switch (c) {
-    case Command::start: allowed = state_ == State::idle; break;
-    case Command::hold: allowed = state_ == State::execute || state_ == State::unholding; break;
-    case Command::unhold: allowed = state_ == State::held; break;
-    case Command::stop: allowed = !is_final(state_) && state_ != State::stopping && state_ != State::aborting; break;
-    case Command::abort: allowed = state_ != State::aborted && state_ != State::aborting; break;
+    case Command::start:
+      allowed = state_ == State::idle;
+      break;
+    case Command::hold:
+      allowed = state_ == State::execute || state_ == State::unholding;
+      break;
+    case Command::unhold:
+      allowed = state_ == State::held;
+      break;
+    case Command::stop:
+      allowed = !is_final(state_) && state_ != State::stopping && state_ != State::aborting;
+      break;
+    case Command::abort:
+      allowed = state_ != State::aborted && state_ != State::aborting;
+      break;
     case Command::reset:
       allowed = state_ == State::stopped || state_ == State::aborted || state_ == State::complete;
       break;
@@ -72,10 +83,12 @@ void Supervisor::apply_demanded(std::optional<config::StopCategory> demanded, do
   if (!demanded || is_final(state_)) return;
   switch (*demanded) {
     case config::StopCategory::immediate:
-      if (state_ != State::aborting && state_ != State::aborted) enter(State::aborting, t, Text::format("stop category 0"));
+      if (state_ != State::aborting && state_ != State::aborted)
+        enter(State::aborting, t, Text::format("stop category 0"));
       break;
     case config::StopCategory::controlled_off:
-      if (state_ != State::stopping && state_ != State::stopped && state_ != State::aborting && state_ != State::aborted)
+      if (state_ != State::stopping && state_ != State::stopped && state_ != State::aborting &&
+          state_ != State::aborted)
         enter(State::stopping, t, Text::format("stop category 1"));
       break;
     case config::StopCategory::controlled_hold:
@@ -113,17 +126,18 @@ Supervisor::StepStatus Supervisor::run_instruction(const cell::CellState& s, dou
     const auto status = executor_.step(s, t, intents_, move_counter_);
     if (status == MoveStatus::failed) failure_ = executor_.reason();
     if (status == MoveStatus::done) corrections_ += executor_.corrections();
-    return status == MoveStatus::done ? StepStatus::done : status == MoveStatus::failed ? StepStatus::failed
-                                                                                         : StepStatus::running;
+    return status == MoveStatus::done     ? StepStatus::done
+           : status == MoveStatus::failed ? StepStatus::failed
+                                          : StepStatus::running;
   }
   if (const auto* sp = std::get_if<recipe::Spindle>(&ins.action)) {
     const double want = sp->direction == recipe::SpindleDirection::cw ? sp->frequency_hz : -sp->frequency_hz;
-    const bool reached = sp->start ? (s.spindle.at_speed && std::abs(s.spindle.actual_hz - want) <= tol)
-                                   : s.spindle.at_rest;
+    const bool reached =
+        sp->start ? (s.spindle.at_speed && std::abs(s.spindle.actual_hz - want) <= tol) : s.spindle.at_rest;
     if (reached) return StepStatus::done;
     if (elapsed > recipe_.limits.spindle_timeout_s) {
-      failure_ = Text::format("spindle not {} after {:.1f} s (at {:.0f} Hz)", sp->start ? "at speed" : "at rest",
-                              elapsed, s.spindle.actual_hz);
+      failure_ = Text::format("spindle not {} after {:.1f} s (at {:.0f} Hz)",
+                              sp->start ? "at speed" : "at rest", elapsed, s.spindle.actual_hz);
       return StepStatus::failed;
     }
     return StepStatus::running;
@@ -137,11 +151,21 @@ Supervisor::StepStatus Supervisor::run_instruction(const cell::CellState& s, dou
     bool met = false;
     using C = recipe::Wait::Condition;
     switch (w->condition) {
-      case C::position_above: met = s.axes[static_cast<std::size_t>(w->axis)].position_mm() > w->threshold_mm; break;
-      case C::position_below: met = s.axes[static_cast<std::size_t>(w->axis)].position_mm() < w->threshold_mm; break;
-      case C::encoder_ready: met = s.encoder.data_exchange && s.encoder.ready; break;
-      case C::spindle_at_speed: met = s.spindle.at_speed; break;
-      case C::spindle_at_rest: met = s.spindle.at_rest; break;
+      case C::position_above:
+        met = s.axes[static_cast<std::size_t>(w->axis)].position_mm() > w->threshold_mm;
+        break;
+      case C::position_below:
+        met = s.axes[static_cast<std::size_t>(w->axis)].position_mm() < w->threshold_mm;
+        break;
+      case C::encoder_ready:
+        met = s.encoder.data_exchange && s.encoder.ready;
+        break;
+      case C::spindle_at_speed:
+        met = s.spindle.at_speed;
+        break;
+      case C::spindle_at_rest:
+        met = s.spindle.at_rest;
+        break;
     }
     if (met) return StepStatus::done;
     if (elapsed > w->timeout_s) {
@@ -153,7 +177,8 @@ Supervisor::StepStatus Supervisor::run_instruction(const cell::CellState& s, dou
   const auto& r = std::get<recipe::Require>(ins.action);
   for (int axis : r.homed_axes) {
     if (!s.axes[static_cast<std::size_t>(axis)].homed) {
-      failure_ = Text::format("axis {} is not homed (run `cellctl home` first)", cell_.axes[static_cast<std::size_t>(axis)].name);
+      failure_ = Text::format("axis {} is not homed (run `cellctl home` first)",
+                              cell_.axes[static_cast<std::size_t>(axis)].name);
       return StepStatus::failed;
     }
   }
@@ -197,10 +222,13 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
         pc_ = 0;
         instruction_started_ = false;
         failure_ = {};
-        events_.post(t, journal::RunStarted{recipe_.name, cell_.name, settings_.mode, static_cast<std::uint32_t>(step_count())});
+        events_.post(t, journal::RunStarted{recipe_.name, cell_.name, settings_.mode,
+                                            static_cast<std::uint32_t>(step_count())});
         enter(State::starting, t, why);
         break;
-      case Command::hold: enter(State::holding, t, why); break;
+      case Command::hold:
+        enter(State::holding, t, why);
+        break;
       case Command::unhold:
         if (demanded) {
           refusal_ = Text::format("unhold refused: a latched fault still demands a stop (reset it first)");
@@ -209,9 +237,15 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
           enter(State::unholding, t, why);
         }
         break;
-      case Command::stop: enter(State::stopping, t, why); break;
-      case Command::abort: enter(State::aborting, t, why); break;
-      case Command::reset: enter(State::resetting, t, why); break;
+      case Command::stop:
+        enter(State::stopping, t, why);
+        break;
+      case Command::abort:
+        enter(State::aborting, t, why);
+        break;
+      case Command::reset:
+        enter(State::resetting, t, why);
+        break;
     }
   }
   apply_demanded(demanded, t);
@@ -303,11 +337,11 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
       const bool spindle_lost = !s.links[static_cast<std::size_t>(cell::Device::spindle)].active;
       const bool rest = (axes_still(s) || scu_lost) && (s.spindle.at_rest || spindle_lost);
       if (rest || t - state_since_ > settings_.stop_timeout_s) {
-        const auto note = !rest ? Text::format("not at rest after {:g} s; giving up waiting", settings_.stop_timeout_s)
-                          : scu_lost || spindle_lost
-                              ? Text::format("cell at rest as far as can be known ({} link lost)",
-                                             scu_lost ? "SCU" : "spindle")
-                              : Text::format("cell at rest");
+        const auto note =
+            !rest ? Text::format("not at rest after {:g} s; giving up waiting", settings_.stop_timeout_s)
+            : scu_lost || spindle_lost ? Text::format("cell at rest as far as can be known ({} link lost)",
+                                                      scu_lost ? "SCU" : "spindle")
+                                       : Text::format("cell at rest");
         enter(abort ? State::aborted : State::stopped, t, note);
         events_.post(t, journal::RunEnded{abort ? "aborted" : "stopped"});
       }

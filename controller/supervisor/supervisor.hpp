@@ -20,9 +20,9 @@
 namespace cellctl::supervisor {
 
 struct SupervisorSettings {
-  double start_timeout_s = 20.0;  // devices up and encoder ready
-  double stop_timeout_s = 30.0;   // axes still and spindle at rest after a stop
-  double sample_s = 0.02;         // journal sample period
+  double start_timeout_s = 20.0;           // devices up and encoder ready
+  double stop_timeout_s = 30.0;            // axes still and spindle at rest after a stop
+  double sample_s = 0.02;                  // journal sample period
   std::string_view mode = "virtual-time";  // for the run record: virtual-time, emulated, hardware
   MoveSettings move;
 };

@@ -17,14 +17,16 @@ StatusBits CyclicInput::status() const noexcept {
 
 std::string_view to_string(CyclicError e) noexcept {
   switch (e) {
-    case CyclicError::bad_length: return "input length does not match the functionality";
-    case CyclicError::bit31_set: return "bit 31 set in a position without status bits";
+    case CyclicError::bad_length:
+      return "input length does not match the functionality";
+    case CyclicError::bit31_set:
+      return "bit 31 set in a position without status bits";
   }
   return "?";
 }
 
 std::variant<CyclicInput, CyclicError> decode_input(Functionality f, bool with_status,
-                                                   std::span<const std::uint8_t> bytes) noexcept {
+                                                    std::span<const std::uint8_t> bytes) noexcept {
   if (bytes.size() != input_length(f)) return CyclicError::bad_length;
   wire::ByteReader r(bytes);
   CyclicInput in;
@@ -68,10 +70,13 @@ std::int16_t saturate16(double v) noexcept {
 link::Duration sample_period(TimeBase tb) noexcept {
   using namespace std::chrono_literals;
   switch (tb) {
-    case TimeBase::steps_per_100ms: return 100ms;
-    case TimeBase::steps_per_10ms: return 10ms;
+    case TimeBase::steps_per_100ms:
+      return 100ms;
+    case TimeBase::steps_per_10ms:
+      return 10ms;
     case TimeBase::steps_per_s:
-    case TimeBase::rpm: return 1s;
+    case TimeBase::rpm:
+      return 1s;
   }
   return 1s;
 }

@@ -9,8 +9,8 @@
 #include <variant>
 
 #include "encoder/functionality.hpp"
-#include "link/clock.hpp"
 #include "encoder/parameters.hpp"
+#include "link/clock.hpp"
 
 namespace cellctl::encoder {
 
@@ -19,7 +19,7 @@ namespace bits {
 inline constexpr std::uint32_t position25 = 0x01FF'FFFFu;  // position with status bits
 inline constexpr std::uint32_t position31 = 0x7FFF'FFFFu;  // position without status bits
 inline constexpr std::uint32_t ready = 1u << 25;
-inline constexpr std::uint32_t mode = 1u << 26;           // set = NOT in commissioning mode
+inline constexpr std::uint32_t mode = 1u << 26;  // set = NOT in commissioning mode
 inline constexpr std::uint32_t limit_switch = 1u << 27;
 inline constexpr std::uint32_t code_sequence = 1u << 28;  // input: set = ccw; output: change direction
 inline constexpr std::uint32_t teach_in_end = 1u << 29;
@@ -39,8 +39,8 @@ struct StatusBits {
 };
 
 struct CyclicInput {
-  std::uint32_t word = 0;      // the raw position word
-  std::int16_t velocity = 0;   // Scancon 2.2/3.0
+  std::uint32_t word = 0;         // the raw position word
+  std::int16_t velocity = 0;      // Scancon 2.2/3.0
   std::int16_t acceleration = 0;  // Scancon 3.0
 
   [[nodiscard]] std::uint32_t position(bool with_status) const noexcept {
@@ -54,8 +54,8 @@ enum class CyclicError : std::uint8_t { bad_length, bit31_set };
 [[nodiscard]] std::string_view to_string(CyclicError e) noexcept;
 
 // Input of the given functionality; without status bits bit 31 must be 0 (4.3.1/4.3.5).
-[[nodiscard]] std::variant<CyclicInput, CyclicError> decode_input(Functionality f, bool with_status,
-                                                                 std::span<const std::uint8_t> bytes) noexcept;
+[[nodiscard]] std::variant<CyclicInput, CyclicError> decode_input(
+    Functionality f, bool with_status, std::span<const std::uint8_t> bytes) noexcept;
 std::size_t encode_input(Functionality f, const CyclicInput& in, std::span<std::uint8_t> out) noexcept;
 
 [[nodiscard]] std::optional<std::uint32_t> decode_output(std::span<const std::uint8_t> bytes) noexcept;
@@ -63,7 +63,9 @@ std::size_t encode_output(std::uint32_t word, std::span<std::uint8_t> out) noexc
 
 // 16-bit velocity/acceleration saturate at the extremes (4.3.4/4.3.5): 32767 / −32768 mean
 // "at least this much", not a measurement.
-[[nodiscard]] constexpr bool saturated(std::int16_t v) noexcept { return v == INT16_MAX || v == INT16_MIN; }
+[[nodiscard]] constexpr bool saturated(std::int16_t v) noexcept {
+  return v == INT16_MAX || v == INT16_MIN;
+}
 [[nodiscard]] std::int16_t saturate16(double v) noexcept;
 
 // The sample time of a time base: 1 s, 100 ms, 10 ms; RPM is counted over 1 s and scaled to a minute.

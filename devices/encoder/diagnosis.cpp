@@ -8,22 +8,27 @@ namespace cellctl::encoder {
 namespace {
 
 std::uint8_t status_byte(const OperatingStatus& s) noexcept {
-  return static_cast<std::uint8_t>((s.ccw ? 1u : 0u) | (s.class2 ? 2u : 0u) | (s.commissioning_diagnostics ? 4u : 0u) |
-                                   (s.scaling ? 8u : 0u));
+  return static_cast<std::uint8_t>((s.ccw ? 1u : 0u) | (s.class2 ? 2u : 0u) |
+                                   (s.commissioning_diagnostics ? 4u : 0u) | (s.scaling ? 8u : 0u));
 }
 
 }  // namespace
 
 std::string_view to_string(DiagError e) noexcept {
   switch (e) {
-    case DiagError::bad_length: return "extended diagnosis must be 10 or 51 octets";
-    case DiagError::header_mismatch: return "extended diagnosis header does not match its length";
-    case DiagError::unassigned_bits_set: return "unassigned alarm/status bits set";
+    case DiagError::bad_length:
+      return "extended diagnosis must be 10 or 51 octets";
+    case DiagError::header_mismatch:
+      return "extended diagnosis header does not match its length";
+    case DiagError::unassigned_bits_set:
+      return "unassigned alarm/status bits set";
   }
   return "?";
 }
 
-std::size_t EncoderDiagnosis::length() const noexcept { return detail ? kExtDiagLong : kExtDiagShort; }
+std::size_t EncoderDiagnosis::length() const noexcept {
+  return detail ? kExtDiagLong : kExtDiagShort;
+}
 
 std::variant<EncoderDiagnosis, DiagError> decode_diagnosis(std::span<const std::uint8_t> ext) noexcept {
   if (ext.size() != kExtDiagShort && ext.size() != kExtDiagLong) return DiagError::bad_length;

@@ -32,7 +32,8 @@ inline constexpr std::uint16_t cpu_watchdog = 1u << 3;
 inline constexpr std::uint16_t operating_time_limit = 1u << 4;
 inline constexpr std::uint16_t battery_charge = 1u << 5;
 inline constexpr std::uint16_t reference_point = 1u << 6;
-inline constexpr std::uint16_t supported = temperature_exceeded | light_control_reserve | operating_time_limit | battery_charge;
+inline constexpr std::uint16_t supported =
+    temperature_exceeded | light_control_reserve | operating_time_limit | battery_charge;
 }  // namespace warning
 
 // Octet 9 (4.2.3).
@@ -68,12 +69,12 @@ struct DiagnosisDetail {
 };
 
 struct EncoderDiagnosis {
-  std::uint8_t alarms = 0;           // octet 8
-  OperatingStatus status;            // octet 9
-  std::uint8_t encoder_type = 1;     // octet 10: 0 singleturn, 1 multiturn
+  std::uint8_t alarms = 0;                  // octet 8
+  OperatingStatus status;                   // octet 9
+  std::uint8_t encoder_type = 1;            // octet 10: 0 singleturn, 1 multiturn
   std::uint32_t singleturn_resolution = 0;  // 11–14
-  std::uint16_t revolutions = 0;     // 15–16
-  std::optional<DiagnosisDetail> detail;  // the long form
+  std::uint16_t revolutions = 0;            // 15–16
+  std::optional<DiagnosisDetail> detail;    // the long form
 
   [[nodiscard]] std::size_t length() const noexcept;  // 10 or 51, header included
   [[nodiscard]] bool multiturn() const noexcept { return encoder_type == 1; }
@@ -84,7 +85,8 @@ enum class DiagError : std::uint8_t { bad_length, header_mismatch, unassigned_bi
 [[nodiscard]] std::string_view to_string(DiagError e) noexcept;
 
 // `ext` starts at octet 7 (the header). Decodes either length; anything else is a typed error.
-[[nodiscard]] std::variant<EncoderDiagnosis, DiagError> decode_diagnosis(std::span<const std::uint8_t> ext) noexcept;
+[[nodiscard]] std::variant<EncoderDiagnosis, DiagError> decode_diagnosis(
+    std::span<const std::uint8_t> ext) noexcept;
 // Writes d.length() octets; returns the count, 0 when `out` is too small.
 std::size_t encode_diagnosis(const EncoderDiagnosis& d, std::span<std::uint8_t> out) noexcept;
 

@@ -1,11 +1,11 @@
 #include "encoder/eeprom_file.hpp"
 
+#include <fmt/format.h>
+
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-
-#include <fmt/format.h>
 
 namespace cellctl::encoder {
 
@@ -50,8 +50,9 @@ bool save_eeprom(const std::filesystem::path& path, const NonVolatile& nv) noexc
     const auto tmp = std::filesystem::path(path.string() + ".tmp");
     {
       std::ofstream out(tmp, std::ios::trunc);
-      out << "offset " << nv.offset << "\ncode_sequence " << (nv.code_sequence == CodeSequence::ccw ? "ccw" : "cw")
-          << "\ntaught_units " << nv.taught_units << "\naddress " << unsigned{nv.address} << "\n";
+      out << "offset " << nv.offset << "\ncode_sequence "
+          << (nv.code_sequence == CodeSequence::ccw ? "ccw" : "cw") << "\ntaught_units " << nv.taught_units
+          << "\naddress " << unsigned{nv.address} << "\n";
       if (!out) return false;
     }
     std::filesystem::rename(tmp, path);

@@ -1,10 +1,10 @@
 #include "encoder/emulator.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <stdexcept>
 #include <variant>
-
-#include <fmt/format.h>
 
 #include "encoder/eeprom_file.hpp"
 
@@ -14,7 +14,8 @@ namespace {
 NonVolatile initial_eeprom(const EmulatorConfig& c) {
   if (c.address < 1 || c.address > 126)
     throw std::invalid_argument(fmt::format("encoder emulator: address {}: must be 1..126", c.address));
-  if (auto v = validate(c.identity.physical)) throw std::invalid_argument("encoder emulator: " + v->describe());
+  if (auto v = validate(c.identity.physical))
+    throw std::invalid_argument("encoder emulator: " + v->describe());
   return c.state_file.empty() ? NonVolatile{} : load_eeprom(c.state_file);
 }
 
@@ -91,7 +92,8 @@ std::size_t Emulator::Behaviour::ext_diag(std::span<std::uint8_t> out) {
   return encode_diagnosis(device.diagnosis(), out);
 }
 
-std::size_t Emulator::Behaviour::exchange(std::span<const std::uint8_t> outputs, std::span<std::uint8_t> inputs) {
+std::size_t Emulator::Behaviour::exchange(std::span<const std::uint8_t> outputs,
+                                          std::span<std::uint8_t> inputs) {
   std::optional<std::uint32_t> word;
   if (has_outputs(config.functionality)) word = decode_output(outputs);
   // A Class 2+ exchange without a 4-octet output (cannot happen after Chk_Cfg) counts as zeros.

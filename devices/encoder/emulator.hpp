@@ -30,7 +30,9 @@ class Emulator {
   Emulator(link::Link& link, const EmulatorConfig& config, const plant::Shaft& shaft);
 
   void poll(link::TimePoint now);
-  [[nodiscard]] std::optional<link::TimePoint> next_deadline() const noexcept { return slave_.next_deadline(); }
+  [[nodiscard]] std::optional<link::TimePoint> next_deadline() const noexcept {
+    return slave_.next_deadline();
+  }
 
   // Fault injection: alarm::position_error / supply_voltage; warning::temperature_exceeded /
   // light_control_reserve / operating_time_limit / battery_charge. A change raises a diagnosis (DH).
@@ -43,7 +45,9 @@ class Emulator {
   [[nodiscard]] const EncoderDevice& device() const noexcept { return behaviour_.device; }
   // Why the last Set_Prm was refused (the rule), empty when accepted.
   [[nodiscard]] std::string_view last_prm_reason() const noexcept { return slave_.last_prm_reason(); }
-  [[nodiscard]] std::uint64_t watchdog_expiries() const noexcept { return slave_.counters().watchdog_expiries; }
+  [[nodiscard]] std::uint64_t watchdog_expiries() const noexcept {
+    return slave_.counters().watchdog_expiries;
+  }
 
  private:
   struct Behaviour final : profibus::SlaveBehaviour {

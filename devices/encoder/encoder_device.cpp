@@ -61,7 +61,8 @@ void EncoderDevice::sample(double revolutions, link::TimePoint now) noexcept {
   if (elapsed < period) return;
   // Units counted over one sample period (stretched polls are scaled back to the period).
   const double per_period = (units - sampled_units_) * link::to_seconds(period) / link::to_seconds(elapsed);
-  const double v = params_.time_base == TimeBase::rpm ? per_period / scaling_.units_per_revolution() * 60.0 : per_period;
+  const double v =
+      params_.time_base == TimeBase::rpm ? per_period / scaling_.units_per_revolution() * 60.0 : per_period;
   acceleration16_ = saturate16(v - velocity_);
   velocity16_ = saturate16(v);
   velocity_ = v;
@@ -118,8 +119,8 @@ void EncoderDevice::on_edges(std::uint32_t out) noexcept {
     const std::uint64_t now = coded_physical();
     const std::uint64_t travelled = now > teach_start_ ? now - teach_start_ : teach_start_ - now;
     if (travelled > 0 && distance > 0) {
-      const auto total = static_cast<std::uint64_t>(
-          std::llround(static_cast<double>(distance) * static_cast<double>(total_) / static_cast<double>(travelled)));
+      const auto total = static_cast<std::uint64_t>(std::llround(
+          static_cast<double>(distance) * static_cast<double>(total_) / static_cast<double>(travelled)));
       if (total >= 1 && total <= std::min<std::uint64_t>(total_, bits::position25 + 1ull))
         teach_result_ = static_cast<std::uint32_t>(total);
     }
@@ -182,12 +183,13 @@ void EncoderDevice::add_operating_time(link::Duration d) noexcept {
 EncoderDiagnosis EncoderDevice::diagnosis() const noexcept {
   EncoderDiagnosis d;
   d.alarms = alarms_;
-  d.status = OperatingStatus{eeprom_.code_sequence == CodeSequence::ccw, params_.functionality != Functionality::class1,
-                             false, scaling_.scaled()};
+  d.status = OperatingStatus{eeprom_.code_sequence == CodeSequence::ccw,
+                             params_.functionality != Functionality::class1, false, scaling_.scaled()};
   d.encoder_type = identity_.physical.revolutions > 1 ? 1 : 0;
   d.singleturn_resolution = identity_.physical.steps_per_revolution;
   d.revolutions = static_cast<std::uint16_t>(identity_.physical.revolutions);
-  if (params_.functionality == Functionality::class1 || (is_scancon(params_.functionality) && params_.short_diagnosis))
+  if (params_.functionality == Functionality::class1 ||
+      (is_scancon(params_.functionality) && params_.short_diagnosis))
     return d;
   DiagnosisDetail x;
   x.supported_alarms = alarm::supported;

@@ -19,15 +19,22 @@ inline constexpr std::uint16_t kIdentNumber = 0x0C88;
 [[nodiscard]] constexpr bool is_scancon(Functionality f) noexcept {
   return f == Functionality::scancon21 || f == Functionality::scancon22 || f == Functionality::scancon30;
 }
-[[nodiscard]] constexpr bool has_outputs(Functionality f) noexcept { return f != Functionality::class1; }
+[[nodiscard]] constexpr bool has_outputs(Functionality f) noexcept {
+  return f != Functionality::class1;
+}
 
 // Manual 4.3: 0/4 output bytes; 4, 6 (+ velocity) or 8 (+ acceleration) input bytes.
-[[nodiscard]] constexpr std::size_t output_length(Functionality f) noexcept { return has_outputs(f) ? 4 : 0; }
+[[nodiscard]] constexpr std::size_t output_length(Functionality f) noexcept {
+  return has_outputs(f) ? 4 : 0;
+}
 [[nodiscard]] constexpr std::size_t input_length(Functionality f) noexcept {
   switch (f) {
-    case Functionality::scancon22: return 6;
-    case Functionality::scancon30: return 8;
-    default: return 4;
+    case Functionality::scancon22:
+      return 6;
+    case Functionality::scancon30:
+      return 8;
+    default:
+      return 4;
   }
 }
 
@@ -58,22 +65,32 @@ inline constexpr std::array<std::uint8_t, 4> kCfgScancon30 = {0xC1, 0xC1, 0xC3, 
 
 [[nodiscard]] constexpr std::span<const std::uint8_t> config_identifiers(Functionality f) noexcept {
   switch (f) {
-    case Functionality::class1: return kCfgClass1;
-    case Functionality::class2: return kCfgClass2;
-    case Functionality::scancon21: return kCfgScancon21;
-    case Functionality::scancon22: return kCfgScancon22;
-    case Functionality::scancon30: return kCfgScancon30;
+    case Functionality::class1:
+      return kCfgClass1;
+    case Functionality::class2:
+      return kCfgClass2;
+    case Functionality::scancon21:
+      return kCfgScancon21;
+    case Functionality::scancon22:
+      return kCfgScancon22;
+    case Functionality::scancon30:
+      return kCfgScancon30;
   }
   return {};
 }
 
 [[nodiscard]] constexpr std::string_view to_string(Functionality f) noexcept {
   switch (f) {
-    case Functionality::class1: return "class1";
-    case Functionality::class2: return "class2";
-    case Functionality::scancon21: return "scancon2.1";
-    case Functionality::scancon22: return "scancon2.2";
-    case Functionality::scancon30: return "scancon3.0";
+    case Functionality::class1:
+      return "class1";
+    case Functionality::class2:
+      return "class2";
+    case Functionality::scancon21:
+      return "scancon2.1";
+    case Functionality::scancon22:
+      return "scancon2.2";
+    case Functionality::scancon30:
+      return "scancon3.0";
   }
   return "?";
 }

@@ -4,11 +4,16 @@ namespace cellctl::encoder {
 
 std::string_view to_string(Handshake::Kind k) noexcept {
   switch (k) {
-    case Handshake::Kind::none: return "none";
-    case Handshake::Kind::preset: return "preset";
-    case Handshake::Kind::direction: return "direction";
-    case Handshake::Kind::teach_in_start: return "teach-in start";
-    case Handshake::Kind::teach_in_end: return "teach-in end";
+    case Handshake::Kind::none:
+      return "none";
+    case Handshake::Kind::preset:
+      return "preset";
+    case Handshake::Kind::direction:
+      return "direction";
+    case Handshake::Kind::teach_in_start:
+      return "teach-in start";
+    case Handshake::Kind::teach_in_end:
+      return "teach-in end";
   }
   return "?";
 }
@@ -45,7 +50,9 @@ bool Handshake::end_teach_in(std::uint32_t distance) noexcept {
   return begin(Kind::teach_in_end, bits::teach_in_end | distance);
 }
 
-std::uint32_t Handshake::output() const noexcept { return phase_ == Phase::request ? request_word_ : 0u; }
+std::uint32_t Handshake::output() const noexcept {
+  return phase_ == Phase::request ? request_word_ : 0u;
+}
 
 void Handshake::advance(bool acknowledged, std::string_view what) noexcept {
   if (acknowledged) {
@@ -101,13 +108,15 @@ void Handshake::on_input(const CyclicInput& in) noexcept {
       if (requesting) {
         const bool ack = (w & bits::teach_in_end) != 0 && (w & bits::teach_in_start) != 0;
         if (ack) result_ = in.position(true);
-        advance(ack, "Teach-In end not acknowledged (bits 29/30 never set; Teach-In started? distance moved?)");
+        advance(ack,
+                "Teach-In end not acknowledged (bits 29/30 never set; Teach-In started? distance moved?)");
       } else {
         advance((w & (bits::teach_in_end | bits::teach_in_start)) == 0,
                 "Teach-In end not released (bits 29/30 stay set)");
       }
       return;
-    case Kind::none: return;
+    case Kind::none:
+      return;
   }
 }
 

@@ -1,8 +1,8 @@
 #include "encoder/parameters.hpp"
 
-#include <bit>
-
 #include <fmt/format.h>
+
+#include <bit>
 
 #include "encoder/scaling.hpp"
 #include "wire/byte_reader.hpp"
@@ -11,7 +11,9 @@
 namespace cellctl::encoder {
 namespace {
 
-constexpr std::uint8_t bit(unsigned n) noexcept { return static_cast<std::uint8_t>(1u << n); }
+constexpr std::uint8_t bit(unsigned n) noexcept {
+  return static_cast<std::uint8_t>(1u << n);
+}
 constexpr std::uint64_t kStatusBitsRange = std::uint64_t{1} << 25;  // 4.3.3: 25-bit position
 constexpr std::uint64_t kPlainRange = std::uint64_t{1} << 31;       // 4.3.1: 31 bits used
 
@@ -27,16 +29,18 @@ std::optional<PrmViolation> in_range(std::string_view parameter, std::string_vie
   return std::nullopt;
 }
 
-std::optional<PrmViolation> check_scaling(const EncoderParameters& p, const PhysicalResolution& phys) noexcept {
-  const bool per_revolution = p.functionality == Functionality::class2 || p.units_select == UnitsSelect::per_revolution;
+std::optional<PrmViolation> check_scaling(const EncoderParameters& p,
+                                          const PhysicalResolution& phys) noexcept {
+  const bool per_revolution =
+      p.functionality == Functionality::class2 || p.units_select == UnitsSelect::per_revolution;
   if (per_revolution) {
     const std::string_view name = p.functionality == Functionality::class2 ? "Measuring Units per Revolution"
                                                                            : "Desired Measuring Units";
-    if (auto v = in_range(name, "must be 1 … the physical steps per revolution 2^n (4.1.2)", p.measuring_units, 1,
-                          phys.steps_per_revolution))
+    if (auto v = in_range(name, "must be 1 … the physical steps per revolution 2^n (4.1.2)",
+                          p.measuring_units, 1, phys.steps_per_revolution))
       return v;
-    if (auto v = in_range("Total Measuring Range", "must be 1 … the physical range 2^(n+m) (4.1.3)", p.total_range,
-                          1, phys.total()))
+    if (auto v = in_range("Total Measuring Range", "must be 1 … the physical range 2^(n+m) (4.1.3)",
+                          p.total_range, 1, phys.total()))
       return v;
     if (p.total_range % p.measuring_units != 0)
       return violation("Total Measuring Range",
@@ -53,31 +57,36 @@ std::optional<PrmViolation> check_scaling(const EncoderParameters& p, const Phys
                         p.measuring_units, 1, phys.total()))
     return v;
   if (p.units_select == UnitsSelect::per_physical_impulses)
-    return in_range("Physical Impulses", "must be 1 … the physical range 2^(n+m) (4.1.8)", p.physical_impulses, 1,
-                    phys.total());
+    return in_range("Physical Impulses", "must be 1 … the physical range 2^(n+m) (4.1.8)",
+                    p.physical_impulses, 1, phys.total());
   return std::nullopt;
 }
 
-std::optional<PrmViolation> check_scancon(const EncoderParameters& p, const PhysicalResolution& phys) noexcept {
+std::optional<PrmViolation> check_scancon(const EncoderParameters& p,
+                                          const PhysicalResolution& phys) noexcept {
   if (p.without_status_bits) {
     if (p.commissioning)
       return violation("Commissioning Mode Enable", "not possible without status bits (4.1.5 bit 4)");
     if (p.lower_limit_enabled || p.upper_limit_enabled)
-      return violation("Enable Lower/Upper Limit Switch", "limit switches cannot be selected without status bits (4.1.5 bit 4)");
+      return violation("Enable Lower/Upper Limit Switch",
+                       "limit switches cannot be selected without status bits (4.1.5 bit 4)");
   }
   if (p.lower_limit_enabled) {
-    if (auto v = in_range("Lower Limit Switch", "must be 0 … 2^(n+m) − 1 (4.1.6)", p.lower_limit, 0, phys.total() - 1))
+    if (auto v = in_range("Lower Limit Switch", "must be 0 … 2^(n+m) − 1 (4.1.6)", p.lower_limit, 0,
+                          phys.total() - 1))
       return v;
   }
   if (p.upper_limit_enabled) {
-    if (auto v = in_range("Upper Limit Switch", "must be 1 … 2^(n+m) − 1 (4.1.7)", p.upper_limit, 1, phys.total() - 1))
+    if (auto v = in_range("Upper Limit Switch", "must be 1 … 2^(n+m) − 1 (4.1.7)", p.upper_limit, 1,
+                          phys.total() - 1))
       return v;
   }
   if (p.lower_limit_enabled && p.upper_limit_enabled && p.lower_limit >= p.upper_limit)
-    return violation("Lower Limit Switch", "must be below the upper limit switch", p.lower_limit, p.upper_limit);
+    return violation("Lower Limit Switch", "must be below the upper limit switch", p.lower_limit,
+                     p.upper_limit);
   if (p.multiturn != (phys.revolutions > 1))
-    return violation("Encoder Type", "must match the encoder (octet 39 bit 1: 1 = multiturn)", p.multiturn ? 1 : 0,
-                     phys.revolutions > 1 ? 1 : 0);
+    return violation("Encoder Type", "must match the encoder (octet 39 bit 1: 1 = multiturn)",
+                     p.multiturn ? 1 : 0, phys.revolutions > 1 ? 1 : 0);
   return std::nullopt;
 }
 
@@ -106,8 +115,8 @@ std::size_t encode_user_prm(const EncoderParameters& p, std::span<std::uint8_t> 
   if (!is_scancon(p.functionality)) return w.size();
   w.u8(static_cast<std::uint8_t>(static_cast<unsigned>(p.units_select) | (p.commissioning ? bit(2) : 0u) |
                                  (p.short_diagnosis ? bit(3) : 0u) | (p.without_status_bits ? bit(4) : 0u) |
-                                 (p.lower_limit_enabled ? bit(5) : 0u) | (p.upper_limit_enabled ? bit(6) : 0u) |
-                                 bit(7)));
+                                 (p.lower_limit_enabled ? bit(5) : 0u) |
+                                 (p.upper_limit_enabled ? bit(6) : 0u) | bit(7)));
   w.be(p.lower_limit);
   w.be(p.upper_limit);
   w.be(p.physical_impulses);
@@ -116,10 +125,10 @@ std::size_t encode_user_prm(const EncoderParameters& p, std::span<std::uint8_t> 
 }
 
 std::variant<EncoderParameters, PrmViolation> decode_user_prm(Functionality f,
-                                                             std::span<const std::uint8_t> bytes) noexcept {
+                                                              std::span<const std::uint8_t> bytes) noexcept {
   if (bytes.size() != user_prm_length(f))
-    return violation("User_Prm_Data", "length must match the functionality (octets 8–9 / 8–25 / 8–39)", bytes.size(),
-                     user_prm_length(f));
+    return violation("User_Prm_Data", "length must match the functionality (octets 8–9 / 8–25 / 8–39)",
+                     bytes.size(), user_prm_length(f));
   wire::ByteReader r(bytes);
   EncoderParameters p;
   p.functionality = f;
@@ -158,7 +167,8 @@ std::variant<EncoderParameters, PrmViolation> decode_user_prm(Functionality f,
     return violation("Without Status Bits", "only with the Scancon 3.0 functionality (4.1.5 bit 4)");
   p.lower_limit_enabled = (op2 & bit(5)) != 0;
   p.upper_limit_enabled = (op2 & bit(6)) != 0;
-  if ((op2 & bit(7)) == 0) return violation("Activate Octets 27–39", "must be 1 for the Scancon functionalities");
+  if ((op2 & bit(7)) == 0)
+    return violation("Activate Octets 27–39", "must be 1 for the Scancon functionalities");
   p.lower_limit = r.be<std::uint32_t>();
   p.upper_limit = r.be<std::uint32_t>();
   p.physical_impulses = r.be<std::uint32_t>();
@@ -175,8 +185,8 @@ std::optional<PrmViolation> validate(const PhysicalResolution& phys) noexcept {
     return violation("Singleturn Resolution", "must be a power of 2, at most 2^16 (manual 6)",
                      phys.steps_per_revolution, 1u << 16);
   if (!std::has_single_bit(phys.revolutions) || phys.revolutions > (1u << 15))
-    return violation("Number of Revolutions", "must be a power of 2, at most 2^15 (manual 6)", phys.revolutions,
-                     1u << 15);
+    return violation("Number of Revolutions", "must be a power of 2, at most 2^15 (manual 6)",
+                     phys.revolutions, 1u << 15);
   return std::nullopt;
 }
 
@@ -191,9 +201,10 @@ std::optional<PrmViolation> validate(const EncoderParameters& p, const PhysicalR
   }
   const std::uint64_t range = Scaling(p, phys).range();
   if (has_status_bits(p) && range > kStatusBitsRange)
-    return violation("Total Measuring Range",
-                     "with status bits the position must fit in 25 bits: range in measuring units ≤ 2^25 (4.3.3)", range,
-                     kStatusBitsRange);
+    return violation(
+        "Total Measuring Range",
+        "with status bits the position must fit in 25 bits: range in measuring units ≤ 2^25 (4.3.3)", range,
+        kStatusBitsRange);
   if (range > kPlainRange)
     return violation("Total Measuring Range", "the position must fit in 31 bits (4.3.1)", range, kPlainRange);
   return std::nullopt;

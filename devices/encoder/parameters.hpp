@@ -33,21 +33,21 @@ struct PhysicalResolution {
 
 struct EncoderParameters {
   Functionality functionality = Functionality::scancon22;
-  CodeSequence code_sequence = CodeSequence::cw;        // octet 9 bit 0
-  bool scaling = false;                                 // octet 9 bit 3
-  std::uint32_t measuring_units = 4096;                 // octets 10–13 (per rev. / desired units)
-  std::uint32_t total_range = 16777216;                 // octets 14–17
+  CodeSequence code_sequence = CodeSequence::cw;           // octet 9 bit 0
+  bool scaling = false;                                    // octet 9 bit 3
+  std::uint32_t measuring_units = 4096;                    // octets 10–13 (per rev. / desired units)
+  std::uint32_t total_range = 16777216;                    // octets 14–17
   UnitsSelect units_select = UnitsSelect::per_revolution;  // octet 26 bits 0–1
-  bool commissioning = false;                           // octet 26 bit 2
-  bool short_diagnosis = false;                         // octet 26 bit 3
-  bool without_status_bits = false;                     // octet 26 bit 4 (Scancon 3.0 only)
-  bool lower_limit_enabled = false;                     // octet 26 bit 5
-  bool upper_limit_enabled = false;                     // octet 26 bit 6
-  std::uint32_t lower_limit = 0;                        // octets 27–30
-  std::uint32_t upper_limit = 32767;                    // octets 31–34
-  std::uint32_t physical_impulses = 4096;               // octets 35–38
-  bool multiturn = true;                                // octet 39 bit 1
-  TimeBase time_base = TimeBase::steps_per_s;           // octet 39 bits 4–5
+  bool commissioning = false;                              // octet 26 bit 2
+  bool short_diagnosis = false;                            // octet 26 bit 3
+  bool without_status_bits = false;                        // octet 26 bit 4 (Scancon 3.0 only)
+  bool lower_limit_enabled = false;                        // octet 26 bit 5
+  bool upper_limit_enabled = false;                        // octet 26 bit 6
+  std::uint32_t lower_limit = 0;                           // octets 27–30
+  std::uint32_t upper_limit = 32767;                       // octets 31–34
+  std::uint32_t physical_impulses = 4096;                  // octets 35–38
+  bool multiturn = true;                                   // octet 39 bit 1
+  TimeBase time_base = TimeBase::steps_per_s;              // octet 39 bits 4–5
   // Not on the wire: the axis crosses the physical zero point (4.1.3 rule 2). Only the master knows.
   bool endless = false;
 
@@ -70,11 +70,12 @@ struct PrmViolation {
 std::size_t encode_user_prm(const EncoderParameters& p, std::span<std::uint8_t> out) noexcept;
 
 // The typed set, or the first rule the bytes break. `endless` comes back false.
-[[nodiscard]] std::variant<EncoderParameters, PrmViolation> decode_user_prm(Functionality f,
-                                                                           std::span<const std::uint8_t> bytes) noexcept;
+[[nodiscard]] std::variant<EncoderParameters, PrmViolation> decode_user_prm(
+    Functionality f, std::span<const std::uint8_t> bytes) noexcept;
 
 // The manual's rules against the physical resolution (4.1.2–4.1.9, 4.3.3); nullopt when all hold.
-[[nodiscard]] std::optional<PrmViolation> validate(const EncoderParameters& p, const PhysicalResolution& phys) noexcept;
+[[nodiscard]] std::optional<PrmViolation> validate(const EncoderParameters& p,
+                                                   const PhysicalResolution& phys) noexcept;
 
 // The physical resolution's own limits (manual 6): powers of two, ≤ 2^16 steps, ≤ 2^15 revolutions.
 [[nodiscard]] std::optional<PrmViolation> validate(const PhysicalResolution& phys) noexcept;

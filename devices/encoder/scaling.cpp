@@ -5,7 +5,8 @@
 namespace cellctl::encoder {
 
 Scaling::Scaling(const EncoderParameters& p, const PhysicalResolution& phys) noexcept
-    : steps_(std::max<std::uint64_t>(phys.steps_per_revolution, 1)), total_(std::max<std::uint64_t>(phys.total(), 1)) {
+    : steps_(std::max<std::uint64_t>(phys.steps_per_revolution, 1)),
+      total_(std::max<std::uint64_t>(phys.total(), 1)) {
   range_ = total_;
   // Class 1 has no scaling, and with scaling off "the values of the scaling parameters are ignored".
   if (p.functionality == Functionality::class1 || !p.scaling) return;

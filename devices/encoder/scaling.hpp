@@ -24,10 +24,10 @@ class Scaling {
  private:
   enum class Mode : std::uint8_t { unscaled, per_revolution, per_total_range, per_physical_impulses };
   Mode mode_ = Mode::unscaled;
-  std::uint64_t steps_ = 1;       // physical steps per revolution
-  std::uint64_t total_ = 1;       // physical steps over the whole range
-  std::uint64_t units_ = 1;       // measuring units (per revolution / desired)
-  std::uint64_t impulses_ = 1;    // physical impulses those units correspond to
+  std::uint64_t steps_ = 1;     // physical steps per revolution
+  std::uint64_t total_ = 1;     // physical steps over the whole range
+  std::uint64_t units_ = 1;     // measuring units (per revolution / desired)
+  std::uint64_t impulses_ = 1;  // physical impulses those units correspond to
   std::uint64_t range_ = 1;
 };
 

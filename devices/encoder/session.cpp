@@ -1,9 +1,9 @@
 #include "encoder/session.hpp"
 
+#include <fmt/format.h>
+
 #include <stdexcept>
 #include <variant>
-
-#include <fmt/format.h>
 
 namespace cellctl::encoder {
 namespace {
@@ -25,8 +25,9 @@ double length_per_count(const SessionConfig& c, const Scaling& scaling) {
     throw std::invalid_argument("encoder session: give counts_per_mm or mm_per_revolution, not both");
   if (c.counts_per_mm > 0.0) return c.counts_per_mm;
   if (c.mm_per_revolution > 0.0) return scaling.units_per_revolution() / c.mm_per_revolution;
-  throw std::invalid_argument(fmt::format("encoder session: counts_per_mm {} / mm_per_revolution {}: one must be > 0",
-                                          c.counts_per_mm, c.mm_per_revolution));
+  throw std::invalid_argument(
+      fmt::format("encoder session: counts_per_mm {} / mm_per_revolution {}: one must be > 0",
+                  c.counts_per_mm, c.mm_per_revolution));
 }
 
 }  // namespace
@@ -83,7 +84,8 @@ link::Lifecycle Session::poll(link::TimePoint now) {
   const auto state = master_.dp_state();
   snapshot_.lifecycle = lc;
   snapshot_.dp_state = state;
-  snapshot_.data_exchange = state == profibus::DpState::data_exchange || state == profibus::DpState::diag_cyclic;
+  snapshot_.data_exchange =
+      state == profibus::DpState::data_exchange || state == profibus::DpState::diag_cyclic;
   snapshot_.exchanges = seen_exchanges_;
   snapshot_.input_age = master_.input_age(now);
   snapshot_.startup_fault = master_.last_startup_fault().kind;
@@ -91,7 +93,8 @@ link::Lifecycle Session::poll(link::TimePoint now) {
     handshake_.abort("data exchange lost during the handshake");
     push_outputs();
   }
-  snapshot_.command = CommandStatus{handshake_.kind(), handshake_.phase(), handshake_.result(), handshake_.failure()};
+  snapshot_.command =
+      CommandStatus{handshake_.kind(), handshake_.phase(), handshake_.result(), handshake_.failure()};
   update_fault(now);
   return lc;
 }
@@ -108,11 +111,13 @@ void Session::update_fault(link::TimePoint) {
     fault_reason_ += fmt::format(" (parameters pass the local check for {} steps × {} revolutions",
                                  config_.physical.steps_per_revolution, config_.physical.revolutions);
     if (snapshot_.diagnosis)
-      fault_reason_ += fmt::format("; the encoder reports {} × {}", snapshot_.diagnosis->singleturn_resolution,
-                                   snapshot_.diagnosis->revolutions);
+      fault_reason_ +=
+          fmt::format("; the encoder reports {} × {}", snapshot_.diagnosis->singleturn_resolution,
+                      snapshot_.diagnosis->revolutions);
     fault_reason_ += ")";
   } else if (snapshot_.startup_fault == profibus::StartupFault::Kind::cfg_fault) {
-    fault_reason_ += fmt::format(" (the encoder is not set up for {})", to_string(config_.parameters.functionality));
+    fault_reason_ +=
+        fmt::format(" (the encoder is not set up for {})", to_string(config_.parameters.functionality));
   }
 }
 
@@ -158,7 +163,8 @@ bool Session::manufacturer_function_allowed() const noexcept {
 }
 
 bool Session::preset(std::uint32_t value) noexcept {
-  if (!snapshot_.data_exchange || !has_outputs(config_.parameters.functionality) || handshake_.busy()) return false;
+  if (!snapshot_.data_exchange || !has_outputs(config_.parameters.functionality) || handshake_.busy())
+    return false;
   if (value >= scaling_.range()) return false;  // 4.3.2: at most Total Measuring Range − 1
   if (!handshake_.start_preset(value, snapshot_.has_status_bits)) return false;
   push_outputs();

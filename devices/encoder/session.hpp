@@ -23,8 +23,8 @@ namespace cellctl::encoder {
 struct SessionConfig {
   std::uint8_t station_address = 1;  // 126: only set_slave_address() is possible
   EncoderParameters parameters;
-  PhysicalResolution physical;        // of the encoder in use: for the local parameter check
-  profibus::DpMasterConfig bus;       // master address, line, slot time, retries, watchdog, lost time
+  PhysicalResolution physical;   // of the encoder in use: for the local parameter check
+  profibus::DpMasterConfig bus;  // master address, line, slot time, retries, watchdog, lost time
   // Length per count: exactly one of the two is > 0 (mm_per_revolution uses the units per revolution).
   double counts_per_mm = 0.0;
   double mm_per_revolution = 0.0;
@@ -34,27 +34,27 @@ struct SessionConfig {
 struct CommandStatus {
   Handshake::Kind kind = Handshake::Kind::none;
   Handshake::Phase phase = Handshake::Phase::idle;
-  std::uint32_t result = 0;   // preset/direction: position; Teach-In end: total resolution
-  std::string_view failure;   // static text when failed
+  std::uint32_t result = 0;  // preset/direction: position; Teach-In end: total resolution
+  std::string_view failure;  // static text when failed
 };
 
 struct Snapshot {
   link::Lifecycle lifecycle = link::Lifecycle::inactive;
   profibus::DpState dp_state = profibus::DpState::stopped;
   bool data_exchange = false;
-  std::uint64_t exchanges = 0;      // good Data_Exchange replies so far
-  link::Duration input_age{};       // since the last good input
+  std::uint64_t exchanges = 0;  // good Data_Exchange replies so far
+  link::Duration input_age{};   // since the last good input
 
   std::uint32_t position_counts = 0;  // measuring units
   double position_mm = 0.0;
-  std::int16_t velocity_raw = 0;      // in the time base's unit
+  std::int16_t velocity_raw = 0;  // in the time base's unit
   bool velocity_saturated = false;
   double velocity_mm_s = 0.0;
   std::int16_t acceleration_raw = 0;
   bool acceleration_saturated = false;
   double acceleration_mm_s2 = 0.0;
   bool has_status_bits = false;
-  StatusBits status;                  // meaningful when has_status_bits
+  StatusBits status;  // meaningful when has_status_bits
 
   profibus::StandardDiag standard_diag;
   std::optional<EncoderDiagnosis> diagnosis;  // the last extended diagnosis that decoded
@@ -73,7 +73,9 @@ class Session {
   void activate(link::TimePoint now);
   void deactivate(link::TimePoint now);
   [[nodiscard]] link::Lifecycle poll(link::TimePoint now);
-  [[nodiscard]] std::optional<link::TimePoint> next_deadline() const noexcept { return master_.next_deadline(); }
+  [[nodiscard]] std::optional<link::TimePoint> next_deadline() const noexcept {
+    return master_.next_deadline();
+  }
 
   [[nodiscard]] const Snapshot& snapshot() const noexcept { return snapshot_; }
   [[nodiscard]] const link::LinkHealth& health() const noexcept { return master_.health(); }

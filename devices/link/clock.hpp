@@ -37,6 +37,8 @@ class VirtualClock final : public Clock {
 };
 
 // Seconds as a double, for statistics and messages (not for scheduling).
-[[nodiscard]] inline double to_seconds(Duration d) noexcept { return std::chrono::duration<double>(d).count(); }
+[[nodiscard]] inline double to_seconds(Duration d) noexcept {
+  return std::chrono::duration<double>(d).count();
+}
 
 }  // namespace cellctl::link

@@ -29,7 +29,11 @@ struct LineFormat {
   [[nodiscard]] std::string describe() const;
 };
 
-[[nodiscard]] constexpr LineFormat line_8n1(std::uint32_t baud) noexcept { return {baud, 8, Parity::none, 1}; }
-[[nodiscard]] constexpr LineFormat line_8e1(std::uint32_t baud) noexcept { return {baud, 8, Parity::even, 1}; }
+[[nodiscard]] constexpr LineFormat line_8n1(std::uint32_t baud) noexcept {
+  return {baud, 8, Parity::none, 1};
+}
+[[nodiscard]] constexpr LineFormat line_8e1(std::uint32_t baud) noexcept {
+  return {baud, 8, Parity::even, 1};
+}
 
 }  // namespace cellctl::link

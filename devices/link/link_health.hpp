@@ -11,9 +11,9 @@ namespace cellctl::link {
 
 struct LinkHealth {
   std::uint64_t good_replies = 0;
-  std::uint64_t timeouts = 0;    // requests that got no (complete) answer in time
-  std::uint64_t bad_frames = 0;  // CRC/checksum/length errors and garbage
-  std::uint64_t retries = 0;     // requests sent again
+  std::uint64_t timeouts = 0;       // requests that got no (complete) answer in time
+  std::uint64_t bad_frames = 0;     // CRC/checksum/length errors and garbage
+  std::uint64_t retries = 0;        // requests sent again
   std::uint64_t error_replies = 0;  // well-formed replies that say the device refused
   Duration last_round_trip{};
   Duration max_round_trip{};

@@ -1,14 +1,13 @@
 #include "link/pty_pair.hpp"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <stdlib.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 #include <system_error>
-
-#include <fmt/format.h>
 
 #include "link/fd_io.hpp"
 #include "link/link_error.hpp"
@@ -18,7 +17,8 @@ namespace cellctl::link {
 PtyPair::PtyPair(std::string name, std::optional<std::filesystem::path> symlink) {
   device_.name = std::move(name);
   device_.fd = posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-  if (device_.fd < 0) throw LinkError(fmt::format("cannot create a pseudo-terminal: {}", std::strerror(errno)));
+  if (device_.fd < 0)
+    throw LinkError(fmt::format("cannot create a pseudo-terminal: {}", std::strerror(errno)));
   char buf[128];
   if (grantpt(device_.fd) != 0 || unlockpt(device_.fd) != 0 || ptsname_r(device_.fd, buf, sizeof buf) != 0) {
     const int err = errno;
@@ -41,14 +41,16 @@ PtyPair::PtyPair(std::string name, std::optional<std::filesystem::path> symlink)
     if (std::filesystem::exists(status) && !std::filesystem::is_symlink(status)) {
       ::close(held_peer_fd_);
       ::close(device_.fd);
-      throw LinkError(fmt::format("{} exists and is not a symlink; refusing to replace it", symlink->string()));
+      throw LinkError(
+          fmt::format("{} exists and is not a symlink; refusing to replace it", symlink->string()));
     }
     std::filesystem::remove(*symlink, ec);
     std::filesystem::create_symlink(peer_path_, *symlink, ec);
     if (ec) {
       ::close(held_peer_fd_);
       ::close(device_.fd);
-      throw LinkError(fmt::format("cannot publish {} as {}: {}", peer_path_, symlink->string(), ec.message()));
+      throw LinkError(
+          fmt::format("cannot publish {} as {}: {}", peer_path_, symlink->string(), ec.message()));
     }
     symlink_ = std::move(symlink);
   }
@@ -63,7 +65,11 @@ PtyPair::~PtyPair() {
   ::close(device_.fd);
 }
 
-IoResult PtyPair::MasterSide::read(std::span<std::uint8_t> buffer) { return fd_read(fd, buffer); }
-IoResult PtyPair::MasterSide::write(std::span<const std::uint8_t> bytes) { return fd_write(fd, bytes); }
+IoResult PtyPair::MasterSide::read(std::span<std::uint8_t> buffer) {
+  return fd_read(fd, buffer);
+}
+IoResult PtyPair::MasterSide::write(std::span<const std::uint8_t> bytes) {
+  return fd_write(fd, bytes);
+}
 
 }  // namespace cellctl::link

@@ -1,6 +1,7 @@
 #include "link/serial_link.hpp"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <sys/file.h>
 #include <sys/ioctl.h>
 #include <termios.h>
@@ -8,8 +9,6 @@
 
 #include <cerrno>
 #include <cstring>
-
-#include <fmt/format.h>
 
 #include "link/fd_io.hpp"
 #include "link/link_error.hpp"
@@ -19,19 +18,32 @@ namespace {
 
 speed_t speed_for(std::uint32_t baud) {
   switch (baud) {
-    case 9600: return B9600;
-    case 19200: return B19200;
-    case 38400: return B38400;
-    case 57600: return B57600;
-    case 115200: return B115200;
-    case 230400: return B230400;
-    case 460800: return B460800;
-    case 500000: return B500000;
-    case 921600: return B921600;
-    case 1000000: return B1000000;
-    case 1500000: return B1500000;
-    case 2000000: return B2000000;
-    default: return 0;
+    case 9600:
+      return B9600;
+    case 19200:
+      return B19200;
+    case 38400:
+      return B38400;
+    case 57600:
+      return B57600;
+    case 115200:
+      return B115200;
+    case 230400:
+      return B230400;
+    case 460800:
+      return B460800;
+    case 500000:
+      return B500000;
+    case 921600:
+      return B921600;
+    case 1000000:
+      return B1000000;
+    case 1500000:
+      return B1500000;
+    case 2000000:
+      return B2000000;
+    default:
+      return 0;
   }
 }
 
@@ -42,10 +54,14 @@ speed_t speed_for(std::uint32_t baud) {
 
 std::string open_failure(const std::string& path, int err) {
   switch (err) {
-    case ENOENT: return fmt::format("serial port {} does not exist", path);
-    case EACCES: return fmt::format("no permission to open serial port {} (is this user in group dialout?)", path);
-    case EBUSY: return fmt::format("serial port {} is in use by another process", path);
-    default: return fmt::format("cannot open serial port {}: {}", path, std::strerror(err));
+    case ENOENT:
+      return fmt::format("serial port {} does not exist", path);
+    case EACCES:
+      return fmt::format("no permission to open serial port {} (is this user in group dialout?)", path);
+    case EBUSY:
+      return fmt::format("serial port {} is in use by another process", path);
+    default:
+      return fmt::format("cannot open serial port {}: {}", path, std::strerror(err));
   }
 }
 
@@ -88,10 +104,18 @@ std::unique_ptr<SerialLink> SerialLink::open(const std::string& path, LineFormat
   return std::unique_ptr<SerialLink>(new SerialLink(fd, path, format, held));
 }
 
-SerialLink::~SerialLink() { ::close(fd_); }
+SerialLink::~SerialLink() {
+  ::close(fd_);
+}
 
-IoResult SerialLink::read(std::span<std::uint8_t> buffer) { return fd_read(fd_, buffer); }
-IoResult SerialLink::write(std::span<const std::uint8_t> bytes) { return fd_write(fd_, bytes); }
-std::string SerialLink::describe() const { return fmt::format("{} ({})", path_, format_.describe()); }
+IoResult SerialLink::read(std::span<std::uint8_t> buffer) {
+  return fd_read(fd_, buffer);
+}
+IoResult SerialLink::write(std::span<const std::uint8_t> bytes) {
+  return fd_write(fd_, bytes);
+}
+std::string SerialLink::describe() const {
+  return fmt::format("{} ({})", path_, format_.describe());
+}
 
 }  // namespace cellctl::link

@@ -6,11 +6,12 @@
 
 namespace cellctl::link {
 
-void LogTraceSink::record(TimePoint at, std::string_view link, Direction dir, std::span<const std::uint8_t> bytes) {
+void LogTraceSink::record(TimePoint at, std::string_view link, Direction dir,
+                          std::span<const std::uint8_t> bytes) {
   auto logger = spdlog::get("trace");
   if (!logger) return;
-  logger->info("{:12.6f} {} {} {}", to_seconds(at.time_since_epoch()), link, dir == Direction::tx ? "TX" : "RX",
-               wire::to_hex(bytes));
+  logger->info("{:12.6f} {} {} {}", to_seconds(at.time_since_epoch()), link,
+               dir == Direction::tx ? "TX" : "RX", wire::to_hex(bytes));
 }
 
 IoResult TracingLink::read(std::span<std::uint8_t> buffer) {

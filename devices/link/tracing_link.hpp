@@ -19,14 +19,16 @@ enum class Direction : std::uint8_t { tx, rx };
 class TraceSink {
  public:
   virtual ~TraceSink() = default;
-  virtual void record(TimePoint at, std::string_view link, Direction dir, std::span<const std::uint8_t> bytes) = 0;
+  virtual void record(TimePoint at, std::string_view link, Direction dir,
+                      std::span<const std::uint8_t> bytes) = 0;
 };
 
 // Writes "  12.345678 scu TX 52 4f 00 5c 2d" lines to the spdlog logger named "trace" (created
 // asynchronous by the CLI, so formatting and output happen off the control cycle's thread).
 class LogTraceSink final : public TraceSink {
  public:
-  void record(TimePoint at, std::string_view link, Direction dir, std::span<const std::uint8_t> bytes) override;
+  void record(TimePoint at, std::string_view link, Direction dir,
+              std::span<const std::uint8_t> bytes) override;
 };
 
 class TracingLink final : public Link {

@@ -17,7 +17,9 @@ void Actuator::move_to(double target_mm, double speed_mm_s, bool soft) noexcept 
   if (!soft_ && can_move()) velocity_ = std::copysign(speed_, target_ - position_);
 }
 
-void Actuator::set_speed(double speed_mm_s) noexcept { speed_ = std::clamp(speed_mm_s, 0.0, params_.max_speed_mm_s); }
+void Actuator::set_speed(double speed_mm_s) noexcept {
+  speed_ = std::clamp(speed_mm_s, 0.0, params_.max_speed_mm_s);
+}
 
 void Actuator::stop(bool soft) noexcept {
   if (!soft || params_.ramp_mm_s2 <= 0.0) {

@@ -11,11 +11,11 @@ namespace cellctl::plant {
 
 struct ActuatorParams {
   double stroke_mm = 200.0;
-  double max_speed_mm_s = 20.0;   // at 100 % speed
-  double ramp_mm_s2 = 40.0;       // soft start/stop acceleration
-  double min_speed_mm_s = 0.8;    // below this the motor stalls (threshold depends on actuator and load)
+  double max_speed_mm_s = 20.0;  // at 100 % speed
+  double ramp_mm_s2 = 40.0;      // soft start/stop acceleration
+  double min_speed_mm_s = 0.8;   // below this the motor stalls (threshold depends on actuator and load)
   double start_position_mm = 0.0;
-  double scale_error = 0.0;       // indicated = true × (1 + scale_error)
+  double scale_error = 0.0;  // indicated = true × (1 + scale_error)
 };
 
 class Actuator {
@@ -53,7 +53,7 @@ class Actuator {
   double position_;
   double velocity_ = 0.0;  // signed, mm/s
   double target_ = 0.0;
-  double speed_ = 0.0;     // commanded cruise speed, unsigned
+  double speed_ = 0.0;  // commanded cruise speed, unsigned
   bool soft_ = true;
   bool active_ = false;
   bool stopping_ = false;

@@ -20,7 +20,8 @@ class Shaft {
       : params_(params), axis_position_mm_(std::move(axis_position_mm)) {}
 
   [[nodiscard]] double revolutions() const {
-    return params_.offset_revolutions + axis_position_mm_() * (1.0 - params_.slip) / params_.mm_per_revolution;
+    return params_.offset_revolutions +
+           axis_position_mm_() * (1.0 - params_.slip) / params_.mm_per_revolution;
   }
   void set_slip(double slip) noexcept { params_.slip = slip; }
   [[nodiscard]] const ShaftParams& params() const noexcept { return params_; }

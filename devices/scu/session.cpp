@@ -325,7 +325,8 @@ void Session::close_finished_executions() {
 
 void Session::retry_or_give_up(link::TimePoint now, const char* why) {
   if (!in_flight_) return;
-  const bool is_stop = in_flight_->purpose == Purpose::stop || in_flight_->purpose == Purpose::emergency_stop ||
+  const bool is_stop = in_flight_->purpose == Purpose::stop ||
+                       in_flight_->purpose == Purpose::emergency_stop ||
                        in_flight_->purpose == Purpose::release_emergency;
   if (attempts_ <= config_.retries && !urgent_.empty() && !is_stop && defer_for_stop(now)) return;
   if (attempts_ <= config_.retries) {

@@ -30,7 +30,9 @@ class ByteQueue {
     }
     return n;
   }
-  [[nodiscard]] std::uint8_t operator[](std::size_t i) const noexcept { return data_[(head_ + i) % Capacity]; }
+  [[nodiscard]] std::uint8_t operator[](std::size_t i) const noexcept {
+    return data_[(head_ + i) % Capacity];
+  }
   void drop(std::size_t n) noexcept {
     if (n > size_) n = size_;
     head_ = (head_ + n) % Capacity;

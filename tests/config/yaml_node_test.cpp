@@ -32,26 +32,35 @@ TEST(YamlNode, ErrorsNameFileLineColumnFieldAndRule) {
                "cell.yaml:2:9: scu.baud: expected a whole number, got 'fast'");
   expect_error([&] { (void)root.at("scu").at("actuators").items()[0].double_in("stroke_mm", 1, 1000); },
                "cell.yaml:4:18: scu.actuators[0].stroke_mm: -5 is out of range [1, 1000]");
-  expect_error([&] { (void)root.at("scu").at("speed"); }, "cell.yaml:2:3: scu: missing required field 'speed'");
+  expect_error([&] { (void)root.at("scu").at("speed"); },
+               "cell.yaml:2:3: scu: missing required field 'speed'");
 }
 
 TEST(YamlNode, SmallIntegersAreNumbersNotCharacters) {
   auto root = YamlNode::load_string("id: 300\nok: 7\n", "t.yaml");
   EXPECT_EQ(root.at("ok").as_int<std::uint8_t>(), 7);
-  expect_error([&] { (void)root.at("id").as_int<std::uint8_t>(); }, "t.yaml:1:5: id: 300 is out of range [0, 255]");
+  expect_error([&] { (void)root.at("id").as_int<std::uint8_t>(); },
+               "t.yaml:1:5: id: 300 is out of range [0, 255]");
 }
 
 TEST(YamlNode, UnknownKeysAreRejectedWithASuggestion) {
   auto root = YamlNode::load_string("speed: 1\nsped: 2\n", "r.yaml");
-  expect_error([&] { root.only_keys({"speed", "target"}); }, "r.yaml:2:1: sped: unknown field (did you mean 'speed'?)");
+  expect_error(
+      [&] {
+        root.only_keys({"speed", "target"});
+      },
+      "r.yaml:2:1: sped: unknown field (did you mean 'speed'?)");
   auto other = YamlNode::load_string("colour: red\n", "r.yaml");
   expect_error([&] { other.only_keys({"speed"}); }, "r.yaml:1:1: colour: unknown field");
 }
 
 TEST(YamlNode, ChoicesAndParseErrors) {
   auto root = YamlNode::load_string("parity: mark\n", "p.yaml");
-  expect_error([&] { (void)root.at("parity").as_choice({"none", "even", "odd"}); },
-               "p.yaml:1:9: parity: 'mark' is not one of: none, even, odd");
+  expect_error(
+      [&] {
+        (void)root.at("parity").as_choice({"none", "even", "odd"});
+      },
+      "p.yaml:1:9: parity: 'mark' is not one of: none, even, odd");
   expect_error([] { (void)YamlNode::load_string("a: [1, 2\n", "bad.yaml"); },
                "bad.yaml:2:1: invalid YAML: end of sequence flow not found");
 }

@@ -12,7 +12,9 @@
 namespace cellctl::encoder {
 namespace {
 
-std::vector<std::uint8_t> bytes(std::string_view hex) { return wire::parse_hex(hex).value(); }
+std::vector<std::uint8_t> bytes(std::string_view hex) {
+  return wire::parse_hex(hex).value();
+}
 
 TEST(CyclicInput, Scancon22PositionStatusAndSignedVelocity) {
   // ready + mode + ccw, position 0x00123456; velocity -2
@@ -40,12 +42,14 @@ TEST(CyclicInput, Scancon30WithoutStatusBitsUses31Bits) {
   EXPECT_TRUE(saturated(in.velocity));
   EXPECT_TRUE(saturated(in.acceleration));
   EXPECT_FALSE(saturated(-32767));
-  EXPECT_EQ(std::get<CyclicError>(decode_input(Functionality::scancon30, false, bytes("80 00 00 00 00 00 00 00"))),
-            CyclicError::bit31_set);
+  EXPECT_EQ(
+      std::get<CyclicError>(decode_input(Functionality::scancon30, false, bytes("80 00 00 00 00 00 00 00"))),
+      CyclicError::bit31_set);
 }
 
 TEST(CyclicInput, LengthsPerFunctionality) {
-  EXPECT_TRUE(std::holds_alternative<CyclicInput>(decode_input(Functionality::class1, false, bytes("00 00 00 01"))));
+  EXPECT_TRUE(
+      std::holds_alternative<CyclicInput>(decode_input(Functionality::class1, false, bytes("00 00 00 01"))));
   EXPECT_EQ(std::get<CyclicError>(decode_input(Functionality::class2, false, bytes("00 00 00 01 00 00"))),
             CyclicError::bad_length);
   EXPECT_EQ(std::get<CyclicError>(decode_input(Functionality::scancon30, true, bytes("00 00 00 01 00 00"))),

@@ -11,7 +11,9 @@
 namespace cellctl::encoder {
 namespace {
 
-std::vector<std::uint8_t> bytes(std::string_view hex) { return wire::parse_hex(hex).value(); }
+std::vector<std::uint8_t> bytes(std::string_view hex) {
+  return wire::parse_hex(hex).value();
+}
 
 TEST(Diagnosis, ShortFormTenOctets) {
   // header 0x0a, alarms: supply voltage, status: ccw + class 2 + scaling, multiturn, 8192 steps, 4096 revs
@@ -33,11 +35,11 @@ TEST(Diagnosis, ShortFormTenOctets) {
 TEST(Diagnosis, LongFormFiftyOneOctets) {
   const auto ext = bytes(
       "33 01 02 01 00 00 20 00 10 00"  // header 51, position error, class 2, multiturn, 8192, 4096
-      " 00 00 03 00 22 00 36"          // additional alarms, supported 0x0003, warnings 0x0022, supported 0x0036
-      " 01 01 02 00"                   // profile 1.1, software 2.0
-      " 00 00 00 3d"                   // operating time 61 = 6.1 h
-      " ff ff ff 9c 00 00 00 00"       // offset -100, manufacturer offset 0
-      " 00 00 10 00 01 00 00 00"       // 4096 units per revolution, total 16777216
+      " 00 00 03 00 22 00 36"     // additional alarms, supported 0x0003, warnings 0x0022, supported 0x0036
+      " 01 01 02 00"              // profile 1.1, software 2.0
+      " 00 00 00 3d"              // operating time 61 = 6.1 h
+      " ff ff ff 9c 00 00 00 00"  // offset -100, manufacturer offset 0
+      " 00 00 10 00 01 00 00 00"  // 4096 units per revolution, total 16777216
       " 2a 2a 2a 2a 2a 2a 2a 2a 2a 2a");
   ASSERT_EQ(ext.size(), 51u);
   auto r = decode_diagnosis(ext);
@@ -65,7 +67,8 @@ TEST(Diagnosis, LongFormFiftyOneOctets) {
 
 TEST(Diagnosis, TypedErrorsOnGarbage) {
   EXPECT_EQ(std::get<DiagError>(decode_diagnosis(bytes("0a 00 00 01"))), DiagError::bad_length);
-  EXPECT_EQ(std::get<DiagError>(decode_diagnosis(bytes("33 00 00 01 00 00 20 00 10 00"))), DiagError::header_mismatch);
+  EXPECT_EQ(std::get<DiagError>(decode_diagnosis(bytes("33 00 00 01 00 00 20 00 10 00"))),
+            DiagError::header_mismatch);
   EXPECT_EQ(std::get<DiagError>(decode_diagnosis(bytes("0a 20 00 01 00 00 20 00 10 00"))),
             DiagError::unassigned_bits_set);
   EXPECT_EQ(std::get<DiagError>(decode_diagnosis(bytes("0a 00 10 01 00 00 20 00 10 00"))),

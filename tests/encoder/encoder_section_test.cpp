@@ -80,23 +80,31 @@ TEST(EncoderSection, DefaultsAreProfibus8E1At19200) {
 
 TEST(EncoderSection, ErrorsNameFileLineColumnFieldAndRule) {
   EXPECT_EQ(error_of("encoder:\n  counts_per_mm: 1\n  functionality: class3\n"),
-            "cell.yaml:3:18: encoder.functionality: 'class3' is not one of: class1, class2, scancon2.1, scancon2.2, "
+            "cell.yaml:3:18: encoder.functionality: 'class3' is not one of: class1, class2, scancon2.1, "
+            "scancon2.2, "
             "scancon3.0");
-  EXPECT_EQ(error_of("encoder:\n  counts_per_mm: 1\n  watchdog_ms: 15\n"),
-            "cell.yaml:3:16: encoder.watchdog_ms: must be a multiple of 10 ms (10 ms × WD_Fact_1 × WD_Fact_2)");
+  EXPECT_EQ(
+      error_of("encoder:\n  counts_per_mm: 1\n  watchdog_ms: 15\n"),
+      "cell.yaml:3:16: encoder.watchdog_ms: must be a multiple of 10 ms (10 ms × WD_Fact_1 × WD_Fact_2)");
   EXPECT_EQ(error_of("encoder:\n  station_address: 1\n"),
             "cell.yaml:2:3: encoder: give exactly one of counts_per_mm and mm_per_revolution");
-  EXPECT_EQ(error_of("encoder:\n  counts_per_mm: 1\n  scaling: true\n  measuring_units: 3000\n  total_range: 3001\n"),
-            "cell.yaml:2:3: encoder: parameters: Total Measuring Range: must be an integer multiple of the measuring "
-            "units per revolution (4.1.3 rule 1) (value 3001, limit 3000)");
-  EXPECT_EQ(error_of("encoder:\n  counts_per_mm: 1\n  without_status_bits: true\n"),
-            "cell.yaml:3:24: encoder.without_status_bits: only with functionality scancon3.0 (manual 4.1.5 bit 4)");
+  EXPECT_EQ(
+      error_of(
+          "encoder:\n  counts_per_mm: 1\n  scaling: true\n  measuring_units: 3000\n  total_range: 3001\n"),
+      "cell.yaml:2:3: encoder: parameters: Total Measuring Range: must be an integer multiple of the "
+      "measuring "
+      "units per revolution (4.1.3 rule 1) (value 3001, limit 3000)");
+  EXPECT_EQ(
+      error_of("encoder:\n  counts_per_mm: 1\n  without_status_bits: true\n"),
+      "cell.yaml:3:24: encoder.without_status_bits: only with functionality scancon3.0 (manual 4.1.5 bit 4)");
   EXPECT_EQ(error_of("encoder:\n  counts_per_mm: 1\n  emulator:\n    serial: abc\n"),
             "cell.yaml:4:13: encoder.emulator.serial: must be 10 ASCII characters (manual 4.2.18)");
-  EXPECT_NE(error_of("encoder:\n  counts_per_mm: 1\n  station_addres: 3\n").find("cell.yaml:3:3:"), std::string::npos);
-  EXPECT_NE(error_of("encoder:\n  counts_per_mm: 1\n  emulator:\n    revolutions: 3000\n")
-                .find("cell.yaml:4:18: encoder.emulator.revolutions: Number of Revolutions: must be a power of 2"),
+  EXPECT_NE(error_of("encoder:\n  counts_per_mm: 1\n  station_addres: 3\n").find("cell.yaml:3:3:"),
             std::string::npos);
+  EXPECT_NE(
+      error_of("encoder:\n  counts_per_mm: 1\n  emulator:\n    revolutions: 3000\n")
+          .find("cell.yaml:4:18: encoder.emulator.revolutions: Number of Revolutions: must be a power of 2"),
+      std::string::npos);
 }
 
 }  // namespace

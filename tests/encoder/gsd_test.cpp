@@ -48,7 +48,8 @@ Gsd read_gsd() {
   std::string module;
   while (std::getline(in, line)) {
     line = trim(line.substr(0, line.find(';')));
-    if (line.rfind("Ident_Number", 0) == 0) gsd.ident = std::stoul(trim(line.substr(line.find('=') + 1)), nullptr, 16);
+    if (line.rfind("Ident_Number", 0) == 0)
+      gsd.ident = std::stoul(trim(line.substr(line.find('=') + 1)), nullptr, 16);
     if (line.rfind("Module", 0) == 0 && line.find('"') != std::string::npos) {
       const auto close = line.find('"', line.find('"') + 1);
       module = line.substr(line.find('"') + 1, close - line.find('"') - 1);
@@ -64,8 +65,10 @@ TEST(Gsd, IdentAndModulesMatchTheCode) {
   const Gsd gsd = read_gsd();
   EXPECT_EQ(gsd.ident, kIdentNumber);
   const std::pair<const char*, Functionality> expected[] = {
-      {"Class 1 Multiturn", Functionality::class1},       {"Class 2 Multiturn", Functionality::class2},
-      {"Scancon 2.1 Multiturn", Functionality::scancon21}, {"Scancon 2.2 Multiturn", Functionality::scancon22},
+      {"Class 1 Multiturn", Functionality::class1},
+      {"Class 2 Multiturn", Functionality::class2},
+      {"Scancon 2.1 Multiturn", Functionality::scancon21},
+      {"Scancon 2.2 Multiturn", Functionality::scancon22},
       {"Scancon 3.0 Multiturn", Functionality::scancon30},
   };
   ASSERT_EQ(gsd.modules.size(), 5u);
@@ -78,7 +81,8 @@ TEST(Gsd, IdentAndModulesMatchTheCode) {
     p.functionality = f;
     std::array<std::uint8_t, 64> prm{};
     const std::size_t n = encode_user_prm(p, prm);
-    EXPECT_EQ(m.prm_const, std::vector<std::uint8_t>(prm.begin(), prm.begin() + static_cast<std::ptrdiff_t>(n)))
+    EXPECT_EQ(m.prm_const,
+              std::vector<std::uint8_t>(prm.begin(), prm.begin() + static_cast<std::ptrdiff_t>(n)))
         << name;
   }
 }

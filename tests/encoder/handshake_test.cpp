@@ -55,7 +55,7 @@ TEST(Handshake, PresetScanconWithStatusBitsFollowsTable433) {
   EXPECT_TRUE(matches(in1, "1000001"));  // acknowledged, new position value
   EXPECT_EQ(in1 & bits::position25, 5000u);
   auto [out2, in2] = rig.exchange();
-  EXPECT_EQ(out2, 0u);                   // bit 31 cleared from master
+  EXPECT_EQ(out2, 0u);  // bit 31 cleared from master
   EXPECT_TRUE(matches(in2, "0000001"));
   EXPECT_EQ(in2 & bits::position25, 5000u);
   EXPECT_EQ(rig.hs.phase(), Handshake::Phase::done);
@@ -112,8 +112,8 @@ TEST(Handshake, CountingDirectionFollowsTable441) {
   auto [out1, in1] = rig.exchange();
   EXPECT_TRUE(matches(out1, "0001000"));
   EXPECT_EQ(out1 & bits::position25, 1u);  // the wanted sequence in bit 0
-  EXPECT_TRUE(matches(in1, "0001001"));  // acknowledge in bit 28 …
-  EXPECT_EQ(in1 & bits::position25, 1u);  // … and bit 0
+  EXPECT_TRUE(matches(in1, "0001001"));    // acknowledge in bit 28 …
+  EXPECT_EQ(in1 & bits::position25, 1u);   // … and bit 0
   auto [out2, in2] = rig.exchange();
   EXPECT_EQ(out2, 0u);
   EXPECT_TRUE(matches(in2, "0001X01"));  // new position with the new counting direction

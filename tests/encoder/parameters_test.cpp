@@ -61,13 +61,14 @@ TEST(UserPrm, ScanconBytesOctets8To39) {
   p.physical_impulses = 4096;
   p.time_base = TimeBase::rpm;
   // octet 9 = 0x4b (bits 0,1,3,6); 26 = 0xed (01, bit 2, 3, 5, 6, 7); 39 = 0x32 (bit 1, time base 11)
-  EXPECT_EQ(wire::to_hex(encode(p)),
-            "00 4b 00 00 03 e8 00 01 00 00 00 00 00 00 00 00 00 00 ed 01 02 03 04 05 06 07 08 00 00 10 00 32");
+  EXPECT_EQ(
+      wire::to_hex(encode(p)),
+      "00 4b 00 00 03 e8 00 01 00 00 00 00 00 00 00 00 00 00 ed 01 02 03 04 05 06 07 08 00 00 10 00 32");
 }
 
 TEST(UserPrm, RoundTripsEveryFunctionality) {
-  for (auto f : {Functionality::class1, Functionality::class2, Functionality::scancon21, Functionality::scancon22,
-                 Functionality::scancon30}) {
+  for (auto f : {Functionality::class1, Functionality::class2, Functionality::scancon21,
+                 Functionality::scancon22, Functionality::scancon30}) {
     EncoderParameters p = scancon(f);
     if (f != Functionality::class1) p.scaling = true;
     if (is_scancon(f)) {
@@ -79,7 +80,8 @@ TEST(UserPrm, RoundTripsEveryFunctionality) {
     ASSERT_EQ(bytes.size(), user_prm_length(f));
     auto back = decode_user_prm(f, bytes);
     ASSERT_TRUE(std::holds_alternative<EncoderParameters>(back)) << std::get<PrmViolation>(back).describe();
-    if (f == Functionality::class1) p = EncoderParameters{.functionality = f, .code_sequence = p.code_sequence};
+    if (f == Functionality::class1)
+      p = EncoderParameters{.functionality = f, .code_sequence = p.code_sequence};
     EXPECT_EQ(std::get<EncoderParameters>(back), p) << to_string(f);
   }
 }
@@ -95,22 +97,22 @@ struct ByteRule {
 TEST(UserPrm, DecodeRefusesBitsThatMustBeZeroOrOne) {
   const ByteRule rules[] = {
       {Functionality::scancon22, 0, 0x01, "Octet 8"},
-      {Functionality::class2, 1, 0x08, "Class 2 Functionality"},          // bit 1 clear
-      {Functionality::class1, 1, 0x02, "Operating Parameters 1"},         // class 2 bit in class 1
-      {Functionality::class2, 1, 0x06, "Commissioning Diagnostics"},      // bit 2
-      {Functionality::class2, 1, 0x12, "Operating Parameters 1"},         // bit 4
-      {Functionality::class2, 1, 0x22, "Operating Parameters 1"},         // bit 5
-      {Functionality::class2, 1, 0x82, "Operating Parameters 1"},         // bit 7
-      {Functionality::class2, 1, 0x42, "Activate Octet 26"},              // bit 6 in class 2
-      {Functionality::scancon21, 1, 0x02, "Activate Octet 26"},           // bit 6 missing
+      {Functionality::class2, 1, 0x08, "Class 2 Functionality"},      // bit 1 clear
+      {Functionality::class1, 1, 0x02, "Operating Parameters 1"},     // class 2 bit in class 1
+      {Functionality::class2, 1, 0x06, "Commissioning Diagnostics"},  // bit 2
+      {Functionality::class2, 1, 0x12, "Operating Parameters 1"},     // bit 4
+      {Functionality::class2, 1, 0x22, "Operating Parameters 1"},     // bit 5
+      {Functionality::class2, 1, 0x82, "Operating Parameters 1"},     // bit 7
+      {Functionality::class2, 1, 0x42, "Activate Octet 26"},          // bit 6 in class 2
+      {Functionality::scancon21, 1, 0x02, "Activate Octet 26"},       // bit 6 missing
       {Functionality::class2, 10, 0x01, "Octets 18–25"},
       {Functionality::scancon21, 17, 0x01, "Octets 18–25"},
       {Functionality::scancon21, 18, 0x83, "Desired Measuring Units Select"},
-      {Functionality::scancon22, 18, 0x90, "Without Status Bits"},       // only 3.0
+      {Functionality::scancon22, 18, 0x90, "Without Status Bits"},  // only 3.0
       {Functionality::scancon30, 18, 0x00, "Activate Octets 27–39"},
-      {Functionality::scancon30, 31, 0x03, "Operating Parameters 3"},     // bit 0
-      {Functionality::scancon30, 31, 0x06, "Operating Parameters 3"},     // bit 2
-      {Functionality::scancon30, 31, 0x82, "Operating Parameters 3"},     // bit 7
+      {Functionality::scancon30, 31, 0x03, "Operating Parameters 3"},  // bit 0
+      {Functionality::scancon30, 31, 0x06, "Operating Parameters 3"},  // bit 2
+      {Functionality::scancon30, 31, 0x82, "Operating Parameters 3"},  // bit 7
   };
   for (const auto& rule : rules) {
     auto bytes = encode(scancon(rule.f));
@@ -131,8 +133,8 @@ TEST(UserPrm, DecodeRefusesWrongLength) {
 }
 
 TEST(Validate, DefaultsAreValidForEveryFunctionality) {
-  for (auto f : {Functionality::class1, Functionality::class2, Functionality::scancon21, Functionality::scancon22,
-                 Functionality::scancon30})
+  for (auto f : {Functionality::class1, Functionality::class2, Functionality::scancon21,
+                 Functionality::scancon22, Functionality::scancon30})
     EXPECT_FALSE(validate(scancon(f), kPhys).has_value()) << to_string(f);
 }
 
@@ -147,7 +149,8 @@ TEST(Validate, UnitsPerRevolutionAtMostPhysicalSteps) {
   EXPECT_EQ(v.parameter, "Measuring Units per Revolution");
   EXPECT_EQ(v.limit, 8192u);
   EXPECT_EQ(v.describe(),
-            "Measuring Units per Revolution: must be 1 … the physical steps per revolution 2^n (4.1.2) (value 8193, "
+            "Measuring Units per Revolution: must be 1 … the physical steps per revolution 2^n (4.1.2) "
+            "(value 8193, "
             "limit 8192)");
   p.measuring_units = 0;
   EXPECT_EQ(broken(p).parameter, "Measuring Units per Revolution");

@@ -20,7 +20,8 @@ using link::Lifecycle;
 struct Rig {
   explicit Rig(Functionality emulated = Functionality::scancon22, std::uint8_t emu_address = 5,
                std::filesystem::path state_file = {})
-      : sim(clock, link::line_8e1(1'500'000)), shaft(plant::ShaftParams{4.0, 0.0, 0.0}, [this] { return axis_mm(); }) {
+      : sim(clock, link::line_8e1(1'500'000)),
+        shaft(plant::ShaftParams{4.0, 0.0, 0.0}, [this] { return axis_mm(); }) {
     emu_config.address = emu_address;
     emu_config.functionality = emulated;
     emu_config.identity.physical = PhysicalResolution{8192, 4096};
@@ -41,7 +42,9 @@ struct Rig {
     session->activate(clock.now());
     return *session;
   }
-  double axis_mm() const { return axis_start_mm + axis_speed_mm_s * link::to_seconds(clock.now() - moving_since); }
+  double axis_mm() const {
+    return axis_start_mm + axis_speed_mm_s * link::to_seconds(clock.now() - moving_since);
+  }
   void move_to(double mm) {
     axis_start_mm = mm;
     axis_speed_mm_s = 0;
@@ -267,13 +270,15 @@ TEST(EncoderSession, InjectedAlarmRaisesADiagnosis) {
   rig.run_for(3ms);
   ASSERT_TRUE(s.snapshot().diagnosis && s.snapshot().diagnosis->detail);
   EXPECT_EQ(s.snapshot().diagnosis->alarms, alarm::position_error);
-  EXPECT_EQ(s.snapshot().diagnosis->detail->warnings, warning::temperature_exceeded | warning::battery_charge);
+  EXPECT_EQ(s.snapshot().diagnosis->detail->warnings,
+            warning::temperature_exceeded | warning::battery_charge);
   EXPECT_FALSE(s.snapshot().status.ready);
   EXPECT_TRUE(s.snapshot().data_exchange);
 }
 
 TEST(EncoderSession, AddressSetOverTheBusAndKeptInTheStateFile) {
-  const auto file = std::filesystem::temp_directory_path() / ("cellctl-encoder-" + std::to_string(::getpid()));
+  const auto file =
+      std::filesystem::temp_directory_path() / ("cellctl-encoder-" + std::to_string(::getpid()));
   std::filesystem::remove(file);
   {
     Rig rig(Functionality::scancon22, 126, file);

@@ -3,11 +3,11 @@
 // emulators and SimLinks, with a journal in a fresh directory.
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -17,14 +17,16 @@
 
 namespace cellctl::testing {
 
-inline std::filesystem::path source_dir() { return CELLCTL_SOURCE_DIR; }
+inline std::filesystem::path source_dir() {
+  return CELLCTL_SOURCE_DIR;
+}
 
 class RunFixture : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() /
-           (std::string("cellctl-run-") + info->test_suite_name() + "-" + info->name() + "-" + std::to_string(::getpid()));
+    dir_ = std::filesystem::temp_directory_path() / (std::string("cellctl-run-") + info->test_suite_name() +
+                                                     "-" + info->name() + "-" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir_);
     // The encoder's EEPROM file lives per test, so runs do not see each other's presets.
     cell_ = config::load_cell_config(source_dir() / "config/cell.yaml");

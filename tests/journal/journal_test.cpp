@@ -1,10 +1,10 @@
 #include "journal/journal.hpp"
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 #include <vector>
@@ -13,7 +13,8 @@ namespace cellctl::journal {
 namespace {
 
 std::filesystem::path fresh_dir(const std::string& name) {
-  auto d = std::filesystem::temp_directory_path() / ("cellctl-journal-" + name + "-" + std::to_string(::getpid()));
+  auto d =
+      std::filesystem::temp_directory_path() / ("cellctl-journal-" + name + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(d);
   return d;
 }

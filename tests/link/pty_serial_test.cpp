@@ -52,7 +52,8 @@ TEST(PtySerial, EveryByteValuePassesBothWays) {
 }
 
 TEST(PtySerial, PublishesAndRemovesASymlink) {
-  const auto link_path = std::filesystem::temp_directory_path() / ("cellctl-test-" + std::to_string(::getpid()));
+  const auto link_path =
+      std::filesystem::temp_directory_path() / ("cellctl-test-" + std::to_string(::getpid()));
   {
     PtyPair pty("test", link_path);
     ASSERT_TRUE(std::filesystem::is_symlink(link_path));

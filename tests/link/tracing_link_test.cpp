@@ -21,7 +21,8 @@ struct Record {
 
 class CollectingSink final : public TraceSink {
  public:
-  void record(TimePoint at, std::string_view link, Direction dir, std::span<const std::uint8_t> bytes) override {
+  void record(TimePoint at, std::string_view link, Direction dir,
+              std::span<const std::uint8_t> bytes) override {
     records.push_back({at, std::string(link), dir, {bytes.begin(), bytes.end()}});
   }
   std::vector<Record> records;

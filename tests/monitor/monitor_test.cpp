@@ -79,7 +79,8 @@ TEST_F(MonitorTest, ScuAndEncoderDisagree) {
   auto s = healthy();
   s.axes[0].encoder_mm = 12.5;
   expect_only(s, Rule::disagreement, StopCategory::controlled_off);
-  EXPECT_EQ(m.latch(Rule::disagreement).detail.view(), "axis x: SCU 10.00 mm, encoder 12.50 mm (tolerance 2 mm)");
+  EXPECT_EQ(m.latch(Rule::disagreement).detail.view(),
+            "axis x: SCU 10.00 mm, encoder 12.50 mm (tolerance 2 mm)");
 }
 
 TEST_F(MonitorTest, EncoderRules) {
@@ -173,7 +174,7 @@ TEST_F(MonitorTest, LatchHoldsUntilResetWithTheCauseGone) {
 TEST_F(MonitorTest, StrongestCategoryWins) {
   auto s = healthy();
   s.axes[0].encoder_mm_s = 30.0;  // category 1
-  s.links[0].fault = true;         // category 0
+  s.links[0].fault = true;        // category 0
   (void)m.evaluate(s, {}, 1.0);
   EXPECT_EQ(m.demanded_stop(), StopCategory::immediate);
 }

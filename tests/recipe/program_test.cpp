@@ -12,7 +12,8 @@ TEST(Program, UnrollsRepeatsWithLabels) {
   Step dwell{"dwell at depth", 20, Dwell{0.5}};
   Step move{"peck in", 19, Move{{{1, 60.0}}, 6.0}};
   Repeat rep{2, {move, dwell}};
-  r.steps = {Step{"go", 10, Move{{{0, 30.0}}, 15.0}}, Step{"drill", 17, rep}, Step{"stop", 30, Spindle{false}}};
+  r.steps = {Step{"go", 10, Move{{{0, 30.0}}, 15.0}}, Step{"drill", 17, rep},
+             Step{"stop", 30, Spindle{false}}};
   const auto p = unroll(r);
   ASSERT_EQ(p.instructions.size(), 6u);
   EXPECT_EQ(p.instructions[0].label, "go (line 10)");

@@ -21,7 +21,7 @@ axes:
 limits: {spindle_min_hz: 100, spindle_max_hz: 800}
 )",
                                                          "cell.yaml"),
-                                 "cell.yaml");
+                                   "cell.yaml");
 }
 
 const std::string kHeader = R"(recipe:
@@ -36,7 +36,9 @@ limits:
 steps:
 )";  // steps start on line 11
 
-Recipe load(const std::string& text) { return parse_recipe(YamlNode::load_string(text, "r.yaml"), test_cell()); }
+Recipe load(const std::string& text) {
+  return parse_recipe(YamlNode::load_string(text, "r.yaml"), test_cell());
+}
 
 std::vector<std::string> errors_of(const std::string& text) {
   try {
@@ -92,7 +94,9 @@ struct BadCase {
   std::string message;  // the first (or only) error, exactly
 };
 
-void PrintTo(const BadCase& c, std::ostream* os) { *os << c.what; }
+void PrintTo(const BadCase& c, std::ostream* os) {
+  *os << c.what;
+}
 
 class RecipeRejects : public ::testing::TestWithParam<BadCase> {};
 
@@ -103,20 +107,26 @@ TEST_P(RecipeRejects, WithTheExactMessage) {
   EXPECT_EQ(errors.front(), c.message) << c.what;
 }
 
-std::string with_steps(const std::string& steps) { return kHeader + steps; }
+std::string with_steps(const std::string& steps) {
+  return kHeader + steps;
+}
 
 INSTANTIATE_TEST_SUITE_P(
     Malformed, RecipeRejects,
     ::testing::Values(
         BadCase{"not YAML", "recipe: [\n", "r.yaml:2:1: invalid YAML: end of sequence flow not found"},
-        BadCase{"no header", "limits: {axes: {}}\nsteps: [{dwell: 1}]\n", "r.yaml:1:1: missing required field 'recipe'"},
+        BadCase{"no header", "limits: {axes: {}}\nsteps: [{dwell: 1}]\n",
+                "r.yaml:1:1: missing required field 'recipe'"},
         BadCase{"wrong cell", R"(recipe: {name: t, version: "1", cell: other}
 limits: {axes: {}}
 steps: [{dwell: 1}]
 )",
-                "r.yaml:1:39: recipe.cell: the recipe is for cell 'other', but this cell is 'test-cell' (cell.yaml)"},
-        BadCase{"empty name", "recipe: {name: '', version: '1', cell: test-cell}\nlimits: {axes: {}}\nsteps: [{dwell: 1}]\n",
-                "r.yaml:1:16: recipe.name: must not be empty"},
+                "r.yaml:1:39: recipe.cell: the recipe is for cell 'other', but this cell is 'test-cell' "
+                "(cell.yaml)"},
+        BadCase{
+            "empty name",
+            "recipe: {name: '', version: '1', cell: test-cell}\nlimits: {axes: {}}\nsteps: [{dwell: 1}]\n",
+            "r.yaml:1:16: recipe.name: must not be empty"},
         BadCase{"unknown top-level key", kHeader + "  - dwell: 1\nstep_list: []\n",
                 "r.yaml:12:1: step_list: unknown field"},
         BadCase{"misspelt header key", R"(recipe: {name: t, versoin: "1", cell: test-cell}
@@ -183,7 +193,8 @@ steps: []
         BadCase{"speed above the recipe limit", with_steps("  - move: {to: {z: 5}, speed_mm_s: 14}\n"),
                 "r.yaml:11:36: steps[0].move.speed_mm_s: 14 mm/s is above axis 'z''s recipe limit 12 mm/s"},
         BadCase{"speed too low to move", with_steps("  - move: {to: {z: 5}, speed_mm_s: 0.3}\n"),
-                "r.yaml:11:36: steps[0].move.speed_mm_s: 0.3 mm/s is below axis 'z''s minimum 0.8 mm/s: the actuator "
+                "r.yaml:11:36: steps[0].move.speed_mm_s: 0.3 mm/s is below axis 'z''s minimum 0.8 mm/s: the "
+                "actuator "
                 "would not move"},
         BadCase{"move without a target", with_steps("  - move: {to: {}, speed_mm_s: 5}\n"),
                 "r.yaml:11:16: steps[0].move.to: name at least one axis and its target"},
@@ -201,10 +212,12 @@ steps: []
                 "r.yaml:11:12: steps[0].dwell: -1 is out of range [0.001, 3600]"},
         BadCase{"wait without a timeout", with_steps("  - wait: {encoder: ready}\n"),
                 "r.yaml:11:11: steps[0].wait: missing required field 'timeout_s'"},
-        BadCase{"wait with two conditions", with_steps("  - wait: {encoder: ready, spindle: at_speed, timeout_s: 1}\n"),
+        BadCase{"wait with two conditions",
+                with_steps("  - wait: {encoder: ready, spindle: at_speed, timeout_s: 1}\n"),
                 "r.yaml:11:11: steps[0].wait: a wait needs exactly one condition: position_above_mm, "
                 "position_below_mm, encoder or spindle"},
-        BadCase{"wait threshold outside the axis", with_steps("  - wait: {axis: z, position_above_mm: 500, timeout_s: 1}\n"),
+        BadCase{"wait threshold outside the axis",
+                with_steps("  - wait: {axis: z, position_above_mm: 500, timeout_s: 1}\n"),
                 "r.yaml:11:40: steps[0].wait.position_above_mm: 500 is out of range [0, 140]"},
         BadCase{"repeat zero times", with_steps("  - repeat: {times: 0, steps: [{dwell: 1}]}\n"),
                 "r.yaml:11:21: steps[0].repeat.times: 0 is out of range [1, 10000]"},
@@ -213,9 +226,11 @@ steps: []
         BadCase{"require of an unknown axis", with_steps("  - require: {homed: [x, w]}\n"),
                 "r.yaml:11:26: steps[0].require.homed[1]: the cell has no axis 'w' (its axes: x, z)"},
         BadCase{"empty require", with_steps("  - require: {}\n"),
-                "r.yaml:11:14: steps[0].require: require needs at least one of: homed, encoder_ready, spindle_at_rest"},
+                "r.yaml:11:14: steps[0].require: require needs at least one of: homed, encoder_ready, "
+                "spindle_at_rest"},
         BadCase{"a step that is not a mapping", with_steps("  - dwell 5\n"),
-                "r.yaml:11:5: steps[0]: a step is a mapping with one of: move, spindle, dwell, wait, repeat, require"}));
+                "r.yaml:11:5: steps[0]: a step is a mapping with one of: move, spindle, dwell, wait, repeat, "
+                "require"}));
 
 TEST(RecipeLoader, ReportsEveryBadStepNotJustTheFirst) {
   const auto errors = errors_of(with_steps(R"(  - move: {to: {x: 185}, speed_mm_s: 10}
@@ -238,7 +253,8 @@ steps:
   - move: {to: {z: 5}, speed_mm_s: 1}
 )");
   ASSERT_EQ(errors.size(), 1u);
-  EXPECT_EQ(errors[0], "r.yaml:6:20: steps[0].move.to.z: axis 'z' has no limits in this recipe (limits.axes.z)");
+  EXPECT_EQ(errors[0],
+            "r.yaml:6:20: steps[0].move.to.z: axis 'z' has no limits in this recipe (limits.axes.z)");
 }
 
 TEST(RecipeLoader, SpindleStartNeedsSpindleLimits) {
@@ -248,17 +264,20 @@ steps:
   - spindle: {start_hz: 300}
 )");
   ASSERT_EQ(errors.size(), 1u);
-  EXPECT_EQ(errors[0], "r.yaml:4:14: steps[0].spindle: the recipe starts the spindle but has no limits.spindle (min_hz, max_hz)");
+  EXPECT_EQ(errors[0],
+            "r.yaml:4:14: steps[0].spindle: the recipe starts the spindle but has no limits.spindle (min_hz, "
+            "max_hz)");
 }
 
 TEST(RecipeLoader, RepeatsAreBoundedInDepthAndSize) {
-  const auto deep = errors_of(with_steps(
-      "  - repeat: {times: 2, steps: [{repeat: {times: 2, steps: [{repeat: {times: 2, steps: [{repeat: {times: 2, "
-      "steps: [{repeat: {times: 2, steps: [{dwell: 1}]}}]}}]}}]}}]}\n"));
+  const auto deep =
+      errors_of(with_steps("  - repeat: {times: 2, steps: [{repeat: {times: 2, steps: [{repeat: {times: 2, "
+                           "steps: [{repeat: {times: 2, "
+                           "steps: [{repeat: {times: 2, steps: [{dwell: 1}]}}]}}]}}]}}]}\n"));
   ASSERT_FALSE(deep.empty());
   EXPECT_NE(deep[0].find("repeats nest at most 4 deep"), std::string::npos) << deep[0];
-  const auto big = errors_of(with_steps(
-      "  - repeat: {times: 10000, steps: [{repeat: {times: 10000, steps: [{dwell: 1}]}}]}\n"));
+  const auto big = errors_of(
+      with_steps("  - repeat: {times: 10000, steps: [{repeat: {times: 10000, steps: [{dwell: 1}]}}]}\n"));
   ASSERT_FALSE(big.empty());
   EXPECT_EQ(big[0], "r.yaml:11:3: steps: unrolls to 100000000 steps; at most 100000 are allowed");
 }

@@ -256,7 +256,8 @@ TEST(ScuSession, AnEmergencyStopOvertakesTheRetriesOfALostReply) {
   // The replies to the next two requests are lost; an emergency stop comes while the first waits.
   rig.emulator.drop_next_replies(2);
   ASSERT_TRUE(rig.session.read(0x0011));
-  cellctl::testing::run_for(rig.clock, 1ms, 50ms, [&](link::TimePoint t) { rig.step(t); });  // the read is out
+  cellctl::testing::run_for(rig.clock, 1ms, 50ms,
+                            [&](link::TimePoint t) { rig.step(t); });  // the read is out
   const auto asked = rig.clock.now();
   ASSERT_TRUE(rig.session.emergency_stop());
   ASSERT_TRUE(rig.run_until(1s, [&] { return rig.emulator.emergency_stop_active(); }));

@@ -194,7 +194,8 @@ TEST_F(SupervisorTest, MonitorCategoryZeroAbortsWithAnImmediateHalt) {
   ASSERT_TRUE(run(30.0, [&] { return now().axes[0].encoder_mm > 20.0; }));
   const double v_before = std::abs(now().axes[0].encoder_mm_s);
   ASSERT_GT(v_before, 5.0);
-  (void)run(0.002, [] { return false; }, StopCategory::immediate);
+  (void)run(
+      0.002, [] { return false; }, StopCategory::immediate);
   EXPECT_EQ(sup_->state(), State::aborting);
   EXPECT_EQ(sup_->intents().halt, cell::Halt::immediate);
   EXPECT_FALSE(now().axes[0].moving) << "category 0: the axis stops at once";
@@ -205,9 +206,11 @@ TEST_F(SupervisorTest, MonitorCategoryTwoHolds) {
   load("  - move: {to: {x: 150}, speed_mm_s: 15}\n");
   ASSERT_TRUE(sup_->command(Command::start, "test", t()));
   ASSERT_TRUE(run(30.0, [&] { return now().axes[0].encoder_mm > 20.0; }));
-  ASSERT_TRUE(run(5.0, [&] { return sup_->state() == State::held; }, StopCategory::controlled_hold));
+  ASSERT_TRUE(run(
+      5.0, [&] { return sup_->state() == State::held; }, StopCategory::controlled_hold));
   ASSERT_TRUE(sup_->command(Command::unhold, "operator", t()));
-  (void)run(0.002, [] { return false; }, StopCategory::controlled_hold);
+  (void)run(
+      0.002, [] { return false; }, StopCategory::controlled_hold);
   EXPECT_EQ(sup_->state(), State::held) << "unhold refused while the latch demands a stop";
 }
 
