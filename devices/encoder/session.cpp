@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <variant>
 
+#include "link/fault_reason.hpp"
+
 namespace cellctl::encoder {
 namespace {
 
@@ -37,7 +39,7 @@ Session::Session(link::Link& link, const SessionConfig& config)
       scaling_(config.parameters, config.physical),
       counts_per_mm_(length_per_count(config, scaling_)),
       master_(link, config.bus, slave_setup(config)) {
-  fault_reason_.reserve(256);
+  fault_reason_.reserve(link::kFaultReasonCapacity);
   snapshot_.has_status_bits = has_status_bits(config_.parameters);
 }
 
@@ -48,7 +50,8 @@ void Session::activate(link::TimePoint now) {
   if (snapshot_.local_prm_violation) {
     // Never send parameters the encoder would refuse: say which rule, here.
     snapshot_.lifecycle = link::Lifecycle::fault;
-    fault_reason_ = "parameters refused before sending: " + snapshot_.local_prm_violation->describe();
+    link::assign_formatted(fault_reason_, "parameters refused before sending: {}",
+                           snapshot_.local_prm_violation->describe());
     return;
   }
   fault_reason_.clear();
@@ -105,19 +108,26 @@ void Session::update_fault(link::TimePoint) {
     return;
   }
   if (!fault_reason_.empty()) return;  // written once per fault
-  fault_reason_ = master_.fault_reason();
+  // Formatted into the capacity reserved at construction: the cycle does not allocate for it.
+  const std::string_view reason = master_.fault_reason();
+  const auto& physical = config_.physical;
   if (snapshot_.startup_fault == profibus::StartupFault::Kind::prm_fault) {
     // The slave does not say which rule: the local check passed, so its resolution must differ.
-    fault_reason_ += fmt::format(" (parameters pass the local check for {} steps × {} revolutions",
-                                 config_.physical.steps_per_revolution, config_.physical.revolutions);
     if (snapshot_.diagnosis)
-      fault_reason_ +=
-          fmt::format("; the encoder reports {} × {}", snapshot_.diagnosis->singleturn_resolution,
-                      snapshot_.diagnosis->revolutions);
-    fault_reason_ += ")";
+      link::assign_formatted(fault_reason_,
+                             "{} (parameters pass the local check for {} steps × {} revolutions; the "
+                             "encoder reports {} × {})",
+                             reason, physical.steps_per_revolution, physical.revolutions,
+                             snapshot_.diagnosis->singleturn_resolution, snapshot_.diagnosis->revolutions);
+    else
+      link::assign_formatted(fault_reason_,
+                             "{} (parameters pass the local check for {} steps × {} revolutions)", reason,
+                             physical.steps_per_revolution, physical.revolutions);
   } else if (snapshot_.startup_fault == profibus::StartupFault::Kind::cfg_fault) {
-    fault_reason_ +=
-        fmt::format(" (the encoder is not set up for {})", to_string(config_.parameters.functionality));
+    link::assign_formatted(fault_reason_, "{} (the encoder is not set up for {})", reason,
+                           to_string(config_.parameters.functionality));
+  } else {
+    link::assign_formatted(fault_reason_, "{}", reason);
   }
 }
 

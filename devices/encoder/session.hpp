@@ -2,8 +2,8 @@
 // The encoder's DP master: a profibus::DpMaster set up with this encoder's Prm/Cfg (from typed
 // EncoderParameters), a typed snapshot per cycle (position in counts and mm, velocity in mm/s,
 // status bits, decoded diagnosis, start-up faults with the rule broken) and the manufacturer
-// functions as handshakes that run across cycles. Non-blocking: poll(now) never waits; no
-// allocation in poll() except when a fault reason is written.
+// functions as handshakes that run across cycles. Non-blocking: poll(now) never waits and allocates
+// nothing (a fault reason is formatted into capacity reserved at construction).
 
 #include <cstdint>
 #include <optional>
