@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "link/clock.hpp"
 #include "scu/status_flags.hpp"
 
 namespace cellctl::monitor {
@@ -15,10 +16,6 @@ constexpr std::size_t idx(Rule r) noexcept {
 // An axis may overshoot its travel limit by this much before it counts as outside (encoder noise,
 // the last edge of a soft stop); anything beyond is a fault.
 constexpr double kPositionMarginMm = 0.5;
-
-double ms(link::Duration d) noexcept {
-  return std::chrono::duration<double, std::milli>(d).count();
-}
 
 }  // namespace
 
@@ -50,9 +47,10 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
     if (l.fault || !l.active)
       causes[idx(Rule::link_silent)] =
           Text::format("{} link lost (session {})", name, l.fault ? "fault" : "inactive");
-    else if (ms(l.silent_for) > cell_.limits.link_silence_ms)
-      causes[idx(Rule::link_silent)] = Text::format("{} silent for {:.0f} ms (limit {:.0f} ms)", name,
-                                                    ms(l.silent_for), cell_.limits.link_silence_ms);
+    else if (link::to_milliseconds(l.silent_for) > cell_.limits.link_silence_ms)
+      causes[idx(Rule::link_silent)] =
+          Text::format("{} silent for {:.0f} ms (limit {:.0f} ms)", name, link::to_milliseconds(l.silent_for),
+                       cell_.limits.link_silence_ms);
   }
 
   for (std::size_t i = 0; i < s.axis_count && i < cell_.axes.size(); ++i) {

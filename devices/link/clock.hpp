@@ -41,4 +41,13 @@ class VirtualClock final : public Clock {
   return std::chrono::duration<double>(d).count();
 }
 
+// The one conversion between a Duration and the millisecond figures of configs, limits and messages.
+[[nodiscard]] inline double to_milliseconds(Duration d) noexcept {
+  return std::chrono::duration<double, std::milli>(d).count();
+}
+// Rounded to the nearest nanosecond (a cast would truncate 0.3 ms to 299999 ns).
+[[nodiscard]] inline Duration milliseconds(double ms) noexcept {
+  return std::chrono::round<Duration>(std::chrono::duration<double, std::milli>(ms));
+}
+
 }  // namespace cellctl::link

@@ -26,9 +26,6 @@ const char* to_string(MoveOutcome o) noexcept {
 }
 
 namespace {
-long long ms(link::Duration d) {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
-}
 std::uint8_t fnc(int function) {
   return static_cast<std::uint8_t>(function - 1);
 }
@@ -133,9 +130,9 @@ link::Lifecycle Session::poll(link::TimePoint now) {
   const auto silent = health_.silent_for(now, activated_at_);
   if (silent > config_.link_fault_after) {
     fault(
-        "SCU on {} silent for {} ms (limit {} ms): check the cable, the SCU's power, DTR/RTS and the baud "
-        "rate",
-        link_name_, ms(silent), ms(config_.link_fault_after));
+        "SCU on {} silent for {:.0f} ms (limit {:.0f} ms): check the cable, the SCU's power, DTR/RTS and "
+        "the baud rate",
+        link_name_, link::to_milliseconds(silent), link::to_milliseconds(config_.link_fault_after));
     return state_;
   }
   if (!in_flight_ && state_ != link::Lifecycle::inactive) send_next(now);

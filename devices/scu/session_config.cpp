@@ -1,15 +1,13 @@
 #include "scu/session_config.hpp"
 
+#include <fmt/format.h>
+
 #include <stdexcept>
 #include <string>
 
-namespace cellctl::scu {
+#include "link/clock.hpp"
 
-namespace {
-long long ms(link::Duration d) {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
-}
-}  // namespace
+namespace cellctl::scu {
 
 void validate(const SessionConfig& c) {
   if (c.safety_id > 2)
@@ -18,15 +16,15 @@ void validate(const SessionConfig& c) {
   if (c.keepalive_period < link::Duration::zero() || c.keepalive_period >= kWatchdogPeriod)
     throw std::invalid_argument(
         "scu session: keepalive_ms must be 0..499 (the SCU watchdog is 500 ms), got " +
-        std::to_string(ms(c.keepalive_period)));
+        fmt::format("{:.0f}", link::to_milliseconds(c.keepalive_period)));
   if (c.reply_timeout <= link::Duration::zero())
     throw std::invalid_argument("scu session: reply_timeout_ms must be > 0, got " +
-                                std::to_string(ms(c.reply_timeout)));
+                                fmt::format("{:.0f}", link::to_milliseconds(c.reply_timeout)));
   if (c.retries < 0)
     throw std::invalid_argument("scu session: retries must be ≥ 0, got " + std::to_string(c.retries));
   if (c.link_fault_after <= c.reply_timeout)
     throw std::invalid_argument("scu session: link_fault_after_ms must exceed reply_timeout_ms, got " +
-                                std::to_string(ms(c.link_fault_after)));
+                                fmt::format("{:.0f}", link::to_milliseconds(c.link_fault_after)));
   if (c.actuators.none()) throw std::invalid_argument("scu session: no actuator configured");
   for (std::size_t f = 0; f < c.functions.size(); ++f) {
     const auto& fn = c.functions[f];

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "link/clock.hpp"
 #include "link/fault_reason.hpp"
 #include "spindle/fault_numbers.hpp"
 
@@ -37,10 +38,6 @@ std::string_view name_of(MsgId id) noexcept {
 
 constexpr bool representable_hz(double hz) noexcept {
   return std::isfinite(hz) && hz >= 0.0 && hz <= 65535.0;
-}
-
-long long to_ms(link::Duration d) noexcept {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
 }
 
 }  // namespace
@@ -142,8 +139,9 @@ link::Lifecycle Session::poll(link::TimePoint now) {
   check_in_flight(now);
   if (lifecycle_ == link::Lifecycle::fault) return lifecycle_;
   if (health_.silent_for(now, activated_at_) > config_.link_fault_after) {
-    assign_formatted(fault_reason_, "spindle converter on {} silent for {} ms (limit {} ms)", link_name_,
-                     to_ms(health_.silent_for(now, activated_at_)), to_ms(config_.link_fault_after));
+    assign_formatted(fault_reason_, "spindle converter on {} silent for {:.0f} ms (limit {:.0f} ms)",
+                     link_name_, link::to_milliseconds(health_.silent_for(now, activated_at_)),
+                     link::to_milliseconds(config_.link_fault_after));
     enter_fault();
     return lifecycle_;
   }

@@ -29,5 +29,13 @@ TEST(MonotonicClock, NeverRunsBackwards) {
   }
 }
 
+TEST(Milliseconds, ConvertBothWaysWithoutTruncating) {
+  EXPECT_DOUBLE_EQ(to_milliseconds(1500us), 1.5);
+  EXPECT_DOUBLE_EQ(to_milliseconds(-2ms), -2.0);
+  EXPECT_EQ(milliseconds(2.5), 2500us);
+  EXPECT_EQ(milliseconds(0.3), 300us);  // 0.3 is 0.29999… in binary: rounded, not cut to 299999 ns
+  EXPECT_EQ(milliseconds(to_milliseconds(123456789ns)), 123456789ns);
+}
+
 }  // namespace
 }  // namespace cellctl::link
