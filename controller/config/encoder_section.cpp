@@ -77,8 +77,8 @@ profibus::DpMasterConfig parse_bus(const YamlNode& s, const link::LineFormat& li
   if (wd % 10 != 0) s.at("watchdog_ms").fail("must be a multiple of 10 ms (10 ms × WD_Fact_1 × WD_Fact_2)");
   b.wd_fact_1 = static_cast<std::uint8_t>(wd / 10);
   b.wd_fact_2 = wd == 0 ? 0 : 1;
-  b.data_exchange_period = std::chrono::milliseconds(s.int_in_or<long long>("cycle_ms", 0, 1000, 1));
-  b.lost_slave_time = std::chrono::milliseconds(s.int_in_or<long long>("lost_after_ms", 5, 60000, 100));
+  b.data_exchange_period = s.milliseconds_or("cycle_ms", 0, 1000, std::chrono::milliseconds(1));
+  b.lost_slave_time = s.milliseconds_or("lost_after_ms", 5, 60000, std::chrono::milliseconds(100));
   return b;
 }
 

@@ -1,16 +1,9 @@
 #include "config/scu_section.hpp"
 
-#include <chrono>
 #include <string>
 
 namespace cellctl::config {
 namespace {
-
-link::Duration ms_or(const YamlNode& s, std::string_view key, long long min, long long max,
-                     link::Duration fallback) {
-  const auto n = s.maybe(key);
-  return n ? std::chrono::milliseconds(n->as_integer_in(min, max)) : fallback;
-}
 
 // actuators: [{index, edges_per_mm, stroke_mm, max_speed_mm_s, ramp_mm_s2, min_speed_mm_s,
 //              start_position_mm, scale_error}]
@@ -77,10 +70,10 @@ ScuSection parse_scu_section(const YamlNode& section) {
   auto& s = out.session;
   s.safety_id = section.int_in_or<std::uint8_t>("safety_id", 0, 2, s.safety_id);
   // The SCU's watchdog is 500 ms; 0 = RC back to back, as fast as the line allows.
-  s.keepalive_period = ms_or(section, "keepalive_ms", 0, 400, s.keepalive_period);
-  s.reply_timeout = ms_or(section, "reply_timeout_ms", 10, 2000, s.reply_timeout);
+  s.keepalive_period = section.milliseconds_or("keepalive_ms", 0, 400, s.keepalive_period);
+  s.reply_timeout = section.milliseconds_or("reply_timeout_ms", 10, 2000, s.reply_timeout);
   s.retries = section.int_in_or<int>("retries", 0, 10, s.retries);
-  s.link_fault_after = ms_or(section, "link_fault_after_ms", 50, 60000, s.link_fault_after);
+  s.link_fault_after = section.milliseconds_or("link_fault_after_ms", 50, 60000, s.link_fault_after);
   if (s.link_fault_after <= s.reply_timeout)
     (section.has("link_fault_after_ms") ? section.at("link_fault_after_ms") : section.at("reply_timeout_ms"))
         .fail("link_fault_after_ms must be longer than reply_timeout_ms");

@@ -1,24 +1,16 @@
 #include "config/spindle_section.hpp"
 
-#include <chrono>
-
 namespace cellctl::config {
 namespace {
 
-link::Duration ms_or(const YamlNode& section, std::string_view key, long long min, long long max,
-                     link::Duration fallback) {
-  const auto n = section.maybe(key);
-  return n ? std::chrono::milliseconds(n->as_integer_in(min, max)) : fallback;
-}
-
 spindle::SessionConfig parse_session(const YamlNode& s) {
   spindle::SessionConfig c;
-  c.reply_timeout =
-      ms_or(s, "reply_timeout_ms", 20, 2000, c.reply_timeout);  // 20 ms: a 64-byte reply's line time
+  // 20 ms: a 64-byte reply's line time.
+  c.reply_timeout = s.milliseconds_or("reply_timeout_ms", 20, 2000, c.reply_timeout);
   c.retries = s.int_in_or<unsigned>("retries", 0, 10, c.retries);
-  c.status_poll = ms_or(s, "status_poll_ms", 5, 5000, c.status_poll);
-  c.values_poll = ms_or(s, "values_poll_ms", 5, 60000, c.values_poll);
-  c.link_fault_after = ms_or(s, "link_fault_after_ms", 50, 60000, c.link_fault_after);
+  c.status_poll = s.milliseconds_or("status_poll_ms", 5, 5000, c.status_poll);
+  c.values_poll = s.milliseconds_or("values_poll_ms", 5, 60000, c.values_poll);
+  c.link_fault_after = s.milliseconds_or("link_fault_after_ms", 50, 60000, c.link_fault_after);
   c.set_start_parameters = s.bool_or("set_start_parameters", c.set_start_parameters);
   // A link judged dead before one request could even time out would fault on the first lost telegram.
   if (c.link_fault_after <= c.reply_timeout)

@@ -5,6 +5,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <chrono>
 #include <concepts>
 #include <filesystem>
 #include <initializer_list>
@@ -88,6 +89,12 @@ class YamlNode {
   [[nodiscard]] T int_in_or(std::string_view key, T min, T max, T fallback) const {
     const auto n = maybe(key);
     return n ? static_cast<T>(n->as_integer_in(min, max)) : fallback;
+  }
+  // A whole number of milliseconds ("…_ms" keys) in [min, max], as a duration.
+  [[nodiscard]] std::chrono::nanoseconds milliseconds_or(std::string_view key, long long min, long long max,
+                                                         std::chrono::nanoseconds fallback) const {
+    const auto n = maybe(key);
+    return n ? std::chrono::milliseconds(n->as_integer_in(min, max)) : fallback;
   }
   template <std::integral T>
   [[nodiscard]] T int_in(std::string_view key, T min, T max) const {

@@ -36,6 +36,17 @@ TEST(YamlNode, ErrorsNameFileLineColumnFieldAndRule) {
                "cell.yaml:2:3: scu: missing required field 'speed'");
 }
 
+TEST(YamlNode, MillisecondsAreWholeNumbersInRange) {
+  using std::chrono::milliseconds;
+  auto root = YamlNode::load_string("timeout_ms: 250\nbad_ms: 5000\nfrac_ms: 1.5\n", "t.yaml");
+  EXPECT_EQ(root.milliseconds_or("timeout_ms", 10, 2000, milliseconds(7)), milliseconds(250));
+  EXPECT_EQ(root.milliseconds_or("missing_ms", 10, 2000, milliseconds(7)), milliseconds(7));
+  expect_error([&] { (void)root.milliseconds_or("bad_ms", 10, 2000, milliseconds(7)); },
+               "t.yaml:2:9: bad_ms: 5000 is out of range [10, 2000]");
+  expect_error([&] { (void)root.milliseconds_or("frac_ms", 10, 2000, milliseconds(7)); },
+               "t.yaml:3:10: frac_ms: expected a whole number, got '1.5'");
+}
+
 TEST(YamlNode, SmallIntegersAreNumbersNotCharacters) {
   auto root = YamlNode::load_string("id: 300\nok: 7\n", "t.yaml");
   EXPECT_EQ(root.at("ok").as_int<std::uint8_t>(), 7);
