@@ -6,7 +6,8 @@ namespace cellctl::scu {
 namespace {
 
 // Built at compile time from the polynomial; equals the manual's CRC_TABLE entry for entry
-// (tests/scu/crc16_test.cpp checks a sample of it against the printed table).
+// (ScuCrc16.MatchesTheManualsTableAndChecksToZeroWithSwappedCrc in tests/scu/codec_test.cpp checks
+// entries 0x01, 0x80 and 0xFF against the printed table).
 constexpr std::array<std::uint16_t, 256> make_table() {
   std::array<std::uint16_t, 256> table{};
   for (unsigned i = 0; i < 256; ++i) {
