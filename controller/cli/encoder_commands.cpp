@@ -109,14 +109,18 @@ class Commissioning {
         session_(device_.link(), with_station(section.session, action)) {}
 
   int run(Action action) {
+    // A preset beyond this encoder's scaling is a bad argument (manual 4.3.2): refused before the bus.
+    if (const auto range = session_.scaling().range(); action == Action::preset && options_.value >= range) {
+      spdlog::error("preset {}: must be 0 … {} (the total measuring range − 1)", options_.value, range - 1);
+      return kExitUsage;
+    }
     session_.activate(clock_.now());
     if (action == Action::set_address) return set_address();
     if (!drive([&] { return snapshot().data_exchange && snapshot().exchanges > 2; }))
       return failed_to("exchange data");
     switch (action) {
       case Action::preset:
-        if (!session_.preset(options_.value))
-          return refuse("preset (value beyond the total measuring range?)");
+        if (!session_.preset(options_.value)) return refuse("preset");
         if (!finish_command()) return failed_to("acknowledge the preset");
         break;
       case Action::direction:
@@ -197,9 +201,10 @@ class Commissioning {
     return drive([&] { return clock_.now() >= until; });
   }
 
+  // The session's state or the configured parameters stand in the way, not the command line.
   int refuse(const char* what) {
     spdlog::error("the encoder session would not {}", what);
-    return kExitUsage;
+    return kExitFailed;
   }
 
   int failed_to(const char* what) {

@@ -76,7 +76,7 @@ class Commissioning {
         if (!session_.stop(options_.function, !options_.fast)) {
           spdlog::error("F{} is not a function of this SCU: check scu.functions in the cell config",
                         options_.function);
-          code = kExitUsage;
+          code = kExitFailed;
         }
         break;
     }
@@ -93,7 +93,7 @@ class Commissioning {
           "move refused: F{} must be a configured function that moves exactly actuator {} "
           "(see scu.functions in the cell config), speed 0..100 %",
           options_.function, options_.actuator);
-      return kExitUsage;
+      return kExitFailed;
     }
     const auto& f = session_.snapshot().functions[static_cast<std::size_t>(options_.function - 1)];
     // Waits for the motion to end and its RS to be acknowledged.

@@ -122,10 +122,11 @@ class Commissioning {
     return drive([&] { return clock_.now() >= until; });
   }
 
+  // The command line was checked by the parser: a refusal is the session's state (not active, its
+  // command queue full), so the command failed — not a usage error.
   int refuse(const char* what) {
-    spdlog::error("the spindle session would not {} (frequency {} Hz out of 0..65535?)", what,
-                  options_.frequency_hz);
-    return kExitUsage;
+    spdlog::error("the spindle session would not {} now (not active, or its command queue is full)", what);
+    return kExitFailed;
   }
 
   int failed_to(const char* what) {

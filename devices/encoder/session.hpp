@@ -82,6 +82,7 @@ class Session {
   [[nodiscard]] const std::string& fault_reason() const noexcept { return fault_reason_; }
   [[nodiscard]] const SessionConfig& config() const noexcept { return config_; }
   [[nodiscard]] double counts_per_mm() const noexcept { return counts_per_mm_; }
+  [[nodiscard]] const Scaling& scaling() const noexcept { return scaling_; }
 
   // Commands: false when not in data exchange, another command runs, or the function is not
   // available with these parameters (value beyond the range; direction/Teach-In need the status

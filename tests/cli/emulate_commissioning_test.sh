@@ -2,7 +2,7 @@
 # End to end, as an integrator commissions an emulated cell: `cellctl emulate` publishes the three
 # devices' pseudo-terminals, then the commissioning commands talk to them through the cell config —
 # SCU status and a move, spindle start/status/stop, encoder status — and Ctrl-C ends the emulation
-# cleanly (exit 0, published links removed).
+# cleanly (exit 0, published links removed). A command the SCU session refuses exits 1.
 #
 # usage: emulate_commissioning_test.sh <cellctl binary> <cell config>
 # The config is copied with publish_as and the encoder's EEPROM state file moved into a fresh temp
@@ -76,15 +76,20 @@ done
 
 # --- the commissioning commands --------------------------------------------------------------------
 out=""
-# run <what> <cellctl arguments…>: the command must exit 0; its output is kept in $out.
-run() {
-  local what=$1
-  shift
+# run_exits <code> <what> <cellctl arguments…>: the command must exit <code>; its output is kept in $out.
+run_exits() {
+  local expected=$1
+  local what=$2
+  shift 2
   local rc=0
   local started=$SECONDS
   out=$("$cellctl" -c "$config" "$@" 2>&1) || rc=$?
   printf '$ cellctl %s   (exit %d, %d s)\n%s\n' "$*" "$rc" $((SECONDS - started)) "$out"
-  [[ $rc -eq 0 ]] || fail "$what: \`cellctl $*\` exited $rc, expected 0"
+  [[ $rc -eq $expected ]] || fail "$what: \`cellctl $*\` exited $rc, expected $expected"
+}
+# run <what> <cellctl arguments…>: the command must exit 0.
+run() {
+  run_exits 0 "$@"
 }
 # expect <what> <extended regex>: the last command's output must match.
 expect() {
@@ -100,6 +105,10 @@ expect "SCU move" "^function F1 +arrived"
 # The SCU's own arrival tolerance (arrival_tolerance_edges in the config) is 2 edges.
 run "SCU status after the move" scu status
 expect "SCU status after the move" "^actuator 1 +(198|199|200|201|202) edges, at rest"
+# A command the session refuses is a failure (exit 1), not a bad command line (2).
+run_exits 1 "SCU move with a function the config does not define" scu move --function 3 --actuator 1 \
+  --position-edges 100
+expect "SCU move refused" "move refused: F3"
 
 run "spindle start" spindle start --frequency 400
 expect "spindle start" "^motion +at speed"
