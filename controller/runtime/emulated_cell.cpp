@@ -2,14 +2,19 @@
 
 #include <stdexcept>
 
+#include "encoder/scaling.hpp"
+
 namespace cellctl::runtime {
 namespace {
 
 // The shaft's lead: what the encoder session takes a revolution to be, so that a perfect coupling
-// reads the axis exactly; slip is the plant's deviation from it.
+// reads the axis exactly; slip is the plant's deviation from it. The session reads position_mm as
+// measuring units ÷ counts_per_mm, and a revolution is the session's units per revolution — scaled
+// units when scaling is on, not physical steps (encoder::Session's length per count).
 double mm_per_revolution(const config::EncoderSection& e) {
   if (e.session.mm_per_revolution > 0.0) return e.session.mm_per_revolution;
-  return static_cast<double>(e.emulator.identity.physical.steps_per_revolution) / e.session.counts_per_mm;
+  const encoder::Scaling scaling(e.session.parameters, e.session.physical);
+  return scaling.units_per_revolution() / e.session.counts_per_mm;
 }
 
 }  // namespace
