@@ -3,10 +3,59 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <string>
 
 #include "config/cell_config.hpp"
+#include "link/clock.hpp"
 
 namespace cellctl::config {
+namespace {
+
+using link::to_milliseconds;
+
+// The monitor takes a link silent longer than limits.link_silence_ms for a lost device (category 0):
+// a healthy device's replies must come closer together than that, or the cell stops mid-run.
+// `spacing` says how the device's longest normal gap between good replies, `gap_ms`, is made up.
+void check_reply_spacing(const YamlNode& root, const CellConfig& cell, const char* device, double gap_ms,
+                         const std::string& spacing) {
+  const double silence_ms = cell.limits.link_silence_ms;
+  if (silence_ms > gap_ms) return;
+  const auto limits = root.maybe("limits");
+  if (limits && limits->has("link_silence_ms"))
+    limits->at("link_silence_ms")
+        .fail(fmt::format("{:g} ms must exceed the {}'s normal reply spacing ({}): a healthy {} would be "
+                          "taken for a silent link",
+                          silence_ms, device, spacing, device));
+  // Not given, the default applies: the device's section is where the too-long timing was chosen.
+  root.at(device).fail(fmt::format(
+      "the normal reply spacing ({}) must be shorter than limits.link_silence_ms ({:g} ms, the default): a "
+      "healthy {} would be taken for a silent link",
+      spacing, silence_ms, device));
+}
+
+void check_link_silence(const YamlNode& root, const CellConfig& cell) {
+  if (cell.scu) {
+    const auto& s = cell.scu->session;
+    const double gap = to_milliseconds(s.keepalive_period) + to_milliseconds(s.reply_timeout);
+    check_reply_spacing(
+        root, cell, "scu", gap,
+        fmt::format("keep-alive {:g} ms + reply time-out {:g} ms = {:g} ms",
+                    to_milliseconds(s.keepalive_period), to_milliseconds(s.reply_timeout), gap));
+  }
+  if (cell.spindle) {
+    const auto& s = cell.spindle->session;
+    const double gap = to_milliseconds(s.status_poll) + to_milliseconds(s.reply_timeout);
+    check_reply_spacing(root, cell, "spindle", gap,
+                        fmt::format("status poll {:g} ms + reply time-out {:g} ms = {:g} ms",
+                                    to_milliseconds(s.status_poll), to_milliseconds(s.reply_timeout), gap));
+  }
+  if (cell.encoder) {
+    const double lost_ms = to_milliseconds(cell.encoder->session.bus.lost_slave_time);
+    check_reply_spacing(root, cell, "encoder", lost_ms, fmt::format("DP lost-slave time {:g} ms", lost_ms));
+  }
+}
+
+}  // namespace
 
 void check_cell(const YamlNode& root, CellConfig& cell) {
   const auto axes = root.at("axes").items();
@@ -53,6 +102,7 @@ void check_cell(const YamlNode& root, CellConfig& cell) {
     root.at("axes").fail("the cell has an encoder: mark the axis it measures with 'encoder: true'");
   if (!cell.encoder && measured)
     root.at("axes").fail("an axis is marked 'encoder: true' but the cell has no encoder section");
+  check_link_silence(root, cell);
 }
 
 }  // namespace cellctl::config
