@@ -163,7 +163,12 @@ class Parser {
     const auto to = n.at("to");
     const auto names = to.keys();
     if (names.empty()) to.fail("name at least one axis and its target");
-    m.speed_mm_s = n.at("speed_mm_s").as_double();
+    const auto speed = n.at("speed_mm_s");
+    m.speed_mm_s = speed.as_double();
+    // An axis whose actuator moves at any speed has no minimum (0): that is no licence to stand still,
+    // or to run backwards.
+    if (!(m.speed_mm_s > 0.0))
+      speed.fail(fmt::format("{:g} mm/s: a move needs a speed above 0 mm/s", m.speed_mm_s));
     for (const auto& name : names) {
       const auto t = to.at(name);
       const int idx = axis_index(t, name);
@@ -171,7 +176,6 @@ class Parser {
       if (!lim) t.fail(fmt::format("axis '{}' has no limits in this recipe (limits.axes.{})", name, name));
       m.targets.push_back({idx, t.as_double_in(lim->min_mm, lim->max_mm)});
       const auto& cell_axis = cell_.axes[static_cast<std::size_t>(idx)];
-      const auto speed = n.at("speed_mm_s");
       if (m.speed_mm_s > lim->max_speed_mm_s)
         speed.fail(fmt::format("{:g} mm/s is above axis '{}''s recipe limit {:g} mm/s", m.speed_mm_s, name,
                                lim->max_speed_mm_s));

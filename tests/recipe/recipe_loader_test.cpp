@@ -17,7 +17,7 @@ config::CellConfig test_cell() {
   return config::parse_cell_config(YamlNode::load_string(R"(cell: test-cell
 axes:
   - {name: x, actuator: 1, function: 1, edges_per_mm: 10, min_mm: 0, max_mm: 190, max_speed_mm_s: 20, min_speed_mm_s: 0.8}
-  - {name: z, actuator: 2, function: 2, edges_per_mm: 10, min_mm: 0, max_mm: 140, max_speed_mm_s: 15, min_speed_mm_s: 0.8}
+  - {name: z, actuator: 2, function: 2, edges_per_mm: 10, min_mm: 0, max_mm: 140, max_speed_mm_s: 15}
 limits: {spindle_min_hz: 100, spindle_max_hz: 800}
 )",
                                                          "cell.yaml"),
@@ -192,10 +192,15 @@ steps: []
                 "r.yaml:11:20: steps[0].move.to.q: the cell has no axis 'q' (its axes: x, z)"},
         BadCase{"speed above the recipe limit", with_steps("  - move: {to: {z: 5}, speed_mm_s: 14}\n"),
                 "r.yaml:11:36: steps[0].move.speed_mm_s: 14 mm/s is above axis 'z''s recipe limit 12 mm/s"},
-        BadCase{"speed too low to move", with_steps("  - move: {to: {z: 5}, speed_mm_s: 0.3}\n"),
-                "r.yaml:11:36: steps[0].move.speed_mm_s: 0.3 mm/s is below axis 'z''s minimum 0.8 mm/s: the "
+        BadCase{"speed too low to move", with_steps("  - move: {to: {x: 5}, speed_mm_s: 0.3}\n"),
+                "r.yaml:11:36: steps[0].move.speed_mm_s: 0.3 mm/s is below axis 'x''s minimum 0.8 mm/s: the "
                 "actuator "
                 "would not move"},
+        BadCase{"zero speed on an axis without a minimum",
+                with_steps("  - move: {to: {z: 5}, speed_mm_s: 0}\n"),
+                "r.yaml:11:36: steps[0].move.speed_mm_s: 0 mm/s: a move needs a speed above 0 mm/s"},
+        BadCase{"negative speed", with_steps("  - move: {to: {z: 5}, speed_mm_s: -4}\n"),
+                "r.yaml:11:36: steps[0].move.speed_mm_s: -4 mm/s: a move needs a speed above 0 mm/s"},
         BadCase{"move without a target", with_steps("  - move: {to: {}, speed_mm_s: 5}\n"),
                 "r.yaml:11:16: steps[0].move.to: name at least one axis and its target"},
         BadCase{"move without a speed", with_steps("  - move: {to: {x: 5}}\n"),
