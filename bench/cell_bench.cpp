@@ -49,6 +49,7 @@
 #include "recipe/recipe_loader.hpp"
 #include "runtime/cell_run.hpp"
 #include "support/allocation_counter.hpp"
+#include "support/execute_window.hpp"
 
 // Read by a debugger's breakpoint condition (see above); a C name so that it is easy to spell.
 extern "C" {
@@ -125,43 +126,9 @@ Setup load(const ScratchDir& dir) {
   return s;
 }
 
-// Heap allocations of the loop's thread from the first cycle the supervisor is in Execute to the
-// first one it is not (the recipe's execution, after the devices are up). The hook runs at the
-// start of a cycle, so the window holds whole cycles. The cycles before it (start-up: sessions
-// activating) and after it (completing, devices closing) are counted apart: they may allocate, and
-// a non-zero start-up count also shows that the counter sees this thread.
-struct ExecuteWindow {
-  bool seen = false;
-  bool open = false;
-  bool closed = false;
-  std::uint64_t cycles = 0;
-  std::size_t at_first = 0;
-  std::size_t at_open = 0;
-  std::size_t at_close = 0;
-  std::size_t at_last = 0;
-  supervisor::State ended_in = supervisor::State::idle;
-
-  void on_cycle(supervisor::State s) noexcept {
-    const std::size_t now = testing::thread_allocation_count();
-    if (!seen) at_first = now;
-    seen = true;
-    at_last = now;
-    if (!open && !closed && s == supervisor::State::execute) {
-      open = true;
-      at_open = now;
-      cellbench_in_window = 1;
-    } else if (open && s != supervisor::State::execute) {
-      open = false;
-      closed = true;
-      at_close = now;
-      ended_in = s;
-      cellbench_in_window = 0;
-    }
-    if (open) ++cycles;
-  }
-  [[nodiscard]] std::size_t allocations() const noexcept { return closed ? at_close - at_open : 0; }
-  [[nodiscard]] std::size_t start_up() const noexcept { return at_open - at_first; }
-  [[nodiscard]] std::size_t after() const noexcept { return closed ? at_last - at_close : 0; }
+// The Execute window's allocation count (support/execute_window.hpp), with the debugger's flag.
+struct ExecuteWindow : testing::ExecuteWindow {
+  ExecuteWindow() { in_window = &cellbench_in_window; }
 };
 
 double per(double x, double y) {

@@ -1,0 +1,56 @@
+// The whole control cycle — sessions, emulators, monitor, supervisor, journal posting — allocates
+// nothing on the loop's thread once the recipe executes: counted from the first cycle in Execute to
+// the last, over a short recipe with the spindle, coordinated moves and a dwell, in virtual time.
+
+#include <string>
+
+#include "run_fixture.hpp"
+#include "support/execute_window.hpp"
+
+namespace cellctl::testing {
+namespace {
+
+constexpr const char* kShortRecipe = R"(
+recipe: {name: short, version: "1", cell: demo-cell}
+limits:
+  axes:
+    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
+    z: {min_mm: 0, max_mm: 120, max_speed_mm_s: 12, tolerance_mm: 0.1}
+  spindle: {min_hz: 200, max_hz: 600}
+  timeouts: {move_s: 30, spindle_s: 10}
+steps:
+  - {name: spindle up, spindle: {start_hz: 400, direction: cw}}
+  - {name: out, move: {to: {x: 40, z: 20}, speed_mm_s: 12}}
+  - {name: pause, dwell: 0.5}
+  - {name: back, move: {to: {x: 5, z: 5}, speed_mm_s: 12}}
+  - {name: spindle down, spindle: stop}
+)";
+
+TEST_F(RunFixture, ExecuteCyclesAllocateNothing) {
+  load_recipe_text(kShortRecipe);
+  ExecuteWindow window;
+  // A zero means something only if the counter sees the loop's thread: one allocation made there,
+  // in the first cycle (before the window), must be counted.
+  std::string probe;
+  std::size_t probe_counted = 0;
+  make_run().on_cycle([&](double, runtime::CellRun& r) {
+    if (probe.empty()) {
+      const std::size_t before = thread_allocation_count();
+      probe.assign(64, 'x');
+      probe_counted = thread_allocation_count() - before;
+    }
+    window.on_cycle(r.supervisor().state());
+  });
+  const auto r = go();
+  ASSERT_EQ(probe_counted, 1u) << "the allocation counter does not see the loop's thread";
+  ASSERT_EQ(r.final_state, supervisor::State::complete) << r.failure << "\n" << r.summary_text;
+  ASSERT_TRUE(window.closed) << "the run left Execute";
+  EXPECT_EQ(window.ended_in, supervisor::State::completing);
+  EXPECT_GT(window.cycles, 5000u) << "the window covers the recipe";
+  std::cout << "  " << window.allocations() << " allocations in " << window.cycles << " Execute cycles ("
+            << window.start_up() << " in start-up, " << window.after() << " after)\n";
+  EXPECT_EQ(window.allocations(), 0u);
+}
+
+}  // namespace
+}  // namespace cellctl::testing
