@@ -12,7 +12,7 @@
 namespace cellctl::journal {
 
 Journal::Journal(const std::filesystem::path& dir, WhenFull when_full)
-    : dir_(dir), when_full_(when_full), queue_(std::make_unique<SpscQueue<Event, 8192>>()) {
+    : dir_(dir), when_full_(when_full), queue_(std::make_unique<wire::SpscQueue<Event, 8192>>()) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   const auto path = dir_ / "journal.jsonl";

@@ -16,14 +16,13 @@
 #include "journal/event.hpp"
 #include "journal/event_sink.hpp"
 #include "journal/run_summary.hpp"
-#include "journal/spsc_queue.hpp"
+#include "wire/spsc_queue.hpp"
 
 namespace cellctl::journal {
 
-// What post() does when the writer has fallen behind: in real time the cycle must not wait, so the
-// event is counted as dropped (and the count is in the summary); in virtual time nothing is
-// real-time, so the cycle waits for room and nothing is ever dropped.
-enum class WhenFull : std::uint8_t { drop_and_count, wait };
+// What post() does when the writer has fallen behind (wire/spsc_queue.hpp): dropped and counted in the
+// summary, or waited for in virtual time.
+using WhenFull = wire::WhenFull;
 
 class Journal final : public EventSink {
  public:
@@ -52,7 +51,7 @@ class Journal final : public EventSink {
   std::filesystem::path dir_;
   WhenFull when_full_;
   std::FILE* file_ = nullptr;
-  std::unique_ptr<SpscQueue<Event, 8192>> queue_;
+  std::unique_ptr<wire::SpscQueue<Event, 8192>> queue_;
   std::atomic<bool> closing_{false};
   std::atomic<std::uint64_t> dropped_{0};
   std::vector<std::pair<double, Sample>> samples_;  // writer thread only

@@ -1,10 +1,10 @@
-#include "journal/spsc_queue.hpp"
+#include "wire/spsc_queue.hpp"
 
 #include <gtest/gtest.h>
 
 #include <thread>
 
-namespace cellctl::journal {
+namespace cellctl::wire {
 namespace {
 
 TEST(SpscQueue, FifoAndFull) {
@@ -36,4 +36,4 @@ TEST(SpscQueue, TwoThreadsLoseNothingAndKeepOrder) {
 }
 
 }  // namespace
-}  // namespace cellctl::journal
+}  // namespace cellctl::wire

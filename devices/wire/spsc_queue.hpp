@@ -1,14 +1,21 @@
 #pragma once
 // Single-producer single-consumer ring of trivially copyable items: the control cycle pushes
-// without locking or allocating, a writer thread pops. Capacity is a power of two.
+// without locking or allocating, a writer thread pops (the journal, the telegram trace). Capacity is
+// a power of two.
 
 #include <array>
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <type_traits>
 
-namespace cellctl::journal {
+namespace cellctl::wire {
+
+// What a producer does when the consumer has fallen behind: in real time the cycle must not wait, so
+// the item is counted as dropped; in virtual time nothing is real-time, so the cycle waits for room
+// and nothing is ever dropped.
+enum class WhenFull : std::uint8_t { drop_and_count, wait };
 
 template <class T, std::size_t Capacity>
 class SpscQueue {
@@ -44,4 +51,4 @@ class SpscQueue {
   alignas(64) std::atomic<std::size_t> tail_{0};
 };
 
-}  // namespace cellctl::journal
+}  // namespace cellctl::wire
