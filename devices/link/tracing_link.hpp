@@ -3,14 +3,20 @@
 // through unchanged and reports each write as one TX record and each run of received bytes (ended
 // by a quiet poll or by the next write) as one RX record. Switched on per link from the CLI.
 
+#include <array>
+#include <atomic>
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
+#include <thread>
 
 #include "link/clock.hpp"
 #include "link/link.hpp"
 #include "wire/fixed_bytes.hpp"
+#include "wire/spsc_queue.hpp"
 
 namespace cellctl::link {
 
@@ -23,12 +29,47 @@ class TraceSink {
                       std::span<const std::uint8_t> bytes) = 0;
 };
 
-// Writes "  12.345678 scu TX 52 4f 00 5c 2d" lines to the spdlog logger named "trace" (created
-// asynchronous by the CLI, so formatting and output happen off the control cycle's thread).
+// One record as it crosses from the cycle's thread to the trace writer: fixed size, no pointers.
+struct TraceRecord {
+  static constexpr std::size_t kMaxBytes = 256;  // a longer run is split into several records
+  TimePoint at{};
+  Direction dir = Direction::tx;
+  std::array<char, 24> link{};  // the link's name, cut to fit
+  std::uint8_t link_size = 0;
+  wire::FixedBytes<kMaxBytes> bytes;
+};
+
+// Writes "  12.345678 scu TX 52 4f 00 5c 2d" lines to the spdlog logger named "trace", but never on
+// the caller's thread: record() copies into a lock-free ring (no lock, no allocation — it runs in the
+// control cycle) and a writer thread formats and logs. Every TracingLink sharing one sink must call it
+// from the same thread (single producer). A full ring drops the record and counts it (the writer
+// reports the count), or — WhenFull::wait, for virtual time — waits for the writer.
 class LogTraceSink final : public TraceSink {
  public:
+  enum class Writer : std::uint8_t { thread, manual };  // manual: nothing is written until drain()
+  // WhenFull::wait needs Writer::thread (a manual sink would wait for itself).
+  explicit LogTraceSink(wire::WhenFull when_full = wire::WhenFull::drop_and_count,
+                        Writer writer = Writer::thread);
+  ~LogTraceSink() override;  // stops the writer, then writes what is left
+  LogTraceSink(const LogTraceSink&) = delete;
+  LogTraceSink& operator=(const LogTraceSink&) = delete;
+
   void record(TimePoint at, std::string_view link, Direction dir,
-              std::span<const std::uint8_t> bytes) override;
+              std::span<const std::uint8_t> bytes) noexcept override;
+  // Formats and logs every queued record; returns how many. The consumer side: the writer thread's,
+  // or the caller's with Writer::manual.
+  std::size_t drain();
+  [[nodiscard]] std::uint64_t dropped() const noexcept { return dropped_.load(std::memory_order_relaxed); }
+
+ private:
+  void write_loop();
+
+  wire::WhenFull when_full_;
+  std::unique_ptr<wire::SpscQueue<TraceRecord, 512>> queue_;
+  std::atomic<std::uint64_t> dropped_{0};
+  std::uint64_t reported_drops_ = 0;  // writer side
+  std::atomic<bool> stop_{false};
+  std::thread writer_;
 };
 
 class TracingLink final : public Link {
