@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string_view>
 
 #include "link/clock.hpp"
 
@@ -13,10 +14,12 @@ namespace cellctl::cell {
 inline constexpr std::size_t kMaxAxes = 6;
 
 struct AxisState {
-  bool present = false;  // the SCU reports the actuator
-  double scu_mm = 0.0;   // the SCU's own position (its edges ÷ edges_per_mm)
-  bool moving = false;   // SCU status 1: motion active
-  bool homed = false;    // SCU status 2: initialised
+  bool present = false;       // the SCU reports the actuator
+  double scu_mm = 0.0;        // the SCU's own position (its edges ÷ edges_per_mm)
+  bool moving = false;        // SCU status 1: motion active (as of the last RC reply: it lags a command)
+  bool commanded = false;     // a move is queued for the SCU or its RE is still open
+  bool move_refused = false;  // the SCU answered an error to the last move's telegrams
+  bool homed = false;         // SCU status 2: initialised
   bool actuator_fault = false;
   bool measured = false;    // the encoder measures this axis
   double encoder_mm = 0.0;  // valid when measured and the encoder is in data exchange
@@ -51,6 +54,9 @@ struct SpindleState {
   std::uint8_t fault_number = 0;
   bool over_temperature = false;
   bool current_limit = false;
+  bool start_refused =
+      false;  // the converter acknowledged a start but stayed at rest (error_number says why)
+  std::uint8_t error_number = 0;  // the converter's warning or fault number
 };
 
 enum class Device : std::uint8_t { scu, spindle, encoder };
@@ -75,6 +81,8 @@ struct CellState {
   std::uint32_t scu_error_word = 0;   // error code 1, bits numbered from 1 = LSB
   link::Duration scu_position_age{};  // since the SCU's positions arrived (its RC reply, every keep-alive)
   bool scu_remote = false;            // remote mode open (RO done, RC running)
+  bool scu_status2_known = false;     // actuator status 2 (homed) has been read since activation
+  std::string_view scu_refusal;       // the SCU's last error reply, in words (static text)
 };
 
 }  // namespace cellctl::cell

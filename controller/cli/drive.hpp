@@ -10,14 +10,15 @@
 
 namespace cellctl::cli {
 
-// Set by SIGINT/SIGTERM (installed by main); every drive loop ends early when it is set.
+// Set by SIGINT (Ctrl-C) and SIGTERM (installed by main); every drive loop ends early on either.
 extern std::atomic<bool> g_interrupted;
+extern std::atomic<bool> g_terminated;
 
 template <class Step, class Done>
 bool drive_until(const link::Clock& clock, link::Duration timeout, Step&& step, Done&& done,
                  link::Duration pause = std::chrono::microseconds(200)) {
   const auto deadline = clock.now() + timeout;
-  while (!g_interrupted.load()) {
+  while (!g_interrupted.load() && !g_terminated.load()) {
     const auto now = clock.now();
     step(now);
     if (done()) return true;

@@ -33,7 +33,7 @@ int run_emulate(const GlobalOptions& global) {
   std::fflush(stdout);
 
   link::MonotonicClock clock;
-  while (!g_interrupted.load()) {
+  while (!g_interrupted.load() && !g_terminated.load()) {
     emulated.poll(clock.now());
     std::this_thread::sleep_for(std::chrono::microseconds(200));
   }

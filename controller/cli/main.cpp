@@ -22,11 +22,15 @@
 
 namespace cellctl::cli {
 std::atomic<bool> g_interrupted{false};
-}
+std::atomic<bool> g_terminated{false};
+}  // namespace cellctl::cli
 
 namespace {
-extern "C" void on_signal(int) {
+extern "C" void on_interrupt(int) {
   cellctl::cli::g_interrupted.store(true);
+}
+extern "C" void on_terminate(int) {
+  cellctl::cli::g_terminated.store(true);
 }
 }  // namespace
 
@@ -58,8 +62,8 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
   init_logging(global.log_level, global.trace);
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_terminate);
 
   int code = kExitOk;
   try {
@@ -70,6 +74,11 @@ int main(int argc, char** argv) {
   } catch (const cellctl::link::LinkError& e) {
     spdlog::error("{}", e.what());
     code = kExitLink;
+  } catch (const std::exception& e) {
+    // Anything else that stops a command before it starts (an unwritable run record, a config the
+    // sessions refuse): said plainly, never a crash.
+    spdlog::error("{}", e.what());
+    code = kExitFailed;
   }
   spdlog::shutdown();
   return code;

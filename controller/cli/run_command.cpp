@@ -64,11 +64,12 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
     OperatorConsole console(run);
     if (console.active())
       fmt::print("  type hold, unhold, stop, abort or reset + Enter; Ctrl-C stops, twice aborts\n");
-    result = run.run(g_interrupted);
+    result = run.run(g_interrupted, &g_terminated);
   }
   for (const auto& w : run.realtime_warnings()) spdlog::warn("real-time: {}", w);
   fmt::print("\n{}", result.summary_text);
   if (!result.failure.empty()) fmt::print("failed step: {}\n", result.failure);
+  for (const auto& n : result.device_notes) fmt::print("device: {}\n", n);
   fmt::print("{} cycles; {} s of cell time in {:.2f} s", result.cycles,
              fmt::format("{:.2f}", result.duration_s), result.wall_s);
   if (options.mode == runtime::RunMode::virtual_time)
@@ -89,7 +90,8 @@ void add_run_command(CLI::App& app, Commands& commands) {
       "Devices whose port is 'emulated' in the cell config run as emulators inside cellctl.\n"
       "Exit status: 0 complete, 1 stopped or aborted by a fault or a failed step, 3 bad config or recipe\n"
       "(nothing moved), 4 a port could not be opened, 130 stopped by Ctrl-C.\n"
-      "Ctrl-C once: operator stop (category from stops.operator); twice: emergency stop.");
+      "Ctrl-C once: operator stop (category from stops.operator; 2 holds the cell); twice: emergency stop.\n"
+      "SIGTERM: a controlled stop (category 1).");
   auto args = std::make_shared<RunArgs>();
   sub->add_option("recipe", args->recipe, "Recipe file (YAML)")->required()->check(CLI::ExistingFile);
   auto* emulate = sub->add_flag("--emulate", args->emulate,

@@ -85,6 +85,8 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
     out.scu_error_word = snap.errors.raw();
     out.scu_position_age = snap.last_refresh ? now - *snap.last_refresh : link::Duration{};
     out.scu_remote = snap.remote_open && scu_->state() == link::Lifecycle::active;
+    out.scu_status2_known = status2_known_;
+    out.scu_refusal = snap.last_refusal ? scu::describe(snap.last_refusal->status) : std::string_view{};
     for (std::size_t i = 0; i < cell_.axes.size(); ++i) {
       const auto& axis = cell_.axes[i];
       const auto a = static_cast<std::size_t>(axis.actuator - 1);
@@ -93,6 +95,9 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
       st.present = act.status.present;
       st.scu_mm = act.position_edges / axis.edges_per_mm;
       st.moving = act.status.motion_active;
+      const auto& fn = snap.functions[static_cast<std::size_t>(axis.function - 1)];
+      st.commanded = fn.execution_open || fn.outcome == scu::MoveOutcome::queued;
+      st.move_refused = fn.outcome == scu::MoveOutcome::refused;
       st.homed = ((static_cast<unsigned>(homed_bits_) >> a) & 1u) != 0;
       st.actuator_fault = snap.errors.actuator_fault(axis.actuator);
     }
@@ -146,6 +151,8 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
     sp.fault_number = s.fault() ? s.error_number : 0;
     sp.over_temperature = s.motor_over_temperature;
     sp.current_limit = s.current_limit;
+    sp.start_refused = s.start_refused;
+    sp.error_number = s.error_number;
   }
 }
 
@@ -157,25 +164,42 @@ std::uint16_t CellDevices::percent(std::size_t axis, double mm_s) const noexcept
 void CellDevices::apply_axes(const cell::Intents& in) {
   if (!scu_ || scu_->state() != link::Lifecycle::active) return;
   const auto& snap = scu_->snapshot();
-  if (in.halt == cell::Halt::immediate) {
-    // Category 0: F20 at once (the session puts it ahead of everything and drops queued moves).
-    if (!estop_sent_ && scu_->emergency_stop()) estop_sent_ = true;
-    return;
+  const bool immediate = in.halt == cell::Halt::immediate;
+  if (immediate) {
+    // Category 0: F20 at once (the session puts it ahead of everything and drops queued moves);
+    // sent again if the SCU refused it.
+    const bool f20_pending = estop_requested_ && snap.refusals == estop_refusals_;
+    if (!snap.emergency_stop_open && !f20_pending && scu_->emergency_stop()) {
+      estop_requested_ = true;
+      estop_refusals_ = snap.refusals;
+    }
+  } else {
+    estop_requested_ = false;
+    bool motion_wanted = false;
+    for (const auto& a : in.axes) motion_wanted = motion_wanted || a.move;
+    // The emergency stop holds until motion is asked for again, i.e. after a reset.
+    if (snap.emergency_stop_open) {
+      if (motion_wanted) (void)scu_->release_emergency_stop();
+      return;
+    }
   }
-  bool motion_wanted = false;
-  for (const auto& a : in.axes) motion_wanted = motion_wanted || a.move;
-  // The emergency stop holds until motion is asked for again, i.e. after a reset.
-  if (estop_sent_ && motion_wanted && scu_->release_emergency_stop()) estop_sent_ = false;
-  if (estop_sent_) return;
 
   for (std::size_t i = 0; i < cell_.axes.size(); ++i) {
     const auto& axis = cell_.axes[i];
     const auto& intent = in.axes[i];
     auto& cmd = axis_cmd_[i];
-    const bool moving = snap.actuators[static_cast<std::size_t>(axis.actuator - 1)].status.motion_active;
-    if (in.halt == cell::Halt::controlled || !intent.move) {
-      if (moving && !cmd.stop_sent && scu_->stop(axis.function, true)) cmd.stop_sent = true;
-      if (!moving) cmd.stop_sent = false;
+    const auto& fn = snap.functions[static_cast<std::size_t>(axis.function - 1)];
+    // A move just sent shows no motion until the next RC reply: it must be stopped all the same.
+    const bool busy = snap.actuators[static_cast<std::size_t>(axis.actuator - 1)].status.motion_active ||
+                      fn.execution_open || fn.outcome == scu::MoveOutcome::queued;
+    if (immediate || in.halt == cell::Halt::controlled || !intent.move) {
+      // Every axis gets its own stop too (fast under category 0): a refused F20 leaves none running.
+      const bool stop_pending = cmd.stop_sent && snap.refusals == cmd.stop_refusals;
+      if (busy && !stop_pending && scu_->stop(axis.function, !immediate)) {
+        cmd.stop_sent = true;
+        cmd.stop_refusals = snap.refusals;
+      }
+      if (!busy) cmd.stop_sent = false;
       continue;
     }
     const auto pct = percent(i, intent.speed_mm_s);
@@ -188,7 +212,7 @@ void CellDevices::apply_axes(const cell::Intents& in) {
         cmd.speed_percent = pct;
         cmd.stop_sent = false;
       }
-    } else if (moving && pct != cmd.speed_percent && scu_->set_speed(axis.function, pct)) {
+    } else if (busy && pct != cmd.speed_percent && scu_->set_speed(axis.function, pct)) {
       cmd.speed_percent = pct;
     }
   }
@@ -197,14 +221,18 @@ void CellDevices::apply_axes(const cell::Intents& in) {
 void CellDevices::apply_spindle(const cell::Intents& in) {
   if (!spindle_ || spindle_->lifecycle() != link::Lifecycle::active) return;
   if (in.spindle.reset) (void)spindle_->reset();
-  const bool run = in.spindle.run && in.halt == cell::Halt::none;
-  if (!run) {
+  // A controlled hold (category 2) keeps the spindle running; stops take `run` away themselves.
+  const bool run = in.spindle.run && in.halt != cell::Halt::immediate;
+  const bool reversing = in.spindle.clockwise != spindle_cw_;
+  if (!run || (spindle_running_ && reversing)) {
     if (spindle_running_ && spindle_->stop()) spindle_running_ = false;
     return;
   }
-  const auto dir =
-      in.spindle.clockwise ? spindle::Direction::clockwise : spindle::Direction::counter_clockwise;
-  if (!spindle_running_ || in.spindle.clockwise != spindle_cw_) {
+  if (!spindle_running_) {
+    // After a change of direction the motor runs down to rest before it starts the other way.
+    if (reversing && !spindle_->snapshot().at_rest) return;
+    const auto dir =
+        in.spindle.clockwise ? spindle::Direction::clockwise : spindle::Direction::counter_clockwise;
     if (spindle_->start(in.spindle.frequency_hz, dir)) {
       spindle_running_ = true;
       spindle_hz_ = in.spindle.frequency_hz;

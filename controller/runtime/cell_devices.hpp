@@ -50,6 +50,7 @@ class CellDevices {
     std::uint32_t applied_move = 0;   // the last move id the SCU accepted
     std::uint16_t speed_percent = 0;  // the last speed sent for it
     bool stop_sent = false;           // a stop went out for the motion now ending
+    std::uint64_t stop_refusals = 0;  // the SCU's refusal count when it went (a new refusal: send again)
   };
   [[nodiscard]] std::uint16_t percent(std::size_t axis, double mm_s) const noexcept;
   void apply_axes(const cell::Intents& in);
@@ -61,7 +62,9 @@ class CellDevices {
   std::unique_ptr<spindle::Session> spindle_;
   std::unique_ptr<encoder::Session> encoder_;
   std::array<AxisCommand, cell::kMaxAxes> axis_cmd_{};
-  bool estop_sent_ = false;
+  bool estop_requested_ = false;      // an F20 went to the session for the halt in force
+  std::uint64_t estop_refusals_ = 0;  // the SCU's refusal count then
+  bool status2_known_ = false;
   bool spindle_running_ = false;
   double spindle_hz_ = 0.0;
   bool spindle_cw_ = true;

@@ -5,7 +5,10 @@
 namespace cellctl::runtime {
 
 CellLinks::CellLinks(const config::CellConfig& cell, RunMode mode, const link::Clock& clock, bool trace)
-    : clock_(clock), mode_(mode), trace_(trace) {
+    : clock_(clock),
+      mode_(mode),
+      trace_(trace),
+      sink_(mode == RunMode::virtual_time ? wire::WhenFull::wait : wire::WhenFull::drop_and_count) {
   if (cell.scu) master_.scu = open("scu", cell.scu->port, device_.scu);
   if (cell.spindle) master_.spindle = open("spindle", cell.spindle->port, device_.spindle);
   if (cell.encoder) master_.encoder = open("encoder", cell.encoder->port, device_.encoder);
@@ -33,15 +36,6 @@ link::Link* CellLinks::open(const std::string& name, const config::PortConfig& p
   if (trace_)
     master = owned_.emplace_back(std::make_unique<link::TracingLink>(*master, clock_, sink_, name)).get();
   return master;
-}
-
-std::optional<link::TimePoint> CellLinks::next_delivery() const noexcept {
-  std::optional<link::TimePoint> next;
-  for (const auto& s : sims_) {
-    const auto t = s->next_delivery();
-    if (t && (!next || *t < *next)) next = t;
-  }
-  return next;
 }
 
 std::vector<std::string> CellLinks::describe() const {

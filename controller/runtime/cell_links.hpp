@@ -34,8 +34,6 @@ class CellLinks {
   [[nodiscard]] bool any_emulated() const noexcept {
     return device_.scu || device_.spindle || device_.encoder;
   }
-  // When the next byte on any SimLink arrives (virtual time), to step no further than that.
-  [[nodiscard]] std::optional<link::TimePoint> next_delivery() const noexcept;
   // "scu: /dev/ttyUSB0 (38400 8N1)", one line per device, for the operator.
   [[nodiscard]] std::vector<std::string> describe() const;
 
@@ -45,7 +43,7 @@ class CellLinks {
   const link::Clock& clock_;
   RunMode mode_;
   bool trace_;
-  link::LogTraceSink sink_;
+  link::LogTraceSink sink_;  // in virtual time it waits for its writer: nothing real-time to protect
   std::vector<std::unique_ptr<link::SimLink>> sims_;
   std::vector<std::unique_ptr<link::PtyPair>> ptys_;
   std::vector<std::unique_ptr<link::Link>> owned_;

@@ -1,5 +1,7 @@
 #include "runtime/cell_run.hpp"
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <nlohmann/json.hpp>
 
@@ -13,8 +15,7 @@ using loop::ControlStage;
 using loop::index;
 
 link::Duration period_of(const config::CellConfig& cell) {
-  return std::chrono::duration_cast<link::Duration>(
-      std::chrono::duration<double, std::milli>(cell.loop.period_ms));
+  return link::milliseconds(cell.loop.period_ms);
 }
 
 supervisor::SupervisorSettings settings_for(const config::CellConfig& cell, const RunOptions& o) {
@@ -69,31 +70,78 @@ void CellRun::take_commands(double t, std::atomic<bool>& interrupt) {
     if (operator_stop_) emergency_stop_ = true;
     operator_stop_ = true;
   }
-  const int c = requested_.exchange(0);
-  if (c == 0) return;
-  const auto cmd = static_cast<supervisor::Command>(c - 1);
-  if (cmd == supervisor::Command::reset) {
-    const bool had_stop = operator_stop_ || emergency_stop_;
-    operator_stop_ = emergency_stop_ = false;
-    if (!monitor_.reset(state_, {})) {
-      std::string_view still = "?";
-      for (std::size_t r = 0; r < monitor::kRuleCount && still == "?"; ++r)
-        if (monitor_.latch(static_cast<monitor::Rule>(r)).active)
-          still = monitor::to_string(static_cast<monitor::Rule>(r));
-      journal_.post(
-          t, journal::Note{journal::Text::format("reset refused: the cause of {} is still present", still)});
-      if (had_stop) operator_stop_ = true;
-      return;
-    }
-    // Held by a category-2 stop, the run goes on: a reset clears the latches, unhold resumes. Only a
-    // run that has ended goes back to Idle.
-    if (!supervisor::is_final(supervisor_->state())) {
-      journal_.post(t, journal::Note{journal::Text::format("faults reset in state {}",
-                                                           to_string(supervisor_->state()))});
-      return;
-    }
+  if (terminate_ && terminate_->exchange(false)) {
+    interrupted_ = true;
+    request(supervisor::Command::stop);  // SIGTERM: a controlled stop, whatever stops.operator says
   }
-  if (!supervisor_->command(cmd, "operator", t)) journal_.post(t, journal::Note{supervisor_->refusal()});
+  const unsigned pending = requested_.exchange(0);
+  // Strongest first, so that a stop typed right after a hold is never lost behind it.
+  using supervisor::Command;
+  for (const auto cmd :
+       {Command::abort, Command::stop, Command::hold, Command::reset, Command::unhold, Command::start}) {
+    if ((pending & bit(cmd)) == 0) continue;
+    if (cmd == Command::reset) {
+      // The devices are told to clear their own latched faults (the converter's CMD System Reset) and
+      // the monitor judges its latches now: a converter fault is gone by the operator's next reset.
+      supervisor_->reset_devices();
+      judge_reset(t);
+      continue;
+    }
+    if (!supervisor_->command(cmd, "operator", t)) journal_.post(t, journal::Note{supervisor_->refusal()});
+  }
+}
+
+void CellRun::judge_reset(double t) {
+  const bool had_stop = operator_stop_ || emergency_stop_;
+  operator_stop_ = emergency_stop_ = false;
+  std::bitset<monitor::kRuleCount> latched;
+  for (std::size_t r = 0; r < monitor::kRuleCount; ++r)
+    latched[r] = monitor_.latch(static_cast<monitor::Rule>(r)).active;
+  const bool clear = monitor_.reset(state_, {});
+  for (std::size_t r = 0; r < monitor::kRuleCount; ++r)
+    if (latched[r] && !monitor_.latch(static_cast<monitor::Rule>(r)).active)
+      journal_.post(t, journal::FaultCleared{monitor::to_string(static_cast<monitor::Rule>(r))});
+  if (!clear) {
+    std::string_view still = "?";
+    for (std::size_t r = 0; r < monitor::kRuleCount && still == "?"; ++r)
+      if (monitor_.latch(static_cast<monitor::Rule>(r)).active)
+        still = monitor::to_string(static_cast<monitor::Rule>(r));
+    journal_.post(
+        t, journal::Note{journal::Text::format("reset refused: the cause of {} is still present", still)});
+    if (had_stop) operator_stop_ = true;
+    return;
+  }
+  // Held by a category-2 stop, the run goes on: a reset clears the latches, unhold resumes. Only a
+  // run that has ended goes back to Idle.
+  if (!supervisor::is_final(supervisor_->state())) {
+    journal_.post(
+        t, journal::Note{journal::Text::format("faults reset in state {}", to_string(supervisor_->state()))});
+    return;
+  }
+  if (!supervisor_->command(supervisor::Command::reset, "operator", t))
+    journal_.post(t, journal::Note{supervisor_->refusal()});
+}
+
+void CellRun::report_devices(double t, RunResult& r) {
+  // What the sessions know that the cell state could not carry (it holds no text): after the loop,
+  // so composing it allocates nowhere near the cycle.
+  const auto note = [&](std::string text) {
+    journal_.post(t, journal::Note{journal::Text::format("{}", text)});
+    r.device_notes.push_back(std::move(text));
+  };
+  if (auto* scu = devices_->scu(); scu && scu->state() == link::Lifecycle::fault)
+    note("SCU: " + scu->fault_reason());
+  if (auto* sp = devices_->spindle()) {
+    if (sp->lifecycle() == link::Lifecycle::fault) note("spindle: " + sp->fault_reason());
+    if (sp->snapshot().start_refused) note("spindle: " + sp->snapshot().start_refused_reason);
+  }
+  if (auto* enc = devices_->encoder()) {
+    if (enc->snapshot().lifecycle == link::Lifecycle::fault) note("encoder: " + enc->fault_reason());
+    if (!enc->restart_reason().empty()) note("encoder: DP start-up begun again: " + enc->restart_reason());
+  }
+  if (!devices_->all_inactive())
+    note(fmt::format("the devices were not all closed within {:g} s of the end (remote mode, spindle stop)",
+                     options_.shutdown_timeout_s));
 }
 
 void CellRun::publish_status(double t) {
@@ -160,7 +208,8 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
   publish_status(t);
 }
 
-RunResult CellRun::run(std::atomic<bool>& interrupt) {
+RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminate) {
+  terminate_ = terminate;
   if (options_.mode != RunMode::virtual_time && cell_.loop.realtime) {
     const auto report = loop::apply_realtime(
         {.fifo_priority = cell_.loop.priority, .lock_memory = true, .cpu = cell_.loop.cpu});
@@ -179,6 +228,7 @@ RunResult CellRun::run(std::atomic<bool>& interrupt) {
   if (emulator_thread_.joinable()) emulator_thread_.join();
 
   RunResult r;
+  report_devices(link::to_seconds(clock_.now() - start_), r);
   r.final_state = supervisor_->state();
   r.failure = std::string(supervisor_->failure().view());
   r.interrupted = interrupted_;

@@ -6,6 +6,7 @@
 // any) on a thread of their own, behind pseudo-terminals, like real devices.
 
 #include <atomic>
+#include <bitset>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -41,11 +42,12 @@ struct RunOptions {
 
 struct RunResult {
   supervisor::State final_state = supervisor::State::idle;
-  std::string failure;              // why a step failed, if one did
-  std::vector<std::string> faults;  // latched monitor faults, in order
-  bool interrupted = false;         // an operator stop or abort ended it
-  double duration_s = 0.0;          // of the run, on the run's clock
-  double wall_s = 0.0;              // real time it took
+  std::string failure;                    // why a step failed, if one did
+  std::vector<std::string> faults;        // latched monitor faults, in order
+  std::vector<std::string> device_notes;  // sessions' fault reasons, a refused start, an unclosed device
+  bool interrupted = false;               // Ctrl-C or SIGTERM ended it
+  double duration_s = 0.0;                // of the run, on the run's clock
+  double wall_s = 0.0;                    // real time it took
   std::uint64_t cycles = 0;
   std::string loop_summary;
   std::string summary_text;  // the journal's summary for the terminal
@@ -60,11 +62,12 @@ class CellRun {
   CellRun& operator=(const CellRun&) = delete;
 
   // Starts the recipe and steps the cell until it is Complete, Stopped or Aborted and the devices
-  // are closed. `interrupt` (Ctrl-C) is taken as a stop the first time and an abort the second.
-  RunResult run(std::atomic<bool>& interrupt);
+  // are closed. `interrupt` (Ctrl-C) is the monitor's operator stop the first time (its category from
+  // the config) and an emergency stop the second; `terminate` (SIGTERM) is a controlled stop.
+  RunResult run(std::atomic<bool>& interrupt, std::atomic<bool>* terminate = nullptr);
 
   // An operator command from any thread; carried out at the next cycle.
-  void request(supervisor::Command c) noexcept { requested_.store(static_cast<int>(c) + 1); }
+  void request(supervisor::Command c) noexcept { requested_.fetch_or(bit(c)); }
 
   // Tests in virtual time: called at the start of every cycle, on the loop's thread.
   void on_cycle(std::function<void(double t, CellRun&)> hook) { hook_ = std::move(hook); }
@@ -81,6 +84,11 @@ class CellRun {
  private:
   void cycle(link::TimePoint now, std::atomic<bool>& interrupt);
   void take_commands(double t, std::atomic<bool>& interrupt);
+  void judge_reset(double t);
+  void report_devices(double t, RunResult& r);
+  [[nodiscard]] static constexpr unsigned bit(supervisor::Command c) noexcept {
+    return 1u << static_cast<unsigned>(c);
+  }
   void publish_status(double t);
   void run_emulator_thread();
 
@@ -103,7 +111,8 @@ class CellRun {
 
   cell::CellState state_;
   StatusBoard board_;
-  std::atomic<int> requested_{0};
+  std::atomic<unsigned> requested_{0};  // one bit per supervisor::Command
+  std::atomic<bool>* terminate_ = nullptr;
   bool interrupted_ = false;
   link::TimePoint start_{};
   std::function<void(double, CellRun&)> hook_;

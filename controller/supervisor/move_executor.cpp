@@ -47,6 +47,7 @@ void MoveExecutor::start(const recipe::Move& move, const cell::CellState& s, dou
     if (!a.in_move || std::abs(a.target_mm - a.start_mm) <= a.tolerance_mm) continue;
     a.commanded = true;
     a.move_id = ++move_id;
+    a.commanded_at = t;
   }
   started_t_ = t;
   last_progress_t_ = t;
@@ -107,6 +108,14 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
   if (worst_remaining < best_remaining_ - 0.05) {
     best_remaining_ = worst_remaining;
     last_progress_t_ = t;
+  }
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    // (Not in the cycle that sent the command: that cycle's state is from before it.)
+    if (!axes_[i].commanded || !s.axes[i].move_refused || t <= axes_[i].commanded_at) continue;
+    reason_ = journal::Text::format("the SCU refused the move of axis {} to {:.3f} mm ({})",
+                                    cell_.axes[i].name, axes_[i].scu_target_mm,
+                                    s.scu_refusal.empty() ? "no reason given" : s.scu_refusal);
+    return MoveStatus::failed;
   }
   if (t - started_t_ > limits_.move_timeout_s) {
     reason_ = journal::Text::format("move not done after {:.1f} s (time-out); {:.2f} mm still to go",
@@ -186,8 +195,14 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
                                       a.tolerance_mm);
       return MoveStatus::failed;
     }
-    a.scu_target_mm += error;
+    // Corrections stay within what the monitor tolerates between SCU and encoder beyond the travel:
+    // the SCU is never sent a target outside the axis's reach.
+    const auto& c = cell_.axes[i];
+    a.scu_target_mm =
+        std::clamp(a.scu_target_mm + error, std::max(0.0, c.min_mm - cell_.limits.disagreement_mm),
+                   c.max_mm + cell_.limits.disagreement_mm);
     a.move_id = ++move_id;
+    a.commanded_at = t;
     a.commanded = true;
     ++a.corrections;
     ++corrections_total_;

@@ -57,6 +57,7 @@ class MoveExecutor {
     double tolerance_mm = 0.0;
     int corrections = 0;
     bool commanded = false;     // told to move (an axis already inside its tolerance is left alone)
+    double commanded_at = 0.0;  // when the last command to it went out
     std::uint32_t move_id = 0;  // bumped for every command to this axis (start, correction)
   };
 

@@ -6,6 +6,9 @@
 namespace cellctl::supervisor {
 namespace {
 
+// How long a `require: homed` waits for the SCU's first status read after activation.
+constexpr double kStatusWaitS = 3.0;
+
 using journal::Text;
 
 bool is_running_state(State s) noexcept {
@@ -73,8 +76,9 @@ void Supervisor::clear_motion() noexcept {
 }
 
 bool Supervisor::axes_still(const cell::CellState& s) const noexcept {
+  // A move still queued or not yet closed by its RS counts as motion: the SCU's motion bit lags.
   for (std::size_t i = 0; i < s.axis_count; ++i)
-    if (s.axes[i].moving) return false;
+    if (s.axes[i].moving || s.axes[i].commanded) return false;
   return true;
 }
 
@@ -135,6 +139,14 @@ Supervisor::StepStatus Supervisor::run_instruction(const cell::CellState& s, dou
     const bool reached =
         sp->start ? (s.spindle.at_speed && std::abs(s.spindle.actual_hz - want) <= tol) : s.spindle.at_rest;
     if (reached) return StepStatus::done;
+    // (From the second cycle on: the first one still sees the state from before the start went out.)
+    if (sp->start && s.spindle.start_refused && elapsed > 0.0) {
+      failure_ = Text::format(
+          "the spindle converter refused the start (its warning/fault {}: `cellctl spindle status` "
+          "says why)",
+          s.spindle.error_number);
+      return StepStatus::failed;
+    }
     if (elapsed > recipe_.limits.spindle_timeout_s) {
       failure_ = Text::format("spindle not {} after {:.1f} s (at {:.0f} Hz)",
                               sp->start ? "at speed" : "at rest", elapsed, s.spindle.actual_hz);
@@ -175,10 +187,18 @@ Supervisor::StepStatus Supervisor::run_instruction(const cell::CellState& s, dou
     return StepStatus::running;
   }
   const auto& r = std::get<recipe::Require>(ins.action);
+  if (!r.homed_axes.empty() && !s.scu_status2_known) {
+    // The SCU's "initialised" flags come with the first status read after activation.
+    if (elapsed <= kStatusWaitS) return StepStatus::running;
+    failure_ = Text::format("the SCU did not report whether the actuators are initialised within {:g} s",
+                            kStatusWaitS);
+    return StepStatus::failed;
+  }
   for (int axis : r.homed_axes) {
     if (!s.axes[static_cast<std::size_t>(axis)].homed) {
-      failure_ = Text::format("axis {} is not homed (run `cellctl home` first)",
-                              cell_.axes[static_cast<std::size_t>(axis)].name);
+      failure_ = Text::format("axis {} is not homed: the SCU reports actuator {} not initialised",
+                              cell_.axes[static_cast<std::size_t>(axis)].name,
+                              cell_.axes[static_cast<std::size_t>(axis)].actuator);
       return StepStatus::failed;
     }
   }
@@ -212,7 +232,8 @@ void Supervisor::sample(const cell::CellState& s, double t) {
 }
 
 void Supervisor::step(const cell::CellState& s, std::optional<config::StopCategory> demanded, double t) {
-  intents_.spindle.reset = false;
+  intents_.spindle.reset = device_reset_requested_;
+  device_reset_requested_ = false;
   if (pending_) {
     const Command c = *pending_;
     pending_.reset();

@@ -36,6 +36,9 @@ class Supervisor {
   // refusal() says why. Reset must only be sent once the monitor's latches are clear.
   bool command(Command c, std::string_view source, double t);
   void step(const cell::CellState& s, std::optional<config::StopCategory> demanded, double t);
+  // The first half of an operator reset: the devices clear their own latched faults (CMD System Reset
+  // to the spindle converter) at the next step, before the monitor's latches are judged.
+  void reset_devices() noexcept { device_reset_requested_ = true; }
 
   [[nodiscard]] const cell::Intents& intents() const noexcept { return intents_; }
   [[nodiscard]] State state() const noexcept { return state_; }
@@ -80,6 +83,7 @@ class Supervisor {
   double last_execute_t_ = 0.0;
   double next_sample_t_ = 0.0;
   bool cell_up_ = false;
+  bool device_reset_requested_ = false;
   int corrections_ = 0;
   journal::Text failure_;
   journal::Text refusal_;

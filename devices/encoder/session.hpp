@@ -80,6 +80,8 @@ class Session {
   [[nodiscard]] const Snapshot& snapshot() const noexcept { return snapshot_; }
   [[nodiscard]] const link::LinkHealth& health() const noexcept { return master_.health(); }
   [[nodiscard]] const std::string& fault_reason() const noexcept { return fault_reason_; }
+  // Why the DP start-up was last begun again (slave lost, left data exchange …); empty before.
+  [[nodiscard]] const std::string& restart_reason() const noexcept { return master_.restart_reason(); }
   [[nodiscard]] const SessionConfig& config() const noexcept { return config_; }
   [[nodiscard]] double counts_per_mm() const noexcept { return counts_per_mm_; }
   [[nodiscard]] const Scaling& scaling() const noexcept { return scaling_; }

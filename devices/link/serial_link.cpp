@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 #include <sys/file.h>
 #include <sys/ioctl.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -65,6 +67,14 @@ std::string open_failure(const std::string& path, int err) {
   }
 }
 
+// A pseudo-terminal has no UART, so its framing is nominal; and Linux refuses (EINVAL) a parity
+// setting on a pty that was asked for parity before and did not keep it. A pty gets the speed and
+// 8 data bits only. (Unix98 pty slaves are character devices with majors 136..143.)
+bool is_pseudo_terminal(int fd) {
+  struct stat st {};
+  return fstat(fd, &st) == 0 && S_ISCHR(st.st_mode) && major(st.st_rdev) >= 136 && major(st.st_rdev) <= 143;
+}
+
 void configure_line(int fd, const std::string& path, LineFormat format) {
   const speed_t speed = speed_for(format.baud);
   if (speed == 0) fail(fd, fmt::format("serial port {}: baud rate {} is not supported", path, format.baud));
@@ -79,9 +89,11 @@ void configure_line(int fd, const std::string& path, LineFormat format) {
   tio.c_cflag &= ~static_cast<tcflag_t>(CSIZE | PARENB | PARODD | CSTOPB);
   static constexpr tcflag_t kSize[] = {CS5, CS6, CS7, CS8};
   tio.c_cflag |= kSize[format.data_bits - 5];
-  if (format.parity != Parity::none) tio.c_cflag |= PARENB;
-  if (format.parity == Parity::odd) tio.c_cflag |= PARODD;
-  if (format.stop_bits == 2) tio.c_cflag |= CSTOPB;
+  if (!is_pseudo_terminal(fd)) {
+    if (format.parity != Parity::none) tio.c_cflag |= PARENB;
+    if (format.parity == Parity::odd) tio.c_cflag |= PARODD;
+    if (format.stop_bits == 2) tio.c_cflag |= CSTOPB;
+  }
   if (tcsetattr(fd, TCSANOW, &tio) != 0)
     fail(fd, fmt::format("serial port {}: cannot set {}: {}", path, format.describe(), std::strerror(errno)));
 }

@@ -94,6 +94,17 @@ TEST(PtySerial, SecondOpenIsRefusedAsBusy) {
   }
 }
 
+TEST(PtySerial, AnEvenParityLineOpensAgainAfterClosing) {
+  // PROFIBUS commissioning opens the encoder's pty once per command: each open must work.
+  PtyPair pty("test");
+  for (int i = 0; i < 3; ++i) {
+    auto s = SerialLink::open(pty.peer_path(), line_8e1(19200));
+    const std::vector<std::uint8_t> b{0x10, 0x05};
+    ASSERT_EQ(s->write(b).count, 2u);
+    EXPECT_EQ(receive(pty.device(), 2), b);
+  }
+}
+
 TEST(PtySerial, UnsupportedBaudIsRefused) {
   PtyPair pty("test");
   EXPECT_THROW((void)SerialLink::open(pty.peer_path(), line_8n1(12345)), LinkError);
