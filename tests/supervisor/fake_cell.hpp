@@ -1,7 +1,8 @@
 #pragma once
 // A cell without its protocols, for testing the supervisor alone: intents drive the plant models
 // (the same ones the emulators use) directly, and the plant is read back as a CellState. The SCU
-// reports the actuator's indicated position, the encoder the true one.
+// reports the actuator's indicated position, the encoder the true one. The SCU's motion bit can be
+// made to lag a move command (set_motion_latency), as the real one does until its next RC reply.
 
 #include <vector>
 
@@ -25,7 +26,12 @@ class FakeCell {
                                                     .start_position_mm = 0.0,
                                                     .scale_error = scale_error});
     ids_.resize(actuators_.size(), 0);
+    motion_reported_from_.resize(actuators_.size(), link::Duration{});
   }
+
+  // A move's motion is reported this long after it was commanded (the real SCU's status comes with
+  // its RC reply, up to one keep-alive period later); before that the axis reads as not moving.
+  void set_motion_latency(link::Duration latency) { motion_latency_ = latency; }
 
   void apply(const cell::Intents& in) {
     for (std::size_t i = 0; i < actuators_.size(); ++i) {
@@ -42,6 +48,7 @@ class FakeCell {
       if (intent.move_id != ids_[i]) {
         ids_[i] = intent.move_id;
         act.move_to(intent.target_mm, intent.speed_mm_s, intent.soft);
+        motion_reported_from_[i] = elapsed_ + motion_latency_;
       } else {
         act.set_speed(intent.speed_mm_s);
       }
@@ -54,6 +61,7 @@ class FakeCell {
   }
 
   void advance(link::Duration dt) {
+    elapsed_ += dt;
     for (auto& a : actuators_) a.step(dt);
     spindle_.step(dt);
   }
@@ -66,7 +74,9 @@ class FakeCell {
       auto& a = s.axes[i];
       a.present = true;
       a.scu_mm = actuators_[i].position_mm();
-      a.moving = actuators_[i].moving();
+      a.moving = actuators_[i].moving() && elapsed_ >= motion_reported_from_[i];
+      // The move stays open until the SCU has reported it and the actuator has come to its end.
+      a.commanded = ids_[i] != 0 && (elapsed_ < motion_reported_from_[i] || actuators_[i].active());
       a.homed = true;
       a.measured = cell_.axes[i].encoder;
       if (a.measured) {
@@ -83,6 +93,7 @@ class FakeCell {
     s.spindle.at_speed = spindle_set_ > 0 && std::abs(std::abs(spindle_.frequency_hz()) - spindle_set_) < 1.0;
     for (auto& l : s.links) l.active = true;
     s.scu_remote = true;
+    s.scu_status2_known = true;
     return s;
   }
 
@@ -92,6 +103,9 @@ class FakeCell {
   const config::CellConfig& cell_;
   std::vector<plant::Actuator> actuators_;
   std::vector<std::uint32_t> ids_;
+  link::Duration motion_latency_{};
+  link::Duration elapsed_{};                          // advanced so far
+  std::vector<link::Duration> motion_reported_from_;  // by axis: when its motion bit catches up
   plant::SpindleMotor spindle_;
   double spindle_set_ = 0.0;
 };

@@ -169,6 +169,37 @@ TEST_F(SupervisorTest, HoldStopsTheAxesAndUnholdFinishesTheMove) {
   EXPECT_NEAR(now().axes[0].encoder_mm, 150.0, 0.1);
 }
 
+// The SCU's motion bit comes with its RC reply, up to a keep-alive (100 ms) after a move went out: a
+// hold or stop in that gap must not take the not-yet-reported motion for rest.
+class MotionBitLag : public SupervisorTest, public ::testing::WithParamInterface<Command> {};
+
+TEST_P(MotionBitLag, AHaltBeforeTheMotionIsReportedStillEndsAtRest) {
+  load("  - move: {to: {x: 150}, speed_mm_s: 15}\n");
+  fake_->set_motion_latency(100ms);
+  auto& x = fake_->actuators()[0];
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run(5.0, [&] { return x.active(); })) << "the move was commanded";
+  ASSERT_TRUE(run(0.5, [&] { return x.velocity_mm_s() > 1.0; }));
+  ASSERT_TRUE(x.moving());
+  ASSERT_FALSE(now().axes[0].moving) << "the SCU has not reported the motion yet";
+
+  const Command halt = GetParam();
+  const State rest = halt == Command::hold ? State::held : State::stopped;
+  ASSERT_TRUE(sup_->command(halt, "operator", t()));
+  ASSERT_TRUE(run_to(rest, 5.0)) << to_string(sup_->state());
+  EXPECT_FALSE(x.moving()) << to_string(rest) << " reached while the axis still moves at "
+                           << x.velocity_mm_s() << " mm/s";
+  const double at_mm = x.true_position_mm();
+  (void)run(1.0, [] { return false; });
+  EXPECT_EQ(sup_->state(), rest);
+  EXPECT_DOUBLE_EQ(x.true_position_mm(), at_mm) << "still means still";
+}
+
+INSTANTIATE_TEST_SUITE_P(HoldAndStop, MotionBitLag, ::testing::Values(Command::hold, Command::stop),
+                         [](const ::testing::TestParamInfo<Command>& i) {
+                           return i.param == Command::hold ? std::string("Hold") : std::string("Stop");
+                         });
+
 TEST_F(SupervisorTest, StopThenResetReturnsToIdle) {
   load(R"(  - spindle: {start_hz: 400}
   - move: {to: {x: 150}, speed_mm_s: 15}
