@@ -18,7 +18,7 @@ namespace {
 int run_emulate(const GlobalOptions& global) {
   const auto cell = config::load_cell_config(global.config);
   std::vector<std::unique_ptr<link::PtyPair>> ptys;
-  runtime::DeviceSideLinks links;
+  runtime::DeviceLinks links;
   const auto publish = [&](const char* name, const config::PortConfig& port, link::Link*& side) {
     auto& pty = *ptys.emplace_back(std::make_unique<link::PtyPair>(name, port.publish_as));
     side = &pty.device();

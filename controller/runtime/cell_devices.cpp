@@ -21,7 +21,7 @@ cell::LinkState link_state(link::Lifecycle lc, const link::LinkHealth& h, link::
 
 }  // namespace
 
-CellDevices::CellDevices(const config::CellConfig& cell, MasterSideLinks links) : cell_(cell) {
+CellDevices::CellDevices(const config::CellConfig& cell, DeviceLinks links) : cell_(cell) {
   if (links.scu && cell.scu) scu_ = std::make_unique<scu::Session>(*links.scu, cell.scu->session);
   if (links.spindle && cell.spindle)
     spindle_ = std::make_unique<spindle::Session>(*links.spindle, cell.spindle->session);

@@ -13,22 +13,16 @@
 #include "config/cell_config.hpp"
 #include "encoder/session.hpp"
 #include "link/link.hpp"
+#include "runtime/device_links.hpp"
 #include "scu/session.hpp"
 #include "spindle/session.hpp"
 
 namespace cellctl::runtime {
 
-// Master-side links, one per device the cell has.
-struct MasterSideLinks {
-  link::Link* scu = nullptr;
-  link::Link* spindle = nullptr;
-  link::Link* encoder = nullptr;
-};
-
 class CellDevices {
  public:
   // Throws std::invalid_argument (a session's config) — at construction only.
-  CellDevices(const config::CellConfig& cell, MasterSideLinks links);
+  CellDevices(const config::CellConfig& cell, DeviceLinks links);
 
   void activate(link::TimePoint now);
   // Orderly shutdown: axes stopped and remote mode closed (RA), spindle stopped.

@@ -29,8 +29,8 @@ class CellLinks {
   // Throws link::LinkError naming the port when one cannot be opened.
   CellLinks(const config::CellConfig& cell, RunMode mode, const link::Clock& clock, bool trace);
 
-  [[nodiscard]] MasterSideLinks master() const noexcept { return master_; }
-  [[nodiscard]] DeviceSideLinks device() const noexcept { return device_; }
+  [[nodiscard]] DeviceLinks master() const noexcept { return master_; }
+  [[nodiscard]] DeviceLinks device() const noexcept { return device_; }
   [[nodiscard]] bool any_emulated() const noexcept {
     return device_.scu || device_.spindle || device_.encoder;
   }
@@ -48,8 +48,8 @@ class CellLinks {
   std::vector<std::unique_ptr<link::PtyPair>> ptys_;
   std::vector<std::unique_ptr<link::Link>> owned_;
   std::vector<std::string> descriptions_;
-  MasterSideLinks master_;
-  DeviceSideLinks device_;
+  DeviceLinks master_;
+  DeviceLinks device_;
 };
 
 }  // namespace cellctl::runtime

@@ -19,7 +19,7 @@ double mm_per_revolution(const config::EncoderSection& e) {
 
 }  // namespace
 
-EmulatedCell::EmulatedCell(const config::CellConfig& cell, DeviceSideLinks links) {
+EmulatedCell::EmulatedCell(const config::CellConfig& cell, DeviceLinks links) {
   if (links.scu && cell.scu) scu_ = std::make_unique<scu::Emulator>(*links.scu, cell.scu->emulator);
   if (links.spindle && cell.spindle)
     spindle_ = std::make_unique<spindle::Emulator>(*links.spindle, cell.spindle->emulator);

@@ -12,22 +12,16 @@
 #include "link/clock.hpp"
 #include "link/link.hpp"
 #include "plant/shaft.hpp"
+#include "runtime/device_links.hpp"
 #include "scu/emulator.hpp"
 #include "spindle/emulator.hpp"
 
 namespace cellctl::runtime {
 
-// Device-side links; nullptr: that device is not emulated.
-struct DeviceSideLinks {
-  link::Link* scu = nullptr;
-  link::Link* spindle = nullptr;
-  link::Link* encoder = nullptr;
-};
-
 class EmulatedCell {
  public:
   // Throws std::invalid_argument / std::runtime_error from an emulator's set-up (config time).
-  EmulatedCell(const config::CellConfig& cell, DeviceSideLinks links);
+  EmulatedCell(const config::CellConfig& cell, DeviceLinks links);
 
   // Steps every emulator (and so the plant) to `now` and answers what has arrived.
   void poll(link::TimePoint now);
