@@ -1,5 +1,9 @@
 #include "profibus/dp_diag.hpp"
 
+#include <fmt/format.h>
+
+#include <utility>
+
 #include "wire/byte_reader.hpp"
 #include "wire/byte_writer.hpp"
 
@@ -55,6 +59,47 @@ std::optional<StandardDiag> decode_standard_diag(std::span<const std::uint8_t> b
   d.deactivated = has(s2, 7);
   d.ext_diag_overflow = has(s3, 7);
   return d;
+}
+
+DiagText describe(const StandardDiag& d) noexcept {
+  DiagText t;
+  const auto add = [&t](std::string_view s) {
+    if (t.size + s.size() + 1 > t.chars.size()) return;
+    if (t.size > 0) t.chars[t.size++] = ' ';
+    std::copy(s.begin(), s.end(), t.chars.begin() + static_cast<std::ptrdiff_t>(t.size));
+    t.size += s.size();
+  };
+  const std::pair<bool, std::string_view> flags[] = {
+      {d.station_non_existent, "Station_Non_Existent"},
+      {d.station_not_ready, "Station_Not_Ready"},
+      {d.cfg_fault, "Cfg_Fault"},
+      {d.ext_diag, "Ext_Diag"},
+      {d.not_supported, "Not_Supported"},
+      {d.invalid_slave_response, "Invalid_Slave_Response"},
+      {d.prm_fault, "Prm_Fault"},
+      {d.master_lock, "Master_Lock"},
+      {d.prm_req, "Prm_Req"},
+      {d.stat_diag, "Stat_Diag"},
+      {d.wd_on, "WD_On"},
+      {d.freeze_mode, "Freeze_Mode"},
+      {d.sync_mode, "Sync_Mode"},
+      {d.deactivated, "Deactivated"},
+      {d.ext_diag_overflow, "Ext_Diag_Overflow"},
+  };
+  for (const auto& [on, name] : flags)
+    if (on) add(name);
+  if (t.size == 0) add("no flags");
+  std::array<char, 48> tail{};
+  const auto r = d.master_address == kNoMaster
+                     ? fmt::format_to_n(tail.data(), tail.size(), ", master none, ident 0x{:04X}", d.ident)
+                     : fmt::format_to_n(tail.data(), tail.size(), ", master {}, ident 0x{:04X}",
+                                        d.master_address, d.ident);
+  const std::size_t n = std::min(r.size, tail.size());
+  if (t.size + n <= t.chars.size()) {
+    std::copy_n(tail.begin(), n, t.chars.begin() + static_cast<std::ptrdiff_t>(t.size));
+    t.size += n;
+  }
+  return t;
 }
 
 std::optional<DpDiagnosis> decode_diagnosis(std::span<const std::uint8_t> bytes) noexcept {

@@ -12,10 +12,12 @@
 //   octets 5-6 ident number, big-endian
 //   octets 7.. extended diagnosis
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string_view>
 
 #include "profibus/fdl_frame.hpp"
 #include "wire/fixed_bytes.hpp"
@@ -60,6 +62,16 @@ struct StandardDiag {
 [[nodiscard]] std::size_t encode(const StandardDiag& diag, std::span<std::uint8_t> out) noexcept;
 // Reads the 6 standard octets; nullopt when fewer than 6 are given.
 [[nodiscard]] std::optional<StandardDiag> decode_standard_diag(std::span<const std::uint8_t> bytes) noexcept;
+
+// The standard diagnosis in words, for fault reasons and terminals: the bits that are set by their
+// names in the standard, the master that holds the slave and its ident number, e.g.
+// "Station_Not_Ready Prm_Fault Prm_Req, master none, ident 0x0C88". Inline buffer: no allocation.
+struct DiagText {
+  std::array<char, 192> chars{};
+  std::size_t size = 0;
+  [[nodiscard]] std::string_view view() const noexcept { return {chars.data(), size}; }
+};
+[[nodiscard]] DiagText describe(const StandardDiag& diag) noexcept;
 
 // A whole Slave_Diag reply: standard part typed, extended part (octet 7 onwards) raw.
 struct DpDiagnosis {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "link/fault_reason.hpp"
 #include "profibus/bus_timing.hpp"
 #include "profibus/fdl_codes.hpp"
 
@@ -51,7 +52,9 @@ std::string_view to_string(StartupFault::Kind k) noexcept {
     case StartupFault::Kind::ident_mismatch:
       return "ident number mismatch";
     case StartupFault::Kind::rejected:
-      return "request rejected (RS)";
+      return "Set_Prm rejected (RS)";
+    case StartupFault::Kind::master_lock:
+      return "Master_Lock";
   }
   return "?";
 }
@@ -100,8 +103,8 @@ DpMaster::DpMaster(link::Link& link, const DpMasterConfig& config, const DpSlave
   outputs_.resize(setup.output_length);
   inputs_.resize(setup.input_length);
   // Reserved once so that reasons written in poll() never allocate.
-  fault_reason_.reserve(128);
-  restart_reason_.reserve(128);
+  fault_reason_.reserve(link::kFaultReasonCapacity);
+  restart_reason_.reserve(link::kFaultReasonCapacity);
 }
 
 void DpMaster::activate(link::TimePoint now) {
@@ -136,6 +139,12 @@ bool DpMaster::set_outputs(std::span<const std::uint8_t> outputs) noexcept {
   if (outputs.size() != setup_.output_length) return false;
   (void)outputs_.assign(outputs);
   return true;
+}
+
+void DpMaster::reject_input() noexcept {
+  ++stats_.bad_inputs;
+  ++health_.error_replies;
+  stats_.last_input_at = previous_input_at_;
 }
 
 bool DpMaster::global_control(std::uint8_t commands) noexcept {
@@ -371,22 +380,30 @@ void DpMaster::on_cyclic_reply(const FdlFrame& reply, link::TimePoint now) {
 }
 
 void DpMaster::on_diag(const FdlFrame& reply, link::TimePoint now) {
-  const auto diag = reply.dsap ? decode_diagnosis(reply.data.view()) : std::nullopt;
-  if (!diag) {
+  if (!reply.dsap) {
     ++health_.error_replies;
-    restart(now, "Slave_Diag reply malformed");
+    restart(now, "slave answered Slave_Diag without diagnosis data (refused the service)");
+    return;
+  }
+  const auto diag = decode_diagnosis(reply.data.view());
+  if (!diag) {
+    restart_with_bad_reply(now, "Slave_Diag", reply.data.size(), kStandardDiagSize);
     return;
   }
   diagnosis_ = *diag;
   ++stats_.diag_reads;
-  const StandardDiag& d = diagnosis_.standard;
-  if (d.ident != setup_.ident) return refuse(StartupFault::Kind::ident_mismatch);
-  if (state_ == DpState::diag_initial) return enter(DpState::set_prm, now);
+  StandardDiag& d = diagnosis_.standard;
+  // Master_Lock is the master's bit: the slave names another master as the one that holds it.
   const bool ours = d.master_address == config_.master_address;
+  d.master_lock = d.master_address != kNoMaster && !ours;
+  if (d.ident != setup_.ident) return refuse(StartupFault::Kind::ident_mismatch);
+  if (d.master_lock) return refuse(StartupFault::Kind::master_lock);
+  if (state_ == DpState::diag_initial) return enter(DpState::set_prm, now);
   if (state_ == DpState::diag_check) {
+    // Not_Supported comes with Prm_Fault: the more specific reason first.
+    if (d.not_supported) return refuse(StartupFault::Kind::not_supported);
     if (d.prm_fault) return refuse(StartupFault::Kind::prm_fault);
     if (d.cfg_fault) return refuse(StartupFault::Kind::cfg_fault);
-    if (d.not_supported) return refuse(StartupFault::Kind::not_supported);
   }
   if (d.ready_for_data_exchange() && ours) {
     if (state_ == DpState::diag_check) {
@@ -417,11 +434,14 @@ void DpMaster::on_data(const FdlFrame& reply, link::TimePoint now) {
     return;
   }
   if (reply.data.size() != setup_.input_length) {
-    ++health_.error_replies;
+    // Not our inputs: a slave that answers with another shape is not in the exchange we configured.
+    ++stats_.bad_inputs;
+    restart_with_bad_reply(now, "Data_Exchange", reply.data.size(), setup_.input_length);
     return;
   }
   (void)inputs_.assign(reply.data.view());
   ++stats_.data_exchanges;
+  previous_input_at_ = stats_.last_input_at;
   if (stats_.last_input_at) {
     stats_.last_cycle = now - *stats_.last_input_at;
     stats_.max_cycle = std::max(stats_.max_cycle, stats_.last_cycle);
@@ -476,13 +496,58 @@ void DpMaster::restart(link::TimePoint now, std::string_view why) {
   enter(DpState::restart_wait, now);
 }
 
+void DpMaster::restart_with_bad_reply(link::TimePoint now, std::string_view service, std::size_t octets,
+                                      std::size_t expected) {
+  ++health_.error_replies;
+  if (lifecycle_ != link::Lifecycle::fault) lifecycle_ = link::Lifecycle::activating;
+  link::assign_formatted(restart_reason_, "{} reply of {} octets, {} expected: not taken, start-up begun again",
+                         service, octets, expected);
+  enter(DpState::restart_wait, now);
+}
+
 void DpMaster::refuse(StartupFault::Kind kind) {
   startup_fault_.kind = kind;
   startup_fault_.diagnosis = diagnosis_;
   lifecycle_ = link::Lifecycle::fault;
   state_ = DpState::refused;
-  fault_reason_.assign("slave refused start-up: ");
-  fault_reason_.append(to_string(kind));
+  const StandardDiag& d = diagnosis_.standard;
+  const DiagText diag = describe(d);
+  switch (kind) {
+    case StartupFault::Kind::prm_fault:
+      link::assign_formatted(fault_reason_, "slave refused the parameters (Set_Prm): Prm_Fault; its diagnosis: {}",
+                             diag.view());
+      return;
+    case StartupFault::Kind::cfg_fault:
+      link::assign_formatted(fault_reason_,
+                             "slave refused the configuration (Chk_Cfg): Cfg_Fault; its diagnosis: {}", diag.view());
+      return;
+    case StartupFault::Kind::not_supported:
+      link::assign_formatted(fault_reason_,
+                             "slave refused the parameters: a requested function (Freeze/Sync) is Not_Supported; "
+                             "its diagnosis: {}",
+                             diag.view());
+      return;
+    case StartupFault::Kind::rejected:
+      link::assign_formatted(fault_reason_,
+                             "slave rejected Set_Prm (RS: service not activated for master {}); its diagnosis: {}",
+                             config_.master_address, diag.view());
+      return;
+    case StartupFault::Kind::ident_mismatch:
+      link::assign_formatted(fault_reason_,
+                             "our master refused the slave: ident number 0x{:04X}, configured 0x{:04X}; its "
+                             "diagnosis: {}",
+                             d.ident, setup_.ident, diag.view());
+      return;
+    case StartupFault::Kind::master_lock:
+      link::assign_formatted(fault_reason_,
+                             "our master refused to take the slave: it is locked by master {} (we are {}); its "
+                             "diagnosis: {}",
+                             d.master_address, config_.master_address, diag.view());
+      return;
+    case StartupFault::Kind::none:
+      break;
+  }
+  fault_reason_.clear();
 }
 
 }  // namespace cellctl::profibus

@@ -10,9 +10,19 @@
 // slave it asks: it waits TSYN bit times of idle line before every request.
 //
 // Lifecycle: activating during start-up (and while a lost slave is looked for again), active in data
-// exchange, fault when the slave refuses parameters or configuration (Prm_Fault, Cfg_Fault,
-// Not_Supported, wrong ident) — activate() again to retry — deactivating while Global_Control
-// Clear_Data is sent on deactivate(). No allocation in poll().
+// exchange, fault when the start-up is refused — activate() again to retry — deactivating while
+// Global_Control Clear_Data is sent on deactivate(). No allocation in poll().
+//
+// Who refused, and why, is part of the fault: the SLAVE refuses parameters (Prm_Fault, or RS to
+// Set_Prm), configuration (Cfg_Fault) or a requested function (Not_Supported); OUR master refuses a
+// slave whose ident number is not the configured one, or one that another master holds (its
+// diagnosis names another master: Master_Lock, which the standard has the master set). The fault
+// reason says which, with the slave's standard diagnosis in words.
+//
+// Replies that do not fit are never taken as data: a Slave_Diag reply shorter than its 6 standard
+// octets, or a Data_Exchange reply whose length is not the configured input length, is counted
+// (health().error_replies, stats().bad_inputs) and the start-up is begun again with the reason —
+// the inputs are not refreshed and the link is not "active" meanwhile.
 
 #include <array>
 #include <cstddef>
@@ -82,8 +92,20 @@ enum class DpState : std::uint8_t {
 
 // Why the slave refused to enter data exchange, with the diagnosis that said so.
 struct StartupFault {
-  enum class Kind : std::uint8_t { none, prm_fault, cfg_fault, not_supported, ident_mismatch, rejected };
+  enum class Kind : std::uint8_t {
+    none,
+    prm_fault,       // the slave refused the parameters (diagnosis: Prm_Fault)
+    cfg_fault,       // the slave refused the configuration (diagnosis: Cfg_Fault)
+    not_supported,   // the slave does not support a requested function (Freeze/Sync)
+    rejected,        // the slave answered Set_Prm with RS (service not activated for us)
+    ident_mismatch,  // our master refused: the slave's ident number is not the configured one
+    master_lock,     // our master refused: another master holds the slave
+  };
   Kind kind = Kind::none;
+  // True when the slave said no; false when it was our master that refused.
+  [[nodiscard]] bool by_slave() const noexcept {
+    return kind != Kind::ident_mismatch && kind != Kind::master_lock;
+  }
   DpDiagnosis diagnosis;  // the Slave_Diag reply that showed it (the profile decodes the extended part)
 };
 [[nodiscard]] std::string_view to_string(StartupFault::Kind k) noexcept;
@@ -95,6 +117,7 @@ struct DpMasterStats {
   std::uint64_t diag_reads = 0;
   std::uint64_t startups = 0;   // start-ups begun (the first and every restart)
   std::uint64_t lost = 0;       // times the slave was declared lost
+  std::uint64_t bad_inputs = 0;  // Data_Exchange replies refused: wrong length, or reject_input()
   link::Duration last_cycle{};  // between the last two good Data_Exchange replies
   link::Duration max_cycle{};
   std::optional<link::TimePoint> last_input_at;  // when the last good input arrived
@@ -126,6 +149,9 @@ class DpMaster {
   [[nodiscard]] bool set_outputs(std::span<const std::uint8_t> outputs) noexcept;
   // The inputs of the last good Data_Exchange (input_length octets, zeros before the first).
   [[nodiscard]] std::span<const std::uint8_t> inputs() const noexcept { return inputs_.view(); }
+  // The profile found the last inputs invalid (e.g. a bit the manual says is always 0): counted as
+  // a bad exchange, and input_age() runs on from the last input that was good.
+  void reject_input() noexcept;
   // The last Slave_Diag reply read.
   [[nodiscard]] const DpDiagnosis& diagnosis() const noexcept { return diagnosis_; }
   [[nodiscard]] const StartupFault& last_startup_fault() const noexcept { return startup_fault_; }
@@ -158,6 +184,8 @@ class DpMaster {
   void enter(DpState s, link::TimePoint now);
   void restart(link::TimePoint now, std::string_view why);
   void refuse(StartupFault::Kind kind);
+  void restart_with_bad_reply(link::TimePoint now, std::string_view service, std::size_t octets,
+                              std::size_t expected);
   [[nodiscard]] bool has_request(link::TimePoint now) const noexcept;
   [[nodiscard]] std::uint8_t next_fc(std::uint8_t function) noexcept;
   [[nodiscard]] FdlFrame sap_request(std::uint8_t dsap, std::span<const std::uint8_t> data) noexcept;
@@ -205,6 +233,7 @@ class DpMaster {
 
   link::LinkHealth health_;
   DpMasterStats stats_;
+  std::optional<link::TimePoint> previous_input_at_;  // restored by reject_input()
   std::string fault_reason_;
   std::string restart_reason_;
 };

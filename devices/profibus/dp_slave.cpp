@@ -179,6 +179,13 @@ FdlFrame DpSlave::diag_reply(const FdlFrame& request) {
 }
 
 bool DpSlave::set_prm(std::span<const std::uint8_t> data, std::uint8_t master, link::TimePoint now) {
+  const auto standard = decode_prm_standard(data);
+  // Locked by another master: its Set_Prm is not taken (RS) and nothing changes here. Only the
+  // master that holds the slave can re-parameterise or unlock it.
+  if (master_ != kNoMaster && master != master_) {
+    ++counters_.locked_refusals;
+    return false;
+  }
   if (state_ == DpSlaveState::data_exchange) leave_data_exchange(LeaveReason::new_prm);
   state_ = DpSlaveState::wait_prm;
   master_ = kNoMaster;
@@ -187,7 +194,6 @@ bool DpSlave::set_prm(std::span<const std::uint8_t> data, std::uint8_t master, l
   prm_fault_ = true;
   not_supported_ = false;
   cfg_fault_ = false;
-  const auto standard = decode_prm_standard(data);
   if (!standard) {
     prm_reason_ = "Set_Prm shorter than its 7 standard octets";
     return true;  // received and judged: the verdict is in the diagnosis

@@ -65,6 +65,7 @@ class DpSlave {
     std::uint64_t data_exchanges = 0;  // executed Data_Exchange requests
     std::uint64_t bad_frames = 0;
     std::uint64_t watchdog_expiries = 0;
+    std::uint64_t locked_refusals = 0;  // Set_Prm from another master while locked (answered RS)
   };
   [[nodiscard]] const Counters& counters() const noexcept { return counters_; }
 

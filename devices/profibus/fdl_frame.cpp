@@ -38,6 +38,8 @@ std::string_view to_string(FdlError e) noexcept {
       return "end delimiter missing";
     case FdlError::bad_sap:
       return "address extension without SAP octet";
+    case FdlError::data_too_long:
+      return "data unit longer than the 244 octets DP allows";
   }
   return "?";
 }
@@ -175,7 +177,7 @@ FdlParse parse_body(std::span<const std::uint8_t> body, FrameKind kind, std::siz
     if (r.remaining() < 1) return error(FdlError::bad_sap, total);
     p.frame.ssap = r.u8();
   }
-  (void)p.frame.data.assign(r.rest());
+  if (!p.frame.data.assign(r.rest())) return error(FdlError::data_too_long, total);
   p.status = FdlParse::Status::frame;
   p.consumed = total;
   return p;

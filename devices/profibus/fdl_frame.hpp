@@ -79,6 +79,7 @@ enum class FdlError : std::uint8_t {
   bad_fcs,            // frame check sequence wrong
   bad_end_delimiter,  // no 16 where the frame should end
   bad_sap,            // extension bit set but no octet left for the SAP
+  data_too_long,      // more data octets after the SAPs than DP allows (244): refused, never cut
 };
 
 [[nodiscard]] std::string_view to_string(FdlError e) noexcept;
@@ -94,6 +95,9 @@ struct FdlParse {
 };
 
 // Parses the frame at the front of bytes (garbage before a start delimiter is reported as such).
+// A frame is taken whole or refused with a typed error: an LE outside 4..249, or a data unit whose
+// data (after the SAPs) exceed the 244 octets DP allows (an SD2 with LE 249 and no SAPs carries 246),
+// is an error, never a shortened frame.
 [[nodiscard]] FdlParse parse_frame(std::span<const std::uint8_t> bytes) noexcept;
 
 }  // namespace cellctl::profibus

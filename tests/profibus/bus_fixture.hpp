@@ -29,6 +29,7 @@ struct TestBehaviour final : SlaveBehaviour {
   std::vector<std::uint8_t> last_outputs;
   std::vector<std::uint8_t> ext{0x05, 0xaa, 0xbb, 0xcc, 0xdd};
   bool pending = false;
+  std::size_t input_length = 8;  // what exchange() answers: 8 is the configured length
   int exchanges = 0;
   int entered = 0;
   int watchdog = 0;
@@ -49,9 +50,9 @@ struct TestBehaviour final : SlaveBehaviour {
   std::size_t exchange(std::span<const std::uint8_t> outputs, std::span<std::uint8_t> inputs) override {
     last_outputs.assign(outputs.begin(), outputs.end());
     ++exchanges;
-    for (std::size_t i = 0; i < 8; ++i)
+    for (std::size_t i = 0; i < input_length; ++i)
       inputs[i] = static_cast<std::uint8_t>(exchanges + static_cast<int>(i));
-    return 8;
+    return input_length;
   }
   bool diag_pending() override { return pending; }
   void on_data_exchange_entered() override { ++entered; }

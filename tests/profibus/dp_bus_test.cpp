@@ -54,7 +54,9 @@ TEST(DpBus, PrmVetoKeepsTheSlaveOutOfDataExchange) {
   EXPECT_EQ(bus.master.last_startup_fault().kind, StartupFault::Kind::prm_fault);
   EXPECT_TRUE(bus.master.last_startup_fault().diagnosis.standard.prm_fault);
   EXPECT_TRUE(bus.master.last_startup_fault().diagnosis.standard.station_not_ready);
-  EXPECT_EQ(bus.master.fault_reason(), "slave refused start-up: Prm_Fault");
+  EXPECT_EQ(bus.master.fault_reason(),
+            "slave refused the parameters (Set_Prm): Prm_Fault; its diagnosis: Station_Not_Ready Prm_Fault "
+            "Prm_Req, master none, ident 0x5C01");
   EXPECT_EQ(bus.slave.last_prm_reason(), "units per revolution above the physical resolution");
   // The profile can decode the extended diagnosis the slave sent with it.
   EXPECT_EQ(wire::to_hex(bus.master.last_startup_fault().diagnosis.extended.view()), "05 aa bb cc dd");
@@ -91,7 +93,9 @@ TEST(DpBus, CfgMismatchIsACfgFault) {
   ASSERT_TRUE(
       bus.run_until([&] { return bus.master.lifecycle() == link::Lifecycle::fault; }, milliseconds(10)));
   EXPECT_EQ(bus.master.last_startup_fault().kind, StartupFault::Kind::cfg_fault);
-  EXPECT_EQ(bus.master.fault_reason(), "slave refused start-up: Cfg_Fault");
+  EXPECT_EQ(bus.master.fault_reason(),
+            "slave refused the configuration (Chk_Cfg): Cfg_Fault; its diagnosis: Station_Not_Ready Cfg_Fault "
+            "Prm_Req WD_On, master 2, ident 0x5C01");
   EXPECT_TRUE(bus.master.diagnosis().standard.cfg_fault);
   EXPECT_NE(bus.slave.state(), DpSlaveState::data_exchange);
   EXPECT_EQ(bus.behaviour.exchanges, 0);

@@ -142,6 +142,52 @@ TEST(FdlFrame, TypedErrors) {
   EXPECT_EQ(parse("68 04 04 68 85 82 6d 3c b0 16").error, FdlError::bad_sap);
 }
 
+// An SD2 frame built by hand: LE = 3 + du octets, the FCS over DA..DU.
+std::vector<std::uint8_t> sd2(std::uint8_t da, std::uint8_t sa, std::uint8_t fc, std::size_t du) {
+  std::vector<std::uint8_t> f{kSd2, static_cast<std::uint8_t>(3 + du), static_cast<std::uint8_t>(3 + du), kSd2,
+                              da, sa, fc};
+  for (std::size_t i = 0; i < du; ++i) f.push_back(static_cast<std::uint8_t>(i));
+  std::uint8_t fcs = 0;
+  for (std::size_t i = 4; i < f.size(); ++i) fcs = static_cast<std::uint8_t>(fcs + f[i]);
+  f.push_back(fcs);
+  f.push_back(kEndDelimiter);
+  return f;
+}
+
+TEST(FdlFrame, DataBeyond244OctetsIsRefusedNeverCut) {
+  // LE 249 is in the standard's range, but without SAPs it carries 246 data octets: DP allows 244.
+  const auto le249 = sd2(2, 5, 0x08, 246);
+  const FdlParse p = parse_frame(le249);
+  EXPECT_EQ(p.status, FdlParse::Status::error);
+  EXPECT_EQ(p.error, FdlError::data_too_long);
+  EXPECT_EQ(p.consumed, le249.size()) << "the whole frame is dropped, the next one parses";
+  // 245 data octets (LE 248) too; 244 (LE 247) is the longest a Data_Exchange may carry.
+  EXPECT_EQ(parse_frame(sd2(2, 5, 0x08, 245)).error, FdlError::data_too_long);
+  const FdlParse ok = parse_frame(sd2(2, 5, 0x08, 244));
+  ASSERT_EQ(ok.status, FdlParse::Status::frame);
+  EXPECT_EQ(ok.frame.data.size(), 244u);
+  // With both SAPs LE 249 leaves exactly 244 data octets: valid.
+  auto with_saps = sd2(2 | kAddressExtension, 5 | kAddressExtension, 0x08, 246);
+  EXPECT_EQ(parse_frame(with_saps).status, FdlParse::Status::frame);
+  // LE beyond 249 never gets that far.
+  EXPECT_EQ(parse("68 fa fa 68").error, FdlError::bad_length);
+  EXPECT_EQ(parse("68 03 03 68").error, FdlError::bad_length);
+
+  // In a stream: refused, counted as an error event, and the frame behind it still arrives.
+  FdlDecoder d;
+  auto stream = le249;
+  const auto status = bytes("10 05 02 49 50 16");
+  stream.insert(stream.end(), status.begin(), status.end());
+  ASSERT_EQ(d.push(stream), stream.size());
+  const auto first = d.next();
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->error, FdlError::data_too_long);
+  const auto second = d.next();
+  ASSERT_TRUE(second);
+  EXPECT_EQ(second->error, FdlError::none);
+  EXPECT_EQ(second->frame.fc, 0x49);
+}
+
 TEST(FdlDecoder, FramesInAnyPiecesAndResynchronisesAfterGarbage) {
   const auto stream = bytes(
       "ff 00 "                             // line noise
