@@ -109,7 +109,8 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
     out.links[static_cast<std::size_t>(cell::Device::encoder)] =
         link_state(e.lifecycle, encoder_->health(), now, activated_at_);
     enc.data_exchange = e.data_exchange;
-    enc.ready = e.data_exchange && (!e.has_status_bits || e.status.ready);
+    // input_valid covers the Ready bit and inputs the manual does not allow (never a stale position).
+    enc.ready = e.data_exchange && e.input_valid;
     enc.alarm = e.diagnosis && e.diagnosis->alarms != 0;
     enc.limit_switch = e.has_status_bits && e.status.limit_switch;
     // A diagnosis the encoder raised (DH) during data exchange: a pulse the monitor latches.

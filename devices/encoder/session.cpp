@@ -91,6 +91,8 @@ link::Lifecycle Session::poll(link::TimePoint now) {
       state == profibus::DpState::data_exchange || state == profibus::DpState::diag_cyclic;
   snapshot_.exchanges = seen_exchanges_;
   snapshot_.input_age = master_.input_age(now);
+  snapshot_.bad_inputs = stats.bad_inputs;
+  if (!snapshot_.data_exchange) snapshot_.input_valid = false;
   snapshot_.startup_fault = master_.last_startup_fault().kind;
   if (!snapshot_.data_exchange && handshake_.busy()) {
     handshake_.abort("data exchange lost during the handshake");
@@ -131,11 +133,31 @@ void Session::update_fault(link::TimePoint) {
   }
 }
 
+// Why the encoder's own bits say this input's position is not a position now (empty: it is one).
+std::string_view Session::flagged(const CyclicInput& in) const noexcept {
+  if (!snapshot_.has_status_bits) return {};
+  const StatusBits st = in.status();
+  if (!st.ready) return "the encoder clears its Ready bit";
+  if (st.teach_in_start || st.teach_in_end) return "Teach-In running: the position is unscaled";
+  if (handshake_.kind() == Handshake::Kind::direction && handshake_.phase() == Handshake::Phase::request)
+    return "direction change acknowledged in the position bits";
+  return {};
+}
+
 void Session::on_input(std::span<const std::uint8_t> bytes) noexcept {
   const bool with_status = snapshot_.has_status_bits;
   auto decoded = decode_input(config_.parameters.functionality, with_status, bytes);
   const auto* in = std::get_if<CyclicInput>(&decoded);
-  if (in == nullptr) return;
+  if (in == nullptr) {
+    // Not the shape the manual allows: nothing of it is a measurement.
+    snapshot_.input_valid = false;
+    snapshot_.input_fault = to_string(std::get<CyclicError>(decoded));
+    master_.reject_input();
+    return;
+  }
+  snapshot_.input_fault = flagged(*in);
+  snapshot_.input_valid = snapshot_.input_fault.empty();
+  if (!snapshot_.input_valid) master_.reject_input();
   const TimeBase tb = config_.parameters.time_base;
   const double upr = scaling_.units_per_revolution();
   snapshot_.position_counts = in->position(with_status);

@@ -42,8 +42,15 @@ struct Snapshot {
   link::Lifecycle lifecycle = link::Lifecycle::inactive;
   profibus::DpState dp_state = profibus::DpState::stopped;
   bool data_exchange = false;
-  std::uint64_t exchanges = 0;  // good Data_Exchange replies so far
-  link::Duration input_age{};   // since the last good input
+  std::uint64_t exchanges = 0;  // Data_Exchange replies of the configured length so far
+  link::Duration input_age{};   // since the last valid input
+  // The position, velocity and acceleration below are from the last input; they are the encoder's
+  // measurement only while input_valid. An input the manual does not allow (bit 31 set without
+  // status bits), or one the encoder flags (Ready clear, Teach-In running: unscaled, a direction
+  // acknowledge in the position bits), makes them invalid and counts in bad_inputs.
+  bool input_valid = false;
+  std::string_view input_fault;  // why the last input is not valid (static text); empty when valid
+  std::uint64_t bad_inputs = 0;  // inputs not taken: wrong length (master) or invalid here
 
   std::uint32_t position_counts = 0;  // measuring units
   double position_mm = 0.0;
@@ -103,6 +110,7 @@ class Session {
  private:
   [[nodiscard]] bool manufacturer_function_allowed() const noexcept;
   void on_input(std::span<const std::uint8_t> bytes) noexcept;
+  [[nodiscard]] std::string_view flagged(const CyclicInput& in) const noexcept;
   void push_outputs() noexcept;
   void update_fault(link::TimePoint now);
 

@@ -143,7 +143,6 @@ bool DpMaster::set_outputs(std::span<const std::uint8_t> outputs) noexcept {
 
 void DpMaster::reject_input() noexcept {
   ++stats_.bad_inputs;
-  ++health_.error_replies;
   stats_.last_input_at = previous_input_at_;
 }
 
