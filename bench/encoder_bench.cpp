@@ -42,7 +42,6 @@ void BM_EncoderDataExchangeOverSimLink(benchmark::State& state) {
 
   encoder::EmulatorConfig emu_config;
   emu_config.address = kStation;
-  emu_config.functionality = encoder::Functionality::scancon30;
   emu_config.identity.physical = kPhysical;
   emu_config.line = line;
   encoder::Emulator emulator(sim.device(), emu_config, shaft);

@@ -83,11 +83,11 @@ profibus::DpMasterConfig parse_bus(const YamlNode& s, const link::LineFormat& li
 }
 
 // The emulated encoder is the one the session expects unless the `emulator:` block says otherwise.
+// Its functionality is not set here: the emulator takes the one the master's Set_Prm/Chk_Cfg choose.
 encoder::EmulatorConfig parse_emulator(const std::optional<YamlNode>& block,
                                        const encoder::SessionConfig& session) {
   encoder::EmulatorConfig c;
   c.address = session.station_address;
-  c.functionality = session.parameters.functionality;
   c.line = session.bus.line;
   c.identity.physical = session.physical;
   if (!block) return c;

@@ -40,8 +40,7 @@ Emulator::Emulator(link::Link& link, const EmulatorConfig& config, const plant::
                                      .freeze_supported = true,
                                      .sync_supported = true},
              behaviour_) {
-  EncoderParameters p;  // until the first Set_Prm: the functionality's defaults, the stored direction
-  p.functionality = config_.functionality;
+  EncoderParameters p;  // until the first Set_Prm: the defaults, the stored direction
   p.code_sequence = saved_.code_sequence;
   behaviour_.device.parameterize(p);
 }
@@ -67,24 +66,63 @@ void Emulator::set_warning(std::uint16_t mask, bool on) noexcept {
   behaviour_.diag_changed = true;
 }
 
+namespace {
+
+// The family the User_Prm_Data length names (4.1: octets 8–9, 8–25, 8–39), as the functionality whose
+// rules are the widest of it: Scancon 3.0 for the three Scancon functionalities.
+std::optional<Functionality> family_of_prm_length(std::size_t octets) noexcept {
+  for (const Functionality f : {Functionality::class1, Functionality::class2, Functionality::scancon30})
+    if (user_prm_length(f) == octets) return f;
+  return std::nullopt;
+}
+
+}  // namespace
+
 profibus::PrmVerdict Emulator::Behaviour::check_prm(std::span<const std::uint8_t> user_prm) {
-  auto decoded = decode_user_prm(config.functionality, user_prm);
+  accepted_family.reset();
+  const auto family = family_of_prm_length(user_prm.size());
+  if (!family) {
+    prm_reason = fmt::format(
+        "User_Prm_Data: {} octets; the encoder takes 2 (Class 1), 18 (Class 2) or 32 (Scancon 2.1/2.2/3.0) "
+        "(manual 4.1)",
+        user_prm.size());
+    return {false, prm_reason};
+  }
+  auto decoded = decode_user_prm(*family, user_prm);
   if (const auto* v = std::get_if<PrmViolation>(&decoded)) {
     prm_reason = v->describe();
     return {false, prm_reason};
   }
-  const auto& p = std::get<EncoderParameters>(decoded);
-  if (auto v = validate(p, config.identity.physical)) {
+  if (auto v = validate(std::get<EncoderParameters>(decoded), config.identity.physical)) {
     prm_reason = v->describe();
     return {false, prm_reason};
   }
   prm_reason.clear();
-  device.parameterize(p);
+  (void)accepted_prm.assign(user_prm);
+  accepted_family = family;
   return {true, {}};
 }
 
 bool Emulator::Behaviour::check_cfg(std::span<const std::uint8_t> cfg) {
-  return std::ranges::equal(cfg, config_identifiers(config.functionality));
+  const auto f = functionality_of_cfg(cfg);
+  if (!f) {
+    cfg_reason = "the configuration identifiers name no functionality of the encoder (GSD modules)";
+    return false;
+  }
+  if (!accepted_family || user_prm_length(*f) != user_prm_length(*accepted_family)) {
+    cfg_reason = fmt::format("configuration {} does not fit the {}-octet User_Prm_Data of the Set_Prm",
+                             to_string(*f), accepted_prm.size());
+    return false;
+  }
+  // The same octets, now judged for the functionality chosen (e.g. Without Status Bits: 3.0 only).
+  auto decoded = decode_user_prm(*f, accepted_prm.view());
+  if (const auto* v = std::get_if<PrmViolation>(&decoded)) {
+    cfg_reason = fmt::format("parameters not allowed with {}: {}", to_string(*f), v->describe());
+    return false;
+  }
+  cfg_reason.clear();
+  device.parameterize(std::get<EncoderParameters>(decoded));
+  return true;
 }
 
 std::size_t Emulator::Behaviour::ext_diag(std::span<std::uint8_t> out) {
@@ -94,11 +132,12 @@ std::size_t Emulator::Behaviour::ext_diag(std::span<std::uint8_t> out) {
 
 std::size_t Emulator::Behaviour::exchange(std::span<const std::uint8_t> outputs,
                                           std::span<std::uint8_t> inputs) {
+  const Functionality f = functionality();
   std::optional<std::uint32_t> word;
-  if (has_outputs(config.functionality)) word = decode_output(outputs);
+  if (has_outputs(f)) word = decode_output(outputs);
   // A Class 2+ exchange without a 4-octet output (cannot happen after Chk_Cfg) counts as zeros.
-  if (has_outputs(config.functionality) && !word) word = 0;
-  return encode_input(config.functionality, device.exchange(word), inputs);
+  if (has_outputs(f) && !word) word = 0;
+  return encode_input(f, device.exchange(word), inputs);
 }
 
 void Emulator::Behaviour::on_address_changed(std::uint8_t new_address, bool) {

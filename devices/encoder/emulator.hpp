@@ -1,11 +1,23 @@
 #pragma once
 // The emulated SCH88BEX: a profibus::DpSlave whose behaviour is this encoder — parameters judged by
-// the manual's rules (Prm_Fault), the chosen functionality's configuration identifiers (Cfg_Fault),
-// the extended diagnosis, the shaft of a plant::Shaft turned into counts, and the handshakes of
-// EncoderDevice. Its EEPROM lives in a state file. Stepped by poll(now) over any Link.
+// the manual's rules (Prm_Fault), the extended diagnosis, the shaft of a plant::Shaft turned into
+// counts, and the handshakes of EncoderDevice. Its EEPROM lives in a state file. Stepped by
+// poll(now) over any Link.
+//
+// The functionality is the master's choice, as on the real encoder (manual 4: "selected in the
+// Master Set-up Tool"), never a setting of the emulator. DP sends Set_Prm before Chk_Cfg, and the
+// three Scancon functionalities share one 32-octet User_Prm_Data, so the choice is made in two steps
+// (our reading, docs in devices/encoder/README.md):
+//   Set_Prm  the User_Prm_Data length names the family — 2 octets Class 1, 18 Class 2, 32 Scancon —
+//            and the parameters are judged by the manual's rules for it (else Prm_Fault);
+//   Chk_Cfg  the configuration identifiers name the functionality (one GSD module each); it must be
+//            of the family the parameters were for, and the parameters must be allowed for it
+//            (Without Status Bits only with Scancon 3.0) — else Cfg_Fault, with the reason kept.
+// Only then is the encoder parameterised and data exchange begins with that functionality's data.
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "encoder/encoder_device.hpp"
@@ -13,12 +25,12 @@
 #include "plant/shaft.hpp"
 #include "profibus/dp_slave.hpp"
 #include "profibus/slave_behaviour.hpp"
+#include "wire/fixed_bytes.hpp"
 
 namespace cellctl::encoder {
 
 struct EmulatorConfig {
   std::uint8_t address = 1;  // the rotary switches: 1..125, or 126 (address set over the bus)
-  Functionality functionality = Functionality::scancon22;  // what the GSD module selects
   DeviceIdentity identity;
   link::LineFormat line = link::line_8e1(1'500'000);
   std::filesystem::path state_file;  // empty: EEPROM not kept across restarts
@@ -45,6 +57,8 @@ class Emulator {
   [[nodiscard]] const EncoderDevice& device() const noexcept { return behaviour_.device; }
   // Why the last Set_Prm was refused (the rule), empty when accepted.
   [[nodiscard]] std::string_view last_prm_reason() const noexcept { return slave_.last_prm_reason(); }
+  // Why the last Chk_Cfg was refused, empty when accepted.
+  [[nodiscard]] std::string_view last_cfg_reason() const noexcept { return behaviour_.cfg_reason; }
   [[nodiscard]] std::uint64_t watchdog_expiries() const noexcept {
     return slave_.counters().watchdog_expiries;
   }
@@ -52,6 +66,7 @@ class Emulator {
  private:
   struct Behaviour final : profibus::SlaveBehaviour {
     Behaviour(const EmulatorConfig& c, const NonVolatile& nv) : config(c), device(c.identity, nv) {}
+    [[nodiscard]] Functionality functionality() const noexcept { return device.parameters().functionality; }
     profibus::PrmVerdict check_prm(std::span<const std::uint8_t> user_prm) override;
     bool check_cfg(std::span<const std::uint8_t> cfg) override;
     std::size_t ext_diag(std::span<std::uint8_t> out) override;
@@ -64,6 +79,11 @@ class Emulator {
     const EmulatorConfig& config;
     EncoderDevice device;
     std::string prm_reason;  // kept here: DpSlave holds a view of it
+    std::string cfg_reason;
+    // The User_Prm_Data of the accepted Set_Prm, judged for its family, until Chk_Cfg names the
+    // functionality.
+    wire::FixedBytes<64> accepted_prm;
+    std::optional<Functionality> accepted_family;
     bool diag_changed = false;
   };
 

@@ -3,15 +3,20 @@
 // cyclically, how long its User_Prm_Data is, and the DP configuration identifiers we define for it
 // (no GSD ships with the manual; devices/encoder/gsd/SCAN88EX.gsd declares the same bytes).
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string_view>
 
 namespace cellctl::encoder {
 
 enum class Functionality : std::uint8_t { class1, class2, scancon21, scancon22, scancon30 };
+inline constexpr std::array<Functionality, 5> kFunctionalities = {
+    Functionality::class1, Functionality::class2, Functionality::scancon21, Functionality::scancon22,
+    Functionality::scancon30};
 
 // Our PROFIBUS ident number for the emulated encoder (also in the GSD file).
 inline constexpr std::uint16_t kIdentNumber = 0x0C88;
@@ -77,6 +82,14 @@ inline constexpr std::array<std::uint8_t, 4> kCfgScancon30 = {0xC1, 0xC1, 0xC3, 
       return kCfgScancon30;
   }
   return {};
+}
+
+// The functionality whose configuration identifiers these are (what a master's Chk_Cfg selects).
+[[nodiscard]] constexpr std::optional<Functionality> functionality_of_cfg(
+    std::span<const std::uint8_t> cfg) noexcept {
+  for (const Functionality f : kFunctionalities)
+    if (std::ranges::equal(cfg, config_identifiers(f))) return f;
+  return std::nullopt;
 }
 
 [[nodiscard]] constexpr std::string_view to_string(Functionality f) noexcept {

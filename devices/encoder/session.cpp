@@ -126,8 +126,8 @@ void Session::update_fault(link::TimePoint) {
                              "{} (parameters pass the local check for {} steps × {} revolutions)", reason,
                              physical.steps_per_revolution, physical.revolutions);
   } else if (snapshot_.startup_fault == profibus::StartupFault::Kind::cfg_fault) {
-    link::assign_formatted(fault_reason_, "{} (the encoder is not set up for {})", reason,
-                           to_string(config_.parameters.functionality));
+    link::assign_formatted(fault_reason_, "{} (the encoder refused configuration {} with these parameters)",
+                           reason, to_string(config_.parameters.functionality));
   } else {
     link::assign_formatted(fault_reason_, "{}", reason);
   }

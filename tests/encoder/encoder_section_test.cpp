@@ -65,7 +65,6 @@ TEST(EncoderSection, FullSectionReachesSessionAndEmulator) {
   EXPECT_EQ(s.session.bus.lost_slave_time, std::chrono::milliseconds(50));
   EXPECT_EQ(s.session.bus.line.baud, 1500000u);
   EXPECT_EQ(s.emulator.address, 5);
-  EXPECT_EQ(s.emulator.functionality, encoder::Functionality::scancon30);
   EXPECT_EQ(std::string(s.emulator.identity.serial.begin(), s.emulator.identity.serial.end()), "SCH8800042");
   EXPECT_EQ(s.emulator.state_file, "/tmp/encoder.eeprom");
 }

@@ -59,13 +59,15 @@ TEST(EncoderNoAllocation, SlavePrmFaultReasonIsComposedWithoutAllocating) {
 TEST(EncoderNoAllocation, SlaveCfgFaultReasonIsComposedWithoutAllocating) {
   Rig rig(Functionality::scancon22);
   count_session_allocations(rig);
-  rig.session_config.parameters.functionality = Functionality::scancon30;
+  // Without Status Bits is a Scancon 3.0 parameter: the encoder refuses it with the 2.2 configuration.
+  rig.session_config.parameters.without_status_bits = true;
   Session& s = rig.start();
   ASSERT_TRUE(rig.run_until([&] { return s.snapshot().lifecycle == Lifecycle::fault; }, 200ms));
 
   EXPECT_EQ(rig.session_poll_allocations, 0u);
   EXPECT_NE(s.fault_reason().find("Cfg_Fault"), std::string::npos) << s.fault_reason();
-  EXPECT_NE(s.fault_reason().find("the encoder is not set up for"), std::string::npos) << s.fault_reason();
+  EXPECT_NE(s.fault_reason().find("the encoder refused configuration scancon2.2"), std::string::npos)
+      << s.fault_reason();
 }
 
 }  // namespace

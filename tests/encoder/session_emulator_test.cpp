@@ -83,14 +83,33 @@ TEST(EncoderSession, SlavePrmFaultIsReportedWithTheEmulatorsRule) {
   EXPECT_EQ(rig.emulator->slave().counters().data_exchanges, 0u);
 }
 
-TEST(EncoderSession, WrongConfigurationGivesCfgFault) {
+TEST(EncoderSession, ParametersTheChosenConfigurationDoesNotAllowGiveCfgFault) {
   Rig rig(Functionality::scancon22);
-  rig.session_config.parameters.functionality = Functionality::scancon30;  // 8 input octets
+  rig.session_config.parameters.without_status_bits = true;  // a Scancon 3.0 parameter
   Session& s = rig.start();
   ASSERT_TRUE(rig.run_until([&] { return s.snapshot().lifecycle == Lifecycle::fault; }, 200ms));
   EXPECT_EQ(s.snapshot().startup_fault, profibus::StartupFault::Kind::cfg_fault);
   EXPECT_NE(s.fault_reason().find("Cfg_Fault"), std::string::npos) << s.fault_reason();
+  EXPECT_EQ(rig.emulator->last_cfg_reason(),
+            "parameters not allowed with scancon2.2: Without Status Bits: only with the Scancon 3.0 "
+            "functionality (4.1.5 bit 4)");
   EXPECT_EQ(rig.emulator->slave().counters().data_exchanges, 0u);
+}
+
+TEST(EncoderSession, TheEmulatorTakesTheFunctionalityTheMasterChooses) {
+  // One emulator, started up by masters of each functionality in turn (re-parameterisation).
+  Rig rig;
+  rig.move_to(10.0);
+  for (const Functionality f : kFunctionalities) {
+    rig.session_config.parameters.functionality = f;
+    Session& s = rig.start();
+    ASSERT_TRUE(rig.run_until([&] { return rig.exchanging(); }, 300ms)) << to_string(f) << s.fault_reason();
+    EXPECT_EQ(rig.emulator->device().parameters().functionality, f);
+    EXPECT_TRUE(s.snapshot().input_valid) << to_string(f);
+    EXPECT_DOUBLE_EQ(s.snapshot().position_mm, 10.0) << to_string(f);
+    EXPECT_TRUE(rig.emulator->last_prm_reason().empty());
+    EXPECT_TRUE(rig.emulator->last_cfg_reason().empty());
+  }
 }
 
 TEST(EncoderSession, SilentMasterLetsTheEncoderWatchdogFire) {

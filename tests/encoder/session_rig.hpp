@@ -18,16 +18,16 @@ namespace cellctl::encoder::testing {
 using namespace std::chrono_literals;
 
 struct Rig {
-  explicit Rig(Functionality emulated = Functionality::scancon22, std::uint8_t emu_address = 5,
+  // `functionality` is the master's choice; the emulator takes it from Set_Prm/Chk_Cfg.
+  explicit Rig(Functionality functionality = Functionality::scancon22, std::uint8_t emu_address = 5,
                std::filesystem::path state_file = {})
       : sim(clock, link::line_8e1(1'500'000)),
         shaft(plant::ShaftParams{4.0, 0.0, 0.0}, [this] { return axis_mm(); }) {
     emu_config.address = emu_address;
-    emu_config.functionality = emulated;
     emu_config.identity.physical = PhysicalResolution{8192, 4096};
     emu_config.state_file = std::move(state_file);
     session_config.station_address = emu_address;
-    session_config.parameters.functionality = emulated;
+    session_config.parameters.functionality = functionality;
     session_config.physical = PhysicalResolution{8192, 4096};
     session_config.mm_per_revolution = 4.0;
     session_config.bus.master_address = 2;
