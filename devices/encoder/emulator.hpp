@@ -7,7 +7,7 @@
 // The functionality is the master's choice, as on the real encoder (manual 4: "selected in the
 // Master Set-up Tool"), never a setting of the emulator. DP sends Set_Prm before Chk_Cfg, and the
 // three Scancon functionalities share one 32-octet User_Prm_Data, so the choice is made in two steps
-// (our reading, docs in devices/encoder/README.md):
+// (our reading: devices/encoder/README.md):
 //   Set_Prm  the User_Prm_Data length names the family — 2 octets Class 1, 18 Class 2, 32 Scancon —
 //            and the parameters are judged by the manual's rules for it (else Prm_Fault);
 //   Chk_Cfg  the configuration identifiers name the functionality (one GSD module each); it must be
