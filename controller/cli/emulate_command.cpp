@@ -7,6 +7,7 @@
 
 #include "cli/drive.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/publish_lock.hpp"
 #include "config/cell_config.hpp"
 #include "link/clock.hpp"
 #include "link/pty_pair.hpp"
@@ -17,9 +18,12 @@ namespace {
 
 int run_emulate(const GlobalOptions& global) {
   const auto cell = config::load_cell_config(global.config);
+  // Declared before the pseudo-terminals: each path stays locked until its link has been removed.
+  std::vector<std::unique_ptr<PublishLock>> locks;
   std::vector<std::unique_ptr<link::PtyPair>> ptys;
   runtime::DeviceLinks links;
   const auto publish = [&](const char* name, const config::PortConfig& port, link::Link*& side) {
+    locks.push_back(std::make_unique<PublishLock>(port.publish_as));
     auto& pty = *ptys.emplace_back(std::make_unique<link::PtyPair>(name, port.publish_as));
     side = &pty.device();
     fmt::print("{:<8} {} (also {}), {}\n", name, pty.peer_path(), port.publish_as, port.line.describe());
@@ -46,7 +50,8 @@ int run_emulate(const GlobalOptions& global) {
 void add_emulate_command(CLI::App& app, Commands& commands) {
   auto* sub = app.add_subcommand("emulate",
                                  "Run the cell's devices as emulators on pseudo-terminals (published at each "
-                                 "device's publish_as) until Ctrl-C");
+                                 "device's publish_as) until Ctrl-C; refuses a publish_as another live "
+                                 "emulation holds");
   commands.on(sub, [&commands] { return run_emulate(commands.global); });
 }
 

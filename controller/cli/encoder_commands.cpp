@@ -58,10 +58,22 @@ void print_status(const encoder::Session& session) {
 }
 
 void print_diag(const encoder::Snapshot& s) {
-  if (!s.diagnosis) {
+  if (s.diagnosis_reads == 0) {
     fmt::print("diagnosis      not read yet\n");
     return;
   }
+  fmt::print("diagnosis      {} read; standard part: {}\n", s.diagnosis_reads,
+             profibus::describe(s.standard_diag).view());
+  const bool last_decoded = s.extended_diag_octets > 0 && s.diagnosis_error.empty();
+  if (s.extended_diag_octets == 0)
+    fmt::print(
+        "extended       none: the last diagnosis had only the 6 standard octets (the SCH88BEX sends 10 "
+        "or 51 more)\n");
+  else if (!last_decoded)
+    fmt::print("extended       {} octets that are not the encoder profile's: {}\n", s.extended_diag_octets,
+               s.diagnosis_error);
+  if (!s.diagnosis) return;
+  if (!last_decoded) fmt::print("earlier        the last extended diagnosis that decoded:\n");
   const auto& d = *s.diagnosis;
   using namespace encoder;
   fmt::print("alarms         {}\n", bits_text(d.alarms, {{alarm::position_error, "position error"},

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "config/cell_config.hpp"
+#include "encoder/cyclic.hpp"
+#include "encoder/scaling.hpp"
 #include "link/clock.hpp"
 
 namespace cellctl::config {
@@ -53,6 +55,66 @@ void check_link_silence(const YamlNode& root, const CellConfig& cell) {
     const double lost_ms = to_milliseconds(cell.encoder->session.bus.lost_slave_time);
     check_reply_spacing(root, cell, "encoder", lost_ms, fmt::format("DP lost-slave time {:g} ms", lost_ms));
   }
+}
+
+constexpr std::pair<encoder::TimeBase, const char*> kTimeBases[] = {
+    {encoder::TimeBase::steps_per_s, "steps_per_s"},
+    {encoder::TimeBase::steps_per_100ms, "steps_per_100ms"},
+    {encoder::TimeBase::steps_per_10ms, "steps_per_10ms"},
+    {encoder::TimeBase::rpm, "rpm"},
+};
+
+// The encoder's velocity (Scancon 2.2/3.0) and acceleration (3.0) are signed 16-bit values in the time
+// base's unit that saturate at 32767 (manual 4.3.4/4.3.5): a time base in which the overspeed limit
+// (or the measured axis's acceleration) reaches 32767 would show an overspeed as a smaller, saturated
+// speed, and the monitor would never see it. Refused, with the numbers and the time bases that fit.
+void check_encoder_time_base(const YamlNode& root, const CellConfig& cell) {
+  if (!cell.encoder) return;
+  const auto& s = cell.encoder->session;
+  const auto f = s.parameters.functionality;
+  if (f != encoder::Functionality::scancon22 && f != encoder::Functionality::scancon30) return;
+  const encoder::Scaling scaling(s.parameters, s.physical);
+  const double per_mm = encoder::units_per_mm(s.counts_per_mm, s.mm_per_revolution, scaling);
+  const double per_rev = scaling.units_per_revolution();
+  double accel_mm_s2 = 0.0;
+  for (const auto& axis : cell.axes)
+    if (axis.encoder) accel_mm_s2 = axis.max_accel_mm_s2;
+  // What the encoder reports at the overspeed limit, and one sample period's change of it at the
+  // axis's acceleration, in the time base tb.
+  const auto velocity = [&](encoder::TimeBase tb) {
+    return encoder::in_time_base(cell.limits.overspeed_mm_s * per_mm, tb, per_rev);
+  };
+  const auto acceleration = [&](encoder::TimeBase tb) {
+    return f == encoder::Functionality::scancon30 ? encoder::in_time_base(accel_mm_s2 * per_mm, tb, per_rev) *
+                                                        link::to_seconds(encoder::sample_period(tb))
+                                                  : 0.0;
+  };
+  constexpr double kFull = 32767.0;
+  const auto fits = [&](encoder::TimeBase tb) { return velocity(tb) < kFull && acceleration(tb) < kFull; };
+  const encoder::TimeBase tb = s.parameters.time_base;
+  if (fits(tb)) return;
+  std::string choices;
+  for (const auto& [other, name] : kTimeBases)
+    if (fits(other))
+      choices += fmt::format("{}{} ({:.0f})", choices.empty() ? "" : ", ", name, velocity(other));
+  const char* chosen = "steps_per_s";
+  for (const auto& [other, name] : kTimeBases)
+    if (other == tb) chosen = name;
+  const std::string what =
+      velocity(tb) >= kFull
+          ? fmt::format("the overspeed limit {:g} mm/s is {:.0f} units/s = {:.0f} in {}",
+                        cell.limits.overspeed_mm_s, cell.limits.overspeed_mm_s * per_mm, velocity(tb), chosen)
+          : fmt::format("axis acceleration {:g} mm/s² changes the velocity by {:.0f} per {} sample",
+                        accel_mm_s2, acceleration(tb), chosen);
+  const std::string rule = fmt::format(
+      "{}, beyond the encoder's 16-bit {} (at most 32767, manual 4.3.4/4.3.5): it would saturate and an "
+      "overspeed would go unseen; {}",
+      what, velocity(tb) >= kFull ? "velocity" : "acceleration",
+      choices.empty() ? "no time base fits: lower limits.overspeed_mm_s or scale the encoder"
+                      : "time bases that fit (value at the limit): " + choices);
+  const YamlNode section = root.at("encoder");
+  if (section.has("time_base")) section.at("time_base").fail(rule);
+  section.fail("time_base steps_per_s (the default): " + rule);
 }
 
 }  // namespace
@@ -103,6 +165,7 @@ void check_cell(const YamlNode& root, CellConfig& cell) {
   if (!cell.encoder && measured)
     root.at("axes").fail("an axis is marked 'encoder: true' but the cell has no encoder section");
   check_link_silence(root, cell);
+  check_encoder_time_base(root, cell);
 }
 
 }  // namespace cellctl::config

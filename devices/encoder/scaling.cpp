@@ -37,4 +37,10 @@ std::uint64_t Scaling::to_units(std::uint64_t physical) const noexcept {
   return (physical * units_ / impulses_) % range_;
 }
 
+double units_per_mm(double counts_per_mm, double mm_per_revolution, const Scaling& scaling) noexcept {
+  if (counts_per_mm > 0.0) return counts_per_mm;
+  if (mm_per_revolution > 0.0) return scaling.units_per_revolution() / mm_per_revolution;
+  return 0.0;
+}
+
 }  // namespace cellctl::encoder

@@ -31,4 +31,9 @@ class Scaling {
   std::uint64_t range_ = 1;
 };
 
+// Measuring units per mm of the axis: counts_per_mm when given (> 0), else the units per revolution
+// over the mm per revolution; 0 when neither is given.
+[[nodiscard]] double units_per_mm(double counts_per_mm, double mm_per_revolution,
+                                  const Scaling& scaling) noexcept;
+
 }  // namespace cellctl::encoder

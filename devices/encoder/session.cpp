@@ -25,8 +25,7 @@ profibus::DpSlaveSetup slave_setup(const SessionConfig& c) {
 double length_per_count(const SessionConfig& c, const Scaling& scaling) {
   if (c.counts_per_mm > 0.0 && c.mm_per_revolution > 0.0)
     throw std::invalid_argument("encoder session: give counts_per_mm or mm_per_revolution, not both");
-  if (c.counts_per_mm > 0.0) return c.counts_per_mm;
-  if (c.mm_per_revolution > 0.0) return scaling.units_per_revolution() / c.mm_per_revolution;
+  if (const double upm = units_per_mm(c.counts_per_mm, c.mm_per_revolution, scaling); upm > 0.0) return upm;
   throw std::invalid_argument(
       fmt::format("encoder session: counts_per_mm {} / mm_per_revolution {}: one must be > 0",
                   c.counts_per_mm, c.mm_per_revolution));
@@ -80,8 +79,15 @@ link::Lifecycle Session::poll(link::TimePoint now) {
     seen_diag_reads_ = stats.diag_reads;
     const auto& diag = master_.diagnosis();
     snapshot_.standard_diag = diag.standard;
-    auto decoded = decode_diagnosis(diag.extended.view());
-    if (auto* d = std::get_if<EncoderDiagnosis>(&decoded)) snapshot_.diagnosis = *d;
+    snapshot_.extended_diag_octets = diag.extended.size();
+    snapshot_.diagnosis_error = {};
+    if (!diag.extended.empty()) {
+      auto decoded = decode_diagnosis(diag.extended.view());
+      if (auto* d = std::get_if<EncoderDiagnosis>(&decoded))
+        snapshot_.diagnosis = *d;
+      else
+        snapshot_.diagnosis_error = to_string(std::get<DiagError>(decoded));
+    }
     snapshot_.diagnosis_reads = seen_diag_reads_;
   }
   const auto state = master_.dp_state();

@@ -66,6 +66,10 @@ struct Snapshot {
   profibus::StandardDiag standard_diag;
   std::optional<EncoderDiagnosis> diagnosis;  // the last extended diagnosis that decoded
   std::uint64_t diagnosis_reads = 0;
+  // Of the last diagnosis read: its extended octets (0: none, only the standard part) and why they
+  // did not decode as the encoder profile's (empty when they did or there were none).
+  std::size_t extended_diag_octets = 0;
+  std::string_view diagnosis_error;
 
   std::optional<PrmViolation> local_prm_violation;  // refused here before anything was sent
   profibus::StartupFault::Kind startup_fault = profibus::StartupFault::Kind::none;  // what the slave said

@@ -499,8 +499,9 @@ void DpMaster::restart_with_bad_reply(link::TimePoint now, std::string_view serv
                                       std::size_t expected) {
   ++health_.error_replies;
   if (lifecycle_ != link::Lifecycle::fault) lifecycle_ = link::Lifecycle::activating;
-  link::assign_formatted(restart_reason_, "{} reply of {} octets, {} expected: not taken, start-up begun again",
-                         service, octets, expected);
+  link::assign_formatted(restart_reason_,
+                         "{} reply of {} octets, {} expected: not taken, start-up begun again", service,
+                         octets, expected);
   enter(DpState::restart_wait, now);
 }
 
@@ -513,23 +514,26 @@ void DpMaster::refuse(StartupFault::Kind kind) {
   const DiagText diag = describe(d);
   switch (kind) {
     case StartupFault::Kind::prm_fault:
-      link::assign_formatted(fault_reason_, "slave refused the parameters (Set_Prm): Prm_Fault; its diagnosis: {}",
-                             diag.view());
+      link::assign_formatted(
+          fault_reason_, "slave refused the parameters (Set_Prm): Prm_Fault; its diagnosis: {}", diag.view());
       return;
     case StartupFault::Kind::cfg_fault:
       link::assign_formatted(fault_reason_,
-                             "slave refused the configuration (Chk_Cfg): Cfg_Fault; its diagnosis: {}", diag.view());
-      return;
-    case StartupFault::Kind::not_supported:
-      link::assign_formatted(fault_reason_,
-                             "slave refused the parameters: a requested function (Freeze/Sync) is Not_Supported; "
-                             "its diagnosis: {}",
+                             "slave refused the configuration (Chk_Cfg): Cfg_Fault; its diagnosis: {}",
                              diag.view());
       return;
+    case StartupFault::Kind::not_supported:
+      link::assign_formatted(
+          fault_reason_,
+          "slave refused the parameters: a requested function (Freeze/Sync) is Not_Supported; "
+          "its diagnosis: {}",
+          diag.view());
+      return;
     case StartupFault::Kind::rejected:
-      link::assign_formatted(fault_reason_,
-                             "slave rejected Set_Prm (RS: service not activated for master {}); its diagnosis: {}",
-                             config_.master_address, diag.view());
+      link::assign_formatted(
+          fault_reason_,
+          "slave rejected Set_Prm (RS: service not activated for master {}); its diagnosis: {}",
+          config_.master_address, diag.view());
       return;
     case StartupFault::Kind::ident_mismatch:
       link::assign_formatted(fault_reason_,
@@ -538,10 +542,11 @@ void DpMaster::refuse(StartupFault::Kind kind) {
                              d.ident, setup_.ident, diag.view());
       return;
     case StartupFault::Kind::master_lock:
-      link::assign_formatted(fault_reason_,
-                             "our master refused to take the slave: it is locked by master {} (we are {}); its "
-                             "diagnosis: {}",
-                             d.master_address, config_.master_address, diag.view());
+      link::assign_formatted(
+          fault_reason_,
+          "our master refused to take the slave: it is locked by master {} (we are {}); its "
+          "diagnosis: {}",
+          d.master_address, config_.master_address, diag.view());
       return;
     case StartupFault::Kind::none:
       break;

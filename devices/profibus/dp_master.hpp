@@ -115,10 +115,10 @@ enum class RequestStatus : std::uint8_t { idle, pending, done, failed };
 struct DpMasterStats {
   std::uint64_t data_exchanges = 0;  // good Data_Exchange replies
   std::uint64_t diag_reads = 0;
-  std::uint64_t startups = 0;   // start-ups begun (the first and every restart)
-  std::uint64_t lost = 0;       // times the slave was declared lost
+  std::uint64_t startups = 0;    // start-ups begun (the first and every restart)
+  std::uint64_t lost = 0;        // times the slave was declared lost
   std::uint64_t bad_inputs = 0;  // Data_Exchange replies refused: wrong length, or reject_input()
-  link::Duration last_cycle{};  // between the last two good Data_Exchange replies
+  link::Duration last_cycle{};   // between the last two good Data_Exchange replies
   link::Duration max_cycle{};
   std::optional<link::TimePoint> last_input_at;  // when the last good input arrived
 };

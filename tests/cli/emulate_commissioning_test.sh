@@ -2,7 +2,8 @@
 # End to end, as an integrator commissions an emulated cell: `cellctl emulate` publishes the three
 # devices' pseudo-terminals, then the commissioning commands talk to them through the cell config —
 # SCU status and a move, spindle start/status/stop, encoder status — and Ctrl-C ends the emulation
-# cleanly (exit 0, published links removed). A command the SCU session refuses exits 1.
+# cleanly (exit 0, published links removed). A command the SCU session refuses exits 1. A second
+# `cellctl emulate` of the same cell is refused (exit 4, naming the live one) and leaves the links alone.
 #
 # usage: emulate_commissioning_test.sh <cellctl binary> <cell config>
 # The config is copied with publish_as and the encoder's EEPROM state file moved into a fresh temp
@@ -72,6 +73,20 @@ done
 $ready || fail "cellctl emulate did not publish ${links[*]} within 10 s"
 for l in "${links[@]}"; do
   [[ -c $(readlink "$l") ]] || fail "$l points to $(readlink "$l"), which is not a character device"
+done
+
+# --- a second emulation of the same cell is refused, and the first one's links stay ----------------
+targets=()
+for l in "${links[@]}"; do targets+=("$(readlink "$l")"); done
+second_rc=0
+second_out=$(timeout 10 "$cellctl" -c "$config" emulate 2>&1) || second_rc=$?
+printf '$ cellctl emulate (a second one)   (exit %d)\n%s\n' "$second_rc" "$second_out"
+[[ $second_rc -eq 4 ]] || fail "a second cellctl emulate on the same publish_as exited $second_rc, expected 4"
+grep -q "$work/scu is published by another live \`cellctl emulate\` (pid $emulate_pid)" <<<"$second_out" ||
+  fail "the second cellctl emulate did not say which live emulation holds $work/scu"
+for i in "${!links[@]}"; do
+  [[ $(readlink "${links[$i]}") == "${targets[$i]}" ]] ||
+    fail "${links[$i]} was replaced or removed by the refused second emulation"
 done
 
 # --- the commissioning commands --------------------------------------------------------------------

@@ -29,7 +29,8 @@ std::string spindle(int status_poll_ms, int reply_timeout_ms) {
          ", reply_timeout_ms: " + std::to_string(reply_timeout_ms) + "}\n";
 }
 std::string encoder(int lost_after_ms) {
-  return "encoder: {mm_per_revolution: 4, lost_after_ms: " + std::to_string(lost_after_ms) + "}\n";
+  return "encoder: {mm_per_revolution: 4, time_base: steps_per_10ms, lost_after_ms: " +
+         std::to_string(lost_after_ms) + "}\n";
 }
 std::string silence(int ms) {
   return "limits: {link_silence_ms: " + std::to_string(ms) + "}\n";
@@ -89,6 +90,41 @@ TEST(CellLinkSilence, WithTheDefaultSilenceTheDeviceSectionIsBlamed) {
                "cell.yaml:8:10: spindle: the normal reply spacing (status poll 250 ms + reply time-out "
                "100 ms = 350 ms) must be shorter than limits.link_silence_ms (300 ms, the default): a "
                "healthy spindle would be taken for a silent link");
+}
+
+// The encoder's 16-bit velocity saturates at 32767: with 2048 counts/mm (8192 steps, 4 mm per
+// revolution) the overspeed limit 25 mm/s is 51200 steps/s, which steps_per_s cannot carry.
+TEST(CellEncoderTimeBase, AVelocityTimeBaseThatSaturatesBelowTheOverspeedLimitIsRefused) {
+  const std::string axes_scu = kAxes + scu(100, 150);
+  expect_error(
+      axes_scu + "encoder: {mm_per_revolution: 4, time_base: steps_per_s}\n",
+      "cell.yaml:8:44: encoder.time_base: the overspeed limit 25 mm/s is 51200 units/s = 51200 in "
+      "steps_per_s, beyond the encoder's 16-bit velocity (at most 32767, manual 4.3.4/4.3.5): it would "
+      "saturate and an overspeed would go unseen; time bases that fit (value at the limit): "
+      "steps_per_100ms (5120), steps_per_10ms (512), rpm (375)");
+  // Not given, the manual's default (steps per second) is the one refused, at the section.
+  expect_error(axes_scu + "encoder: {mm_per_revolution: 4}\n",
+               "cell.yaml:8:10: encoder: time_base steps_per_s (the default): the overspeed limit 25 mm/s is "
+               "51200 units/s = 51200 in steps_per_s, beyond the encoder's 16-bit velocity (at most 32767, "
+               "manual 4.3.4/4.3.5): it would saturate and an overspeed would go unseen; time bases that fit "
+               "(value at the limit): steps_per_100ms (5120), steps_per_10ms (512), rpm (375)");
+  // A lower limit fits: 15 mm/s is 30720 steps/s.
+  EXPECT_NO_THROW((void)parse(kAxes + "limits: {overspeed_mm_s: 15}\n" + scu(100, 150) +
+                              "encoder: {mm_per_revolution: 4, time_base: steps_per_s}\n"));
+  // Class 2 and Scancon 2.1 have no velocity: nothing to saturate.
+  EXPECT_NO_THROW((void)parse(
+      axes_scu + "encoder: {mm_per_revolution: 4, functionality: scancon2.1, time_base: steps_per_s}\n"));
+}
+
+TEST(CellEncoderTimeBase, Scancon30AccelerationMustFitToo) {
+  // 40 mm/s² (the axis default) × 2048 counts/mm over a 1 s sample: 81920 per sample.
+  expect_error(
+      kAxes + "limits: {overspeed_mm_s: 10}\n" + scu(100, 150) +
+          "encoder: {mm_per_revolution: 4, functionality: scancon3.0, time_base: steps_per_s}\n",
+      "cell.yaml:9:71: encoder.time_base: axis acceleration 40 mm/s² changes the velocity by 81920 per "
+      "steps_per_s sample, beyond the encoder's 16-bit acceleration (at most 32767, manual "
+      "4.3.4/4.3.5): it would saturate and an overspeed would go unseen; time bases that fit (value "
+      "at the limit): steps_per_100ms (2048), steps_per_10ms (205), rpm (150)");
 }
 
 }  // namespace

@@ -86,21 +86,26 @@ void read_prm_type(GsdPrmDef& def, const std::string& text, std::size_t line) {
     fail(line, "unreadable parameter type: '" + text + "'");
   const auto paren = type_word.find('(');
   const std::string type = lower(type_word.substr(0, paren));
-  static const std::map<std::string, GsdPrmDef::Type> types{
-      {"bit", GsdPrmDef::Type::bit},           {"bitarea", GsdPrmDef::Type::bit_area},
-      {"unsigned8", GsdPrmDef::Type::unsigned8}, {"unsigned16", GsdPrmDef::Type::unsigned16},
-      {"unsigned32", GsdPrmDef::Type::unsigned32}, {"signed8", GsdPrmDef::Type::signed8},
-      {"signed16", GsdPrmDef::Type::signed16},   {"signed32", GsdPrmDef::Type::signed32}};
+  static const std::map<std::string, GsdPrmDef::Type> types{{"bit", GsdPrmDef::Type::bit},
+                                                            {"bitarea", GsdPrmDef::Type::bit_area},
+                                                            {"unsigned8", GsdPrmDef::Type::unsigned8},
+                                                            {"unsigned16", GsdPrmDef::Type::unsigned16},
+                                                            {"unsigned32", GsdPrmDef::Type::unsigned32},
+                                                            {"signed8", GsdPrmDef::Type::signed8},
+                                                            {"signed16", GsdPrmDef::Type::signed16},
+                                                            {"signed32", GsdPrmDef::Type::signed32}};
   const auto t = types.find(type);
   if (t == types.end()) fail(line, "unknown parameter type '" + type_word + "'");
   def.type = t->second;
   if (def.type == GsdPrmDef::Type::bit || def.type == GsdPrmDef::Type::bit_area) {
     const auto close = type_word.find(')');
-    if (paren == std::string::npos || close == std::string::npos) fail(line, type_word + " needs its bit number(s)");
+    if (paren == std::string::npos || close == std::string::npos)
+      fail(line, type_word + " needs its bit number(s)");
     const std::string bits = type_word.substr(paren + 1, close - paren - 1);
     const auto dash = bits.find('-');
     def.first_bit = static_cast<unsigned>(number(bits.substr(0, dash), line));
-    def.last_bit = dash == std::string::npos ? def.first_bit : static_cast<unsigned>(number(bits.substr(dash + 1), line));
+    def.last_bit = dash == std::string::npos ? def.first_bit
+                                             : static_cast<unsigned>(number(bits.substr(dash + 1), line));
     if (def.last_bit < def.first_bit || def.last_bit > 7) fail(line, "bit numbers outside 0..7");
   }
   def.default_value = number(default_word, line);
@@ -149,7 +154,8 @@ void write(std::vector<std::uint8_t>& data, const GsdRef& ref, const GsdPrmDef& 
   if (def.type == GsdPrmDef::Type::bit || def.type == GsdPrmDef::Type::bit_area) {
     const unsigned bits = def.last_bit - def.first_bit + 1;
     const auto mask = static_cast<std::uint8_t>(((1u << bits) - 1u) << def.first_bit);
-    octet = static_cast<std::uint8_t>((octet & ~mask) | ((static_cast<unsigned>(value) << def.first_bit) & mask));
+    octet =
+        static_cast<std::uint8_t>((octet & ~mask) | ((static_cast<unsigned>(value) << def.first_bit) & mask));
     return;
   }
   const auto u = static_cast<unsigned long long>(value);
@@ -335,7 +341,8 @@ IoLengths io_lengths(std::span<const std::uint8_t> cfg) {
       if (++i >= cfg.size()) throw std::runtime_error("configuration ends before its input length octet");
       io.input += octets(cfg[i], 0x3Fu);
     }
-    if (i + manufacturer >= cfg.size()) throw std::runtime_error("configuration ends inside its manufacturer octets");
+    if (i + manufacturer >= cfg.size())
+      throw std::runtime_error("configuration ends inside its manufacturer octets");
     i += manufacturer;
   }
   return io;

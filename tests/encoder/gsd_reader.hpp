@@ -20,7 +20,16 @@
 namespace cellctl::encoder::testing {
 
 struct GsdPrmDef {
-  enum class Type : std::uint8_t { bit, bit_area, unsigned8, unsigned16, unsigned32, signed8, signed16, signed32 };
+  enum class Type : std::uint8_t {
+    bit,
+    bit_area,
+    unsigned8,
+    unsigned16,
+    unsigned32,
+    signed8,
+    signed16,
+    signed32
+  };
   int id = 0;
   std::string name;
   Type type = Type::unsigned8;
@@ -51,7 +60,7 @@ struct GsdModule {
 
 struct Gsd {
   std::uint16_t ident = 0;
-  std::size_t user_prm_length = 0;  // User_Prm_Data_Len (0 when absent)
+  std::size_t user_prm_length = 0;     // User_Prm_Data_Len (0 when absent)
   std::vector<std::uint8_t> user_prm;  // User_Prm_Data
   std::size_t max_user_prm_length = 0;
   std::vector<GsdConst> consts;  // global Ext_User_Prm_Data_Const

@@ -26,7 +26,7 @@ using namespace std::chrono_literals;
 constexpr std::uint8_t kStation = 5;
 
 const std::pair<const char*, Functionality> kModules[] = {
-    {"Class 1 Multiturn", Functionality::class1},         {"Class 2 Multiturn", Functionality::class2},
+    {"Class 1 Multiturn", Functionality::class1},        {"Class 2 Multiturn", Functionality::class2},
     {"Scancon 2.1 Multiturn", Functionality::scancon21}, {"Scancon 2.2 Multiturn", Functionality::scancon22},
     {"Scancon 3.0 Multiturn", Functionality::scancon30},
 };
@@ -117,7 +117,8 @@ TEST(Gsd, OneModulePerFunctionalityWithItsOwnParameterData) {
     p.functionality = f;
     std::array<std::uint8_t, 64> prm{};
     const std::size_t n = encode_user_prm(p, prm);
-    EXPECT_EQ(user_prm_for(gsd, m), std::vector<std::uint8_t>(prm.begin(), prm.begin() + static_cast<long>(n)))
+    EXPECT_EQ(user_prm_for(gsd, m),
+              std::vector<std::uint8_t>(prm.begin(), prm.begin() + static_cast<long>(n)))
         << name;
   }
 }
@@ -161,9 +162,9 @@ TEST(Gsd, TheEmulatorTakesTheParametersAMasterSetsFromTheFile) {
   EXPECT_EQ(p.time_base, TimeBase::steps_per_10ms);
   EXPECT_EQ(p.code_sequence, CodeSequence::ccw);
   // A value outside the GSD's range is refused before anything is sent.
-  EXPECT_THROW((void)user_prm_for(gsd, gsd.module("Scancon 3.0 Multiturn"),
-                                  {{id_of("Time base for velocity"), 4}}),
-               std::runtime_error);
+  EXPECT_THROW(
+      (void)user_prm_for(gsd, gsd.module("Scancon 3.0 Multiturn"), {{id_of("Time base for velocity"), 4}}),
+      std::runtime_error);
 }
 
 TEST(Gsd, AGlobalUserPrmDataLenBesideTheModulesIsRefusedByTheEncoder) {
@@ -176,9 +177,10 @@ TEST(Gsd, AGlobalUserPrmDataLenBesideTheModulesIsRefusedByTheEncoder) {
   GsdBus bus(gsd, gsd.module("Scancon 2.2 Multiturn"));
   EXPECT_FALSE(bus.start());
   EXPECT_EQ(bus.master.last_startup_fault().kind, profibus::StartupFault::Kind::prm_fault);
-  EXPECT_EQ(bus.emulator.last_prm_reason(),
-            "User_Prm_Data: 64 octets; the encoder takes 2 (Class 1), 18 (Class 2) or 32 (Scancon 2.1/2.2/3.0) "
-            "(manual 4.1)");
+  EXPECT_EQ(
+      bus.emulator.last_prm_reason(),
+      "User_Prm_Data: 64 octets; the encoder takes 2 (Class 1), 18 (Class 2) or 32 (Scancon 2.1/2.2/3.0) "
+      "(manual 4.1)");
 }
 
 TEST(GsdReader, ConfigurationIdentifiersInBothFormats) {
@@ -196,13 +198,16 @@ TEST(GsdReader, RefusesWhatItCannotRead) {
     std::istringstream in(text);
     return read_gsd(in);
   };
-  EXPECT_THROW((void)read("ExtUserPrmData = 1 \"x\"\nFloat32 0 0-1\nEndExtUserPrmData\n"), std::runtime_error);
-  EXPECT_THROW((void)read("ExtUserPrmData = 1 \"x\"\nUnsigned8 9 0-1\nEndExtUserPrmData\n"), std::runtime_error);
+  EXPECT_THROW((void)read("ExtUserPrmData = 1 \"x\"\nFloat32 0 0-1\nEndExtUserPrmData\n"),
+               std::runtime_error);
+  EXPECT_THROW((void)read("ExtUserPrmData = 1 \"x\"\nUnsigned8 9 0-1\nEndExtUserPrmData\n"),
+               std::runtime_error);
   EXPECT_THROW((void)read("Module = \"m\" 0xD1\n1\nSomething = 2\nEndModule\n"), std::runtime_error);
   EXPECT_THROW((void)read("Module = \"m\" 0xD1\n1\n"), std::runtime_error);
   // A constant beyond the module's declared parameter length is the file's error, not silently cut.
-  const Gsd gsd = read("Module = \"m\" 0xD1\n1\nExt_Module_Prm_Data_Len = 1\n"
-                       "Ext_User_Prm_Data_Const(0) = 0x00,0x01\nEndModule\n");
+  const Gsd gsd = read(
+      "Module = \"m\" 0xD1\n1\nExt_Module_Prm_Data_Len = 1\n"
+      "Ext_User_Prm_Data_Const(0) = 0x00,0x01\nEndModule\n");
   EXPECT_THROW((void)user_prm_for(gsd, gsd.module("m")), std::runtime_error);
 }
 

@@ -1,6 +1,7 @@
 // An input that is not a position is never shown as one: a Class 2 input with bit 31 set (the
 // manual says it is always 0) from a third-party slave, and the Ready bit cleared by an encoder
-// alarm, make the snapshot invalid, count as bad exchanges and let the input age run on.
+// alarm, make the snapshot invalid, count as bad exchanges and let the input age run on. Diagnoses
+// without an extended part are counted as read, with what they had.
 #include <gtest/gtest.h>
 
 #include "encoder/cyclic.hpp"
@@ -70,6 +71,12 @@ TEST(EncoderInput, Class2InputWithBit31SetIsInvalidAndCountedNeverAFreshPosition
   EXPECT_TRUE(s.input_fault.empty());
   EXPECT_DOUBLE_EQ(s.position_mm, 30.0);
   EXPECT_LT(s.input_age, 2ms);
+
+  // Its diagnoses carry no extended part: read, and said so — not "not read yet".
+  EXPECT_GE(s.diagnosis_reads, 2u);
+  EXPECT_EQ(s.extended_diag_octets, 0u);
+  EXPECT_TRUE(s.diagnosis_error.empty());
+  EXPECT_FALSE(s.diagnosis);
 }
 
 TEST(EncoderInput, ReadyClearedByAnAlarmMakesTheInputInvalid) {

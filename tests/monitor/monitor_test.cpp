@@ -15,7 +15,7 @@ config::CellConfig cell_config() {
 axes:
   - {name: x, actuator: 1, function: 1, edges_per_mm: 10, min_mm: 0, max_mm: 100, max_speed_mm_s: 20, encoder: true}
   - {name: z, actuator: 2, function: 2, edges_per_mm: 10, min_mm: 0, max_mm: 50, max_speed_mm_s: 10}
-encoder: {mm_per_revolution: 4}
+encoder: {mm_per_revolution: 4, time_base: steps_per_10ms}
 limits: {overspeed_mm_s: 25, disagreement_mm: 2, link_silence_ms: 300, spindle_min_hz: 100, spindle_max_hz: 800,
          spindle_tolerance_hz: 5}
 stops: {fault: 1, link: 0, operator: 2}

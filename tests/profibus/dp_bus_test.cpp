@@ -93,9 +93,10 @@ TEST(DpBus, CfgMismatchIsACfgFault) {
   ASSERT_TRUE(
       bus.run_until([&] { return bus.master.lifecycle() == link::Lifecycle::fault; }, milliseconds(10)));
   EXPECT_EQ(bus.master.last_startup_fault().kind, StartupFault::Kind::cfg_fault);
-  EXPECT_EQ(bus.master.fault_reason(),
-            "slave refused the configuration (Chk_Cfg): Cfg_Fault; its diagnosis: Station_Not_Ready Cfg_Fault "
-            "Prm_Req WD_On, master 2, ident 0x5C01");
+  EXPECT_EQ(
+      bus.master.fault_reason(),
+      "slave refused the configuration (Chk_Cfg): Cfg_Fault; its diagnosis: Station_Not_Ready Cfg_Fault "
+      "Prm_Req WD_On, master 2, ident 0x5C01");
   EXPECT_TRUE(bus.master.diagnosis().standard.cfg_fault);
   EXPECT_NE(bus.slave.state(), DpSlaveState::data_exchange);
   EXPECT_EQ(bus.behaviour.exchanges, 0);

@@ -64,8 +64,8 @@ std::optional<FdlFrame> fresh_slave(const FdlFrame& request) {
 // Steps a master against any slave on the bus's clock until pred() or `limit`; slave_poll returns
 // the slave's next deadline.
 using SlavePoll = std::function<std::optional<link::TimePoint>()>;
-bool drive(Bus& bus, DpMaster& master, const SlavePoll& slave_poll,
-           const std::function<bool()>& pred, link::Duration limit) {
+bool drive(Bus& bus, DpMaster& master, const SlavePoll& slave_poll, const std::function<bool()>& pred,
+           link::Duration limit) {
   const auto deadline = bus.now() + limit;
   while (bus.now() < deadline) {
     if (pred()) return true;
@@ -82,21 +82,24 @@ bool drive(Bus& bus, DpMaster& master, const SlavePoll& slave_poll,
 
 TEST(DpStartup, SetPrmAnsweredRsIsTheSlavesRefusal) {
   Bus bus;
-  ScriptedSlave slave{bus.sim.device(), [](const FdlFrame& req) -> std::optional<FdlFrame> {
+  ScriptedSlave slave{bus.sim.device(),
+                      [](const FdlFrame& req) -> std::optional<FdlFrame> {
                         if (req.dsap == sap::kSetPrm) return make_frame(req.sa, kStation, fc::kNotActivated);
                         return fresh_slave(req);
-                      }, {}};
+                      },
+                      {}};
   bus.master.activate(bus.now());
   ASSERT_TRUE(drive(
-      bus, bus.master, [&] { return slave.poll(); }, [&] { return bus.master.lifecycle() == link::Lifecycle::fault; },
-      milliseconds(10)));
+      bus, bus.master, [&] { return slave.poll(); },
+      [&] { return bus.master.lifecycle() == link::Lifecycle::fault; }, milliseconds(10)));
   const StartupFault& f = bus.master.last_startup_fault();
   EXPECT_EQ(f.kind, StartupFault::Kind::rejected);
   EXPECT_TRUE(f.by_slave());
   EXPECT_EQ(bus.master.dp_state(), DpState::refused);
-  EXPECT_EQ(bus.master.fault_reason(),
-            "slave rejected Set_Prm (RS: service not activated for master 2); its diagnosis: Station_Not_Ready "
-            "Prm_Req, master none, ident 0x5C01");
+  EXPECT_EQ(
+      bus.master.fault_reason(),
+      "slave rejected Set_Prm (RS: service not activated for master 2); its diagnosis: Station_Not_Ready "
+      "Prm_Req, master none, ident 0x5C01");
   EXPECT_EQ(bus.master.health().error_replies, 1u);
 }
 
@@ -105,11 +108,12 @@ TEST(DpStartup, FreezeRequestedOfASlaveWithoutFreezeIsNotSupported) {
   setup.freeze_req = true;
   Bus bus(master_config(), setup);
   // The same bus, but this slave has no Freeze: built beside the fixture's (which is never polled).
-  DpSlave plain(bus.sim.device(), DpSlaveConfig{kStation, kIdent, link::line_8e1(1'500'000), true, false, true},
-                bus.behaviour);
+  DpSlave plain(bus.sim.device(),
+                DpSlaveConfig{kStation, kIdent, link::line_8e1(1'500'000), true, false, true}, bus.behaviour);
   bus.master.activate(bus.now());
   ASSERT_TRUE(drive(
-      bus, bus.master, [&] {
+      bus, bus.master,
+      [&] {
         plain.poll(bus.now());
         return plain.next_deadline();
       },
@@ -117,9 +121,10 @@ TEST(DpStartup, FreezeRequestedOfASlaveWithoutFreezeIsNotSupported) {
   EXPECT_EQ(bus.master.last_startup_fault().kind, StartupFault::Kind::not_supported);
   EXPECT_TRUE(bus.master.last_startup_fault().diagnosis.standard.not_supported);
   EXPECT_EQ(plain.last_prm_reason(), "Freeze/Sync requested but not supported");
-  EXPECT_TRUE(has(bus.master.fault_reason(), "slave refused the parameters: a requested function (Freeze/Sync) "
-                                             "is Not_Supported; its diagnosis: Station_Not_Ready Not_Supported "
-                                             "Prm_Fault Prm_Req"))
+  EXPECT_TRUE(has(bus.master.fault_reason(),
+                  "slave refused the parameters: a requested function (Freeze/Sync) "
+                  "is Not_Supported; its diagnosis: Station_Not_Ready Not_Supported "
+                  "Prm_Fault Prm_Req"))
       << bus.master.fault_reason();
   EXPECT_EQ(bus.behaviour.exchanges, 0);
 }
@@ -148,11 +153,12 @@ TEST(DpStartup, SlaveLockedByAnotherMasterIsLeftAlone) {
   DpMaster other(bus.sim.master(), other_config, slave_setup());
   other.activate(bus.now());
   ASSERT_TRUE(drive(
-      bus, other, [&] {
+      bus, other,
+      [&] {
         bus.slave.poll(bus.now());
         return bus.slave.next_deadline();
-      }, [&] { return other.lifecycle() == link::Lifecycle::active; },
-      milliseconds(10)));
+      },
+      [&] { return other.lifecycle() == link::Lifecycle::active; }, milliseconds(10)));
   bus.run_for(milliseconds(1));  // master 3 falls silent; the slave stays locked to it
 
   bus.master.activate(bus.now());
@@ -163,8 +169,9 @@ TEST(DpStartup, SlaveLockedByAnotherMasterIsLeftAlone) {
   EXPECT_FALSE(f.by_slave());
   EXPECT_TRUE(f.diagnosis.standard.master_lock) << "the master's own bit, set from the diagnosis";
   EXPECT_EQ(f.diagnosis.standard.master_address, 3);
-  EXPECT_TRUE(has(bus.master.fault_reason(), "our master refused to take the slave: it is locked by master 3 "
-                                             "(we are 2); its diagnosis: Master_Lock, master 3, ident 0x5C01"))
+  EXPECT_TRUE(has(bus.master.fault_reason(),
+                  "our master refused to take the slave: it is locked by master 3 "
+                  "(we are 2); its diagnosis: Master_Lock, master 3, ident 0x5C01"))
       << bus.master.fault_reason();
   EXPECT_EQ(bus.slave.state(), DpSlaveState::data_exchange) << "master 3's exchange is untouched";
 
@@ -197,14 +204,17 @@ TEST(DpStartup, SlaveLockedByAnotherMasterIsLeftAlone) {
 TEST(DpStartup, MalformedDiagnosisIsCountedAndTheStartUpBegunAgain) {
   Bus bus;
   int diag_requests = 0;
-  ScriptedSlave slave{bus.sim.device(), [&](const FdlFrame& req) -> std::optional<FdlFrame> {
+  ScriptedSlave slave{bus.sim.device(),
+                      [&](const FdlFrame& req) -> std::optional<FdlFrame> {
                         if (req.dsap == sap::kSlaveDiag) {
                           ++diag_requests;
                           const std::array<std::uint8_t, 3> cut{0x02, 0x05, 0x00};  // 3 of 6 standard octets
-                          return make_sap_frame(req.sa, kStation, fc::kDataLow, sap::kMaster, sap::kSlaveDiag, cut);
+                          return make_sap_frame(req.sa, kStation, fc::kDataLow, sap::kMaster, sap::kSlaveDiag,
+                                                cut);
                         }
                         return fresh_slave(req);
-                      }, {}};
+                      },
+                      {}};
   bus.master.activate(bus.now());
   ASSERT_TRUE(drive(
       bus, bus.master, [&] { return slave.poll(); }, [&] { return diag_requests >= 3; }, milliseconds(100)));
@@ -213,7 +223,8 @@ TEST(DpStartup, MalformedDiagnosisIsCountedAndTheStartUpBegunAgain) {
   EXPECT_EQ(bus.master.stats().diag_reads, 0u) << "nothing of it was taken as a diagnosis";
   EXPECT_GE(bus.master.stats().startups, 3u);
   EXPECT_GE(bus.master.health().error_replies, 2u);
-  EXPECT_EQ(bus.master.restart_reason(), "Slave_Diag reply of 3 octets, 6 expected: not taken, start-up begun again");
+  EXPECT_EQ(bus.master.restart_reason(),
+            "Slave_Diag reply of 3 octets, 6 expected: not taken, start-up begun again");
 }
 
 TEST(DpStartup, DataExchangeReplyOfTheWrongLengthIsNotTakenAsInputs) {
@@ -243,8 +254,8 @@ TEST(DpStartup, DataExchangeReplyOfTheWrongLengthIsNotTakenAsInputs) {
 
   // Once the device answers in shape again, data exchange resumes.
   bus.behaviour.input_length = 8;
-  EXPECT_TRUE(bus.run_until([&] { return bus.in_data_exchange() && bus.master.stats().data_exchanges > good; },
-                            milliseconds(20)));
+  EXPECT_TRUE(bus.run_until(
+      [&] { return bus.in_data_exchange() && bus.master.stats().data_exchanges > good; }, milliseconds(20)));
 }
 
 TEST(DpStartup, InputsTheProfileRejectsAreCountedAndDoNotRefreshTheAge) {
@@ -258,7 +269,8 @@ TEST(DpStartup, InputsTheProfileRejectsAreCountedAndDoNotRefreshTheAge) {
   EXPECT_LT(age_before, milliseconds(1));
   bus.master.reject_input();
   EXPECT_EQ(bus.master.stats().bad_inputs, 1u);
-  EXPECT_GE(bus.master.input_age(bus.now()), milliseconds(1)) << "runs from the input before the rejected one";
+  EXPECT_GE(bus.master.input_age(bus.now()), milliseconds(1))
+      << "runs from the input before the rejected one";
 }
 
 }  // namespace

@@ -144,8 +144,8 @@ TEST(FdlFrame, TypedErrors) {
 
 // An SD2 frame built by hand: LE = 3 + du octets, the FCS over DA..DU.
 std::vector<std::uint8_t> sd2(std::uint8_t da, std::uint8_t sa, std::uint8_t fc, std::size_t du) {
-  std::vector<std::uint8_t> f{kSd2, static_cast<std::uint8_t>(3 + du), static_cast<std::uint8_t>(3 + du), kSd2,
-                              da, sa, fc};
+  std::vector<std::uint8_t> f{
+      kSd2, static_cast<std::uint8_t>(3 + du), static_cast<std::uint8_t>(3 + du), kSd2, da, sa, fc};
   for (std::size_t i = 0; i < du; ++i) f.push_back(static_cast<std::uint8_t>(i));
   std::uint8_t fcs = 0;
   for (std::size_t i = 4; i < f.size(); ++i) fcs = static_cast<std::uint8_t>(fcs + f[i]);

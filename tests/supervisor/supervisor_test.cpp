@@ -36,7 +36,7 @@ axes:
      min_speed_mm_s: 0.8, max_accel_mm_s2: 40, max_jerk_mm_s3: 400, encoder: true}
   - {name: z, actuator: 2, function: 2, edges_per_mm: 10, min_mm: 0, max_mm: 140, max_speed_mm_s: 15,
      min_speed_mm_s: 0.8, max_accel_mm_s2: 30, max_jerk_mm_s3: 300}
-encoder: {mm_per_revolution: 4}
+encoder: {mm_per_revolution: 4, time_base: steps_per_10ms}
 limits: {spindle_min_hz: 100, spindle_max_hz: 800}
 )";
 
