@@ -18,12 +18,15 @@ namespace {
 
 int run_emulate(const GlobalOptions& global) {
   const auto cell = config::load_cell_config(global.config);
-  // Declared before the pseudo-terminals: each path stays locked until its link has been removed.
+  // Every path is locked before any link is published, so a refused emulation publishes nothing;
+  // declared before the pseudo-terminals, each lock is held until its link has been removed.
   std::vector<std::unique_ptr<PublishLock>> locks;
+  for (const auto* port : {cell.scu ? &cell.scu->port : nullptr, cell.spindle ? &cell.spindle->port : nullptr,
+                           cell.encoder ? &cell.encoder->port : nullptr})
+    if (port) locks.push_back(std::make_unique<PublishLock>(port->publish_as));
   std::vector<std::unique_ptr<link::PtyPair>> ptys;
   runtime::DeviceLinks links;
   const auto publish = [&](const char* name, const config::PortConfig& port, link::Link*& side) {
-    locks.push_back(std::make_unique<PublishLock>(port.publish_as));
     auto& pty = *ptys.emplace_back(std::make_unique<link::PtyPair>(name, port.publish_as));
     side = &pty.device();
     fmt::print("{:<8} {} (also {}), {}\n", name, pty.peer_path(), port.publish_as, port.line.describe());
