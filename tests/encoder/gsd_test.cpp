@@ -17,6 +17,7 @@
 #include "link/sim_link.hpp"
 #include "plant/shaft.hpp"
 #include "profibus/dp_master.hpp"
+#include "virtual_line.hpp"
 
 namespace cellctl::encoder::testing {
 namespace {
@@ -78,17 +79,10 @@ struct GsdBus {
   // Until data exchange or a refusal (or 200 ms); true in data exchange with a few inputs read.
   bool start() {
     master.activate(clock.now());
-    const auto deadline = clock.now() + 200ms;
-    while (clock.now() < deadline && master.lifecycle() != link::Lifecycle::fault &&
-           master.stats().data_exchanges < 3) {
-      const auto now = clock.now();
-      (void)master.poll(now);
-      emulator.poll(now);
-      auto next = now + 1ms;
-      for (auto d : {sim.next_delivery(), master.next_deadline(), emulator.next_deadline()})
-        if (d) next = std::min(next, std::max(*d, now + 1us));
-      clock.advance_to(next);
-    }
+    (void)run_line_until(
+        clock, sim,
+        [&] { return master.lifecycle() == link::Lifecycle::fault || master.stats().data_exchanges >= 3; },
+        200ms, master, emulator);
     return master.lifecycle() == link::Lifecycle::active && master.stats().data_exchanges >= 3;
   }
 

@@ -7,6 +7,7 @@
 #include "encoder/cyclic.hpp"
 #include "profibus/dp_slave.hpp"
 #include "session_rig.hpp"
+#include "virtual_line.hpp"
 
 namespace cellctl::encoder {
 namespace {
@@ -38,16 +39,8 @@ TEST(EncoderInput, Class2InputWithBit31SetIsInvalidAndCountedNeverAFreshPosition
   Session session(sim.master(), config);
   session.activate(clock.now());
   const auto run_for = [&](link::Duration d) {
-    const auto end = clock.now() + d;
-    while (clock.now() < end) {
-      const auto now = clock.now();
-      (void)session.poll(now);
-      slave.poll(now);
-      auto next = now + 1ms;
-      for (auto t : {sim.next_delivery(), session.next_deadline(), slave.next_deadline()})
-        if (t) next = std::min(next, std::max(*t, now + 1us));
-      clock.advance_to(next);
-    }
+    (void)testing::run_line_until(
+        clock, sim, [] { return false; }, d, session, slave);
   };
   run_for(20ms);
   const Snapshot& s = session.snapshot();

@@ -1,6 +1,6 @@
 // DpMaster against DpSlave over SimLink at 1.5 Mbaud 8E1 in virtual time: start-up to data
-// exchange, refused parameters/configuration, watchdog, lost and returning slave, Set_Slave_Add,
-// DH → diagnosis, FCB repetition, Global_Control.
+// exchange, refused parameters/configuration (more refusals in dp_startup_failures_test.cpp),
+// watchdog, lost and returning slave, Set_Slave_Add, DH → diagnosis, FCB repetition, Global_Control.
 
 #include <gtest/gtest.h>
 
@@ -70,18 +70,6 @@ TEST(DpBus, PrmVetoKeepsTheSlaveOutOfDataExchange) {
   bus.master.activate(bus.now());
   EXPECT_TRUE(bus.run_until([&] { return bus.in_data_exchange(); }, milliseconds(10)));
   EXPECT_TRUE(bus.slave.last_prm_reason().empty());
-}
-
-TEST(DpBus, WrongIdentIsAPrmFault) {
-  auto setup = slave_setup();
-  setup.ident = 0x0BAD;
-  Bus bus(master_config(), setup);
-  bus.master.activate(bus.now());
-  ASSERT_TRUE(
-      bus.run_until([&] { return bus.master.lifecycle() == link::Lifecycle::fault; }, milliseconds(10)));
-  // The master sees the real ident in the very first diagnosis and does not even parameterise.
-  EXPECT_EQ(bus.master.last_startup_fault().kind, StartupFault::Kind::ident_mismatch);
-  EXPECT_EQ(bus.master.diagnosis().standard.ident, kIdent);
 }
 
 TEST(DpBus, CfgMismatchIsACfgFault) {
