@@ -13,7 +13,8 @@ namespace cellctl::config {
 struct EncoderSection {
   PortConfig port;
   encoder::SessionConfig session;
-  encoder::EmulatorConfig emulator;  // address, functionality and line follow the session's
+  encoder::EmulatorConfig
+      emulator;  // address and line follow the session's; the functionality is the master's choice
 };
 
 // Throws ConfigError (file:line:column: field: rule) on an unknown key, a value out of range or
