@@ -1,5 +1,6 @@
 // The cyclic path allocates nothing: data exchange, a DH diagnosis read, a lost slave with restart
-// and its return, all polled without one heap allocation on either side (after construction).
+// and its return, Data_Exchange replies of the wrong length, all polled without one heap allocation
+// on either side (after construction).
 
 #include <gtest/gtest.h>
 
@@ -34,9 +35,14 @@ TEST(DpNoAllocation, PollNeverAllocates) {
   steps_for(milliseconds(40));
   bus.slave.set_silent(false);
   steps_for(milliseconds(20));
+  bus.behaviour.input_length = 6;  // replies of the wrong length → restart with a formatted reason
+  steps_for(milliseconds(10));
+  bus.behaviour.input_length = 8;
+  steps_for(milliseconds(20));
   const std::size_t after = cellctl::testing::allocation_count();
 
   EXPECT_EQ(after, before);
+  EXPECT_GE(bus.master.stats().bad_inputs, 1u);
   EXPECT_EQ(bus.master.stats().lost, 1u);
   EXPECT_GE(bus.master.stats().startups, 2u);
   EXPECT_TRUE(bus.in_data_exchange());
