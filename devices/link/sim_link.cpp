@@ -21,28 +21,12 @@ std::size_t SimLink::Wire::send(std::span<const std::uint8_t> bytes, TimePoint n
                                 Duration char_time) noexcept {
   std::size_t n = 0;
   TimePoint t = std::max(now, line_free_at_);
-  while (n < bytes.size() && size_ < kCapacity) {
+  while (n < bytes.size() && !bytes_.full()) {
     t += char_time;
-    slots_[(head_ + size_) % kCapacity] = Slot{t, bytes[n++]};
-    ++size_;
+    (void)bytes_.push(bytes[n++], t);
   }
   line_free_at_ = t;
   return n;
-}
-
-std::size_t SimLink::Wire::receive(std::span<std::uint8_t> out, TimePoint now) noexcept {
-  std::size_t n = 0;
-  while (n < out.size() && size_ > 0 && slots_[head_].at <= now) {
-    out[n++] = slots_[head_].byte;
-    head_ = (head_ + 1) % kCapacity;
-    --size_;
-  }
-  return n;
-}
-
-std::optional<TimePoint> SimLink::Wire::next_delivery() const noexcept {
-  if (size_ == 0) return std::nullopt;
-  return slots_[head_].at;
 }
 
 IoResult SimLink::End::read(std::span<std::uint8_t> buffer) {

@@ -4,7 +4,6 @@
 // other end once the line is free and one character time has passed, so telegram timing, reply
 // latency and throughput limits are those of the real baud rate and framing — on the injected clock.
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -13,6 +12,7 @@
 #include "link/clock.hpp"
 #include "link/line_format.hpp"
 #include "link/link.hpp"
+#include "link/timed_byte_queue.hpp"
 
 namespace cellctl::link {
 
@@ -38,18 +38,13 @@ class SimLink {
   class Wire {
    public:
     std::size_t send(std::span<const std::uint8_t> bytes, TimePoint now, Duration char_time) noexcept;
-    std::size_t receive(std::span<std::uint8_t> out, TimePoint now) noexcept;
-    [[nodiscard]] std::optional<TimePoint> next_delivery() const noexcept;
+    std::size_t receive(std::span<std::uint8_t> out, TimePoint now) noexcept {
+      return bytes_.pop_due(out, now);
+    }
+    [[nodiscard]] std::optional<TimePoint> next_delivery() const noexcept { return bytes_.next_due(); }
 
    private:
-    static constexpr std::size_t kCapacity = 4096;  // like a UART FIFO plus driver buffer
-    struct Slot {
-      TimePoint at;
-      std::uint8_t byte;
-    };
-    std::array<Slot, kCapacity> slots_{};
-    std::size_t head_ = 0;
-    std::size_t size_ = 0;
+    TimedByteQueue<4096> bytes_;  // like a UART FIFO plus driver buffer
     TimePoint line_free_at_{};
   };
 
