@@ -7,6 +7,9 @@
 #include <chrono>
 #include <ctime>
 #include <memory>
+#include <string>
+#include <variant>
+#include <vector>
 
 #include "cli/drive.hpp"
 #include "cli/exit_codes.hpp"
@@ -15,6 +18,8 @@
 #include "config/cell_config.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "runtime/cell_run.hpp"
+#include "runtime/fault_rehearsal.hpp"
+#include "runtime/fault_spec.hpp"
 
 namespace cellctl::cli {
 namespace {
@@ -24,7 +29,21 @@ struct RunArgs {
   bool emulate = false;
   bool virtual_time = false;
   std::string journal_dir;
+  std::vector<std::string> faults_text;
+  std::vector<runtime::FaultSpec> faults;  // parsed (and so checked) by the option's validator
 };
+
+// --fault's validator: the text becomes a FaultSpec here, or the reason is CLI11's error (exit 2).
+CLI::Validator fault_spec_validator(std::vector<runtime::FaultSpec>& out) {
+  return CLI::Validator(
+      [&out](std::string& text) -> std::string {
+        auto parsed = runtime::parse_fault_spec(text);
+        if (auto* e = std::get_if<runtime::FaultSpecError>(&parsed)) return "'" + text + "': " + e->reason;
+        out.push_back(std::get<runtime::FaultSpec>(std::move(parsed)));
+        return {};
+      },
+      "DEVICE:KIND@T[+D]");
+}
 
 std::string default_journal_dir(const recipe::Recipe& r) {
   const auto now = std::chrono::system_clock::now();
@@ -33,7 +52,15 @@ std::string default_journal_dir(const recipe::Recipe& r) {
 }
 
 int run_recipe(const GlobalOptions& global, const RunArgs& args) {
+  if (!args.faults.empty() && !args.emulate && !args.virtual_time) {
+    spdlog::error("--fault: faults are rehearsed on emulators only: add --emulate or --virtual-time");
+    return kExitUsage;
+  }
   const auto cell = config::load_cell_config(global.config);
+  if (auto problem = runtime::FaultRehearsal::problem(args.faults, cell)) {
+    spdlog::error("{}", *problem);
+    return kExitUsage;
+  }
   recipe::Recipe recipe;
   try {
     recipe = recipe::load_recipe(args.recipe, cell);
@@ -50,11 +77,14 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
                                    : runtime::RunMode::hardware;
   options.journal_dir = args.journal_dir.empty() ? default_journal_dir(recipe) : args.journal_dir;
   options.trace = global.trace;
+  options.faults = args.faults;
 
   runtime::CellRun run(cell, recipe, options);
   fmt::print("cellctl: running '{}' {} on cell '{}' ({})\n", recipe.name, recipe.version, cell.name,
              to_string(options.mode));
   for (const auto& d : run.links().describe()) fmt::print("  {}\n", d);
+  for (const auto& f : options.faults)
+    fmt::print("  fault to rehearse: {} — {}\n", f.text, runtime::FaultRehearsal::what(f));
   fmt::print("  run record: {}/journal.jsonl, plot: {}/plot.svg\n", options.journal_dir.string(),
              options.journal_dir.string());
 
@@ -88,7 +118,8 @@ void add_run_command(CLI::App& app, Commands& commands) {
       "run", "Run a recipe on the cell (hardware, emulators on pseudo-terminals, or virtual time)");
   sub->footer(
       "Devices whose port is 'emulated' in the cell config run as emulators inside cellctl.\n"
-      "Exit status: 0 complete, 1 stopped or aborted by a fault or a failed step, 3 bad config or recipe\n"
+      "Exit status: 0 complete, 1 stopped or aborted by a fault or a failed step, 2 bad command line (a bad\n"
+      "--fault says why), 3 bad config or recipe "
       "(nothing moved), 4 a port could not be opened, 130 stopped by Ctrl-C.\n"
       "Ctrl-C once: operator stop (category from stops.operator; 2 holds the cell); twice: emergency stop.\n"
       "SIGTERM: a controlled stop (category 1).");
@@ -101,6 +132,14 @@ void add_run_command(CLI::App& app, Commands& commands) {
       ->excludes(emulate);
   sub->add_option("--journal", args->journal_dir,
                   "Directory for the run record (default runs/<recipe>-<time>)");
+  sub->add_option("--fault", args->faults_text,
+                  "Rehearse a fault (repeatable; --emulate or --virtual-time only): DEVICE:KIND@T[+D] puts\n"
+                  "KIND on DEVICE T seconds after the run starts, for D seconds (for ever without +D).\n"
+                  "DEVICE: scu, spindle, encoder. KIND: silent (the line carries nothing), disconnect\n"
+                  "(the port is lost), corrupt (bits flipped), garbage (random bytes), delay=MS (replies\n"
+                  "MS ms late), error (the device's own fault: SCU actuator faults, spindle over-\n"
+                  "temperature 31, encoder position alarm). The journal records each fault's start and end.")
+      ->check(fault_spec_validator(args->faults));
   commands.on(sub, [&commands, args] { return run_recipe(commands.global, *args); });
 }
 

@@ -74,12 +74,21 @@ struct Sample {
 struct Note {
   Text text;
 };
+// A fault put in place on purpose (cellctl run --fault), when it begins and when it ends.
+struct InjectedFault {
+  std::string_view device;  // scu, spindle, encoder
+  std::string_view kind;    // silent, disconnect, corrupt, garbage, delay, error
+  std::string_view spec;    // as the operator wrote it, e.g. "scu:silent@2+1"
+  std::string_view what;    // what the fault does, in words
+  bool ended = false;
+  bool still_active = false;  // ended: only because the run ended while the fault was in place
+};
 struct RunEnded {
   std::string_view outcome;  // complete, stopped, aborted
 };
 
 using Payload = std::variant<RunStarted, StateChanged, StepStarted, StepEnded, Command, Fault, FaultCleared,
-                             Sample, Note, RunEnded>;
+                             Sample, Note, InjectedFault, RunEnded>;
 
 struct Event {
   double t = 0.0;  // seconds since the run started (the loop's clock: real or virtual)

@@ -72,6 +72,14 @@ struct Fill {
     j["event"] = "note";
     j["text"] = str(e.text.view());
   }
+  void operator()(const InjectedFault& e) const {
+    j["event"] = e.ended ? "fault_injection_ended" : "fault_injected";
+    j["device"] = str(e.device);
+    j["kind"] = str(e.kind);
+    j["spec"] = str(e.spec);
+    j["what"] = str(e.what);
+    if (e.still_active) j["still_active"] = true;
+  }
   void operator()(const RunEnded& e) const {
     j["event"] = "run_ended";
     j["outcome"] = str(e.outcome);

@@ -4,18 +4,20 @@
 
 namespace cellctl::runtime {
 
-CellLinks::CellLinks(const config::CellConfig& cell, RunMode mode, const link::Clock& clock, bool trace)
+CellLinks::CellLinks(const config::CellConfig& cell, RunMode mode, const link::Clock& clock, bool trace,
+                     std::bitset<cell::kDevices> fault_lines)
     : clock_(clock),
       mode_(mode),
       trace_(trace),
+      fault_lines_(fault_lines),
       sink_(mode == RunMode::virtual_time ? wire::WhenFull::wait : wire::WhenFull::drop_and_count) {
-  if (cell.scu) master_.scu = open("scu", cell.scu->port, device_.scu);
-  if (cell.spindle) master_.spindle = open("spindle", cell.spindle->port, device_.spindle);
-  if (cell.encoder) master_.encoder = open("encoder", cell.encoder->port, device_.encoder);
+  if (cell.scu) master_.scu = open(cell::Device::scu, cell.scu->port, device_.scu);
+  if (cell.spindle) master_.spindle = open(cell::Device::spindle, cell.spindle->port, device_.spindle);
+  if (cell.encoder) master_.encoder = open(cell::Device::encoder, cell.encoder->port, device_.encoder);
 }
 
-link::Link* CellLinks::open(const std::string& name, const config::PortConfig& port,
-                            link::Link*& device_side) {
+link::Link* CellLinks::open(cell::Device device, const config::PortConfig& port, link::Link*& device_side) {
+  const std::string name = cell::to_string(device);
   link::Link* master = nullptr;
   if (mode_ == RunMode::virtual_time) {
     auto& sim = *sims_.emplace_back(std::make_unique<link::SimLink>(clock_, port.line, name));
@@ -32,6 +34,13 @@ link::Link* CellLinks::open(const std::string& name, const config::PortConfig& p
   } else {
     master = owned_.emplace_back(link::SerialLink::open(port.port, port.line)).get();
     descriptions_.push_back(fmt::format("{}: {}", name, master->describe()));
+  }
+  if (const auto d = static_cast<std::size_t>(device); fault_lines_.test(d)) {
+    // Seeded per device: the same rehearsal corrupts the same bits every time.
+    auto faulty =
+        std::make_unique<link::FaultInjectingLink>(*master, clock_, static_cast<std::uint32_t>(d + 1));
+    fault_links_[d] = faulty.get();
+    master = owned_.emplace_back(std::move(faulty)).get();
   }
   if (trace_)
     master = owned_.emplace_back(std::make_unique<link::TracingLink>(*master, clock_, sink_, name)).get();

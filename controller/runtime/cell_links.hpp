@@ -2,14 +2,20 @@
 // The byte links of a run, by mode: in virtual time every device is an emulator on a SimLink; in an
 // emulated run every device is an emulator on a pseudo-terminal that the sessions open through
 // SerialLink (the same code path as hardware); on hardware each device's configured port is opened,
-// and a device whose port is "emulated" gets its emulator on a pseudo-terminal.
+// and a device whose port is "emulated" gets its emulator on a pseudo-terminal. A device named in
+// `fault_lines` gets a FaultInjectingLink on the session's end, for a fault rehearsal (below the
+// trace, so the trace shows what the session sent and received).
 
+#include <array>
+#include <bitset>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "cell/cell_state.hpp"
 #include "config/cell_config.hpp"
 #include "link/clock.hpp"
+#include "link/fault_injecting_link.hpp"
 #include "link/pty_pair.hpp"
 #include "link/serial_link.hpp"
 #include "link/sim_link.hpp"
@@ -27,10 +33,15 @@ enum class RunMode { hardware, emulated, virtual_time };
 class CellLinks {
  public:
   // Throws link::LinkError naming the port when one cannot be opened.
-  CellLinks(const config::CellConfig& cell, RunMode mode, const link::Clock& clock, bool trace);
+  CellLinks(const config::CellConfig& cell, RunMode mode, const link::Clock& clock, bool trace,
+            std::bitset<cell::kDevices> fault_lines = {});
 
   [[nodiscard]] DeviceLinks master() const noexcept { return master_; }
   [[nodiscard]] DeviceLinks device() const noexcept { return device_; }
+  // The fault-injecting link of each device (nullptr where `fault_lines` did not name it).
+  [[nodiscard]] const std::array<link::FaultInjectingLink*, cell::kDevices>& fault_links() const noexcept {
+    return fault_links_;
+  }
   [[nodiscard]] bool any_emulated() const noexcept {
     return device_.scu || device_.spindle || device_.encoder;
   }
@@ -38,11 +49,13 @@ class CellLinks {
   [[nodiscard]] std::vector<std::string> describe() const;
 
  private:
-  link::Link* open(const std::string& name, const config::PortConfig& port, link::Link*& device_side);
+  link::Link* open(cell::Device device, const config::PortConfig& port, link::Link*& device_side);
 
   const link::Clock& clock_;
   RunMode mode_;
   bool trace_;
+  std::bitset<cell::kDevices> fault_lines_;
+  std::array<link::FaultInjectingLink*, cell::kDevices> fault_links_{};
   link::LogTraceSink sink_;  // in virtual time it waits for its writer: nothing real-time to protect
   std::vector<std::unique_ptr<link::SimLink>> sims_;
   std::vector<std::unique_ptr<link::PtyPair>> ptys_;

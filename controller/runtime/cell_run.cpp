@@ -42,7 +42,13 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
     waiter_ = std::make_unique<loop::VirtualWaiter>(virtual_clock_);
   else
     waiter_ = std::make_unique<loop::MonotonicWaiter>();
-  links_ = std::make_unique<CellLinks>(cell, options_.mode, clock_, options_.trace);
+  if (!options_.faults.empty()) {
+    if (options_.mode == RunMode::hardware)
+      throw std::invalid_argument("faults are rehearsed on emulators only (--emulate or --virtual-time)");
+    rehearsal_ = std::make_unique<FaultRehearsal>(options_.faults, cell);
+  }
+  links_ = std::make_unique<CellLinks>(cell, options_.mode, clock_, options_.trace,
+                                       rehearsal_ ? rehearsal_->lines() : std::bitset<cell::kDevices>{});
   if (links_->any_emulated()) emulated_ = std::make_unique<EmulatedCell>(cell, links_->device());
   devices_ = std::make_unique<CellDevices>(cell, links_->master());
   supervisor_ = std::make_unique<supervisor::Supervisor>(
@@ -59,7 +65,9 @@ CellRun::~CellRun() {
 void CellRun::run_emulator_thread() {
   // Emulated devices behind pseudo-terminals answer like hardware, on their own time.
   while (!emulators_stop_.load()) {
-    emulated_->poll(real_clock_.now());
+    const auto now = real_clock_.now();
+    if (rehearsal_) rehearsal_->drive_emulators(now, *emulated_);
+    emulated_->poll(now);
     std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
 }
@@ -166,11 +174,15 @@ void CellRun::publish_status(double t) {
 void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
   const double t = link::to_seconds(now - start_);
   if (hook_) hook_(t, *this);
+  if (rehearsal_) rehearsal_->post_journal(now, t, journal_);
   take_commands(t, interrupt);
   {  // the stages, timed back to back; the last ends with this block
     auto stages = loop_->stage_sequence();
     stages.begin(index(ControlStage::read_sessions));
-    if (emulated_ && options_.mode == RunMode::virtual_time) emulated_->poll(now);
+    if (emulated_ && options_.mode == RunMode::virtual_time) {
+      if (rehearsal_) rehearsal_->drive_emulators(now, *emulated_);
+      emulated_->poll(now);
+    }
     devices_->poll(now);
 
     stages.begin(index(ControlStage::state));
@@ -215,11 +227,12 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
         {.fifo_priority = cell_.loop.priority, .lock_memory = true, .cpu = cell_.loop.cpu});
     realtime_warnings_ = report.warnings();
   }
+  const auto wall_start = std::chrono::steady_clock::now();
+  start_ = clock_.now();
+  if (rehearsal_) rehearsal_->start(start_, links_->fault_links());
   if (emulated_ && options_.mode != RunMode::virtual_time)
     emulator_thread_ = std::thread([this] { run_emulator_thread(); });
 
-  const auto wall_start = std::chrono::steady_clock::now();
-  start_ = clock_.now();
   devices_->activate(start_);
   (void)supervisor_->command(supervisor::Command::start, "cellctl run", 0.0);
   loop_->run([this, &interrupt](link::TimePoint now, std::uint64_t) { cycle(now, interrupt); }, loop_stop_);
@@ -228,6 +241,7 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   if (emulator_thread_.joinable()) emulator_thread_.join();
 
   RunResult r;
+  if (rehearsal_) rehearsal_->post_run_end(link::to_seconds(clock_.now() - start_), journal_);
   report_devices(link::to_seconds(clock_.now() - start_), r);
   r.final_state = supervisor_->state();
   r.failure = std::string(supervisor_->failure().view());

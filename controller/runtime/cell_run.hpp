@@ -27,6 +27,8 @@
 #include "runtime/cell_devices.hpp"
 #include "runtime/cell_links.hpp"
 #include "runtime/emulated_cell.hpp"
+#include "runtime/fault_rehearsal.hpp"
+#include "runtime/fault_spec.hpp"
 #include "runtime/status_view.hpp"
 #include "supervisor/supervisor.hpp"
 
@@ -38,6 +40,7 @@ struct RunOptions {
   bool trace = false;
   supervisor::SupervisorSettings supervisor;  // mode and sample period are filled in from the config
   double shutdown_timeout_s = 5.0;            // for sessions to close (RA, spindle stop) at the end
+  std::vector<FaultSpec> faults;              // to rehearse (emulated and virtual-time runs only)
 };
 
 struct RunResult {
@@ -55,7 +58,8 @@ struct RunResult {
 
 class CellRun {
  public:
-  // Throws config::ConfigError, link::LinkError, std::invalid_argument (set-up problems: before motion).
+  // Throws config::ConfigError, link::LinkError, std::invalid_argument (set-up problems: before motion;
+  // faults to rehearse on hardware or on a device the cell does not have).
   CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, RunOptions options);
   ~CellRun();
   CellRun(const CellRun&) = delete;
@@ -101,6 +105,7 @@ class CellRun {
   link::VirtualClock virtual_clock_;
   const link::Clock& clock_;
   std::unique_ptr<loop::CycleWaiter> waiter_;
+  std::unique_ptr<FaultRehearsal> rehearsal_;
   std::unique_ptr<CellLinks> links_;
   std::unique_ptr<EmulatedCell> emulated_;
   std::unique_ptr<CellDevices> devices_;

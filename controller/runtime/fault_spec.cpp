@@ -34,16 +34,17 @@ std::optional<cell::Device> device_named(std::string_view s) {
 // KIND: the line fault, nullopt for `error`; an error text when it is neither.
 std::variant<std::optional<link::LinkFault>, FaultSpecError> kind_named(std::string_view s) {
   using link::LinkFaultKind;
-  for (const auto k : {LinkFaultKind::silent, LinkFaultKind::disconnect, LinkFaultKind::corrupt,
-                       LinkFaultKind::garbage})
+  for (const auto k :
+       {LinkFaultKind::silent, LinkFaultKind::disconnect, LinkFaultKind::corrupt, LinkFaultKind::garbage})
     if (s == link::to_string(k)) return std::optional(link::LinkFault{k, {}});
   if (s == "error") return std::optional<link::LinkFault>{};
   if (s == "delay") return FaultSpecError{"delay needs its time in milliseconds: delay=MS, e.g. delay=300"};
   if (s.starts_with("delay=")) {
     const auto ms = decimal(s.substr(6));
     if (!ms || *ms <= 0.0 || *ms > kMaxDelayMs)
-      return FaultSpecError{fmt::format("delay '{}': MS must be a number of milliseconds above 0 and at most {:g}",
-                                        s.substr(6), kMaxDelayMs)};
+      return FaultSpecError{
+          fmt::format("delay '{}': MS must be a number of milliseconds above 0 and at most {:g}", s.substr(6),
+                      kMaxDelayMs)};
     return std::optional(link::LinkFault{LinkFaultKind::delay, link::milliseconds(*ms)});
   }
   return FaultSpecError{

@@ -347,6 +347,7 @@ void Emulator::start_function(std::size_t f, Direction d, bool soft) {
     (target >= actuators_[i].position_mm() ? relay_out_[i] : relay_in_[i]) += 1;
     actuators_[i].move_to(target, speed, soft);
     owner_[i] = static_cast<int>(f);
+    if (lasting_fault_[i]) inject_actuator_fault(a);
   }
 }
 
@@ -377,6 +378,12 @@ void Emulator::inject_actuator_fault(int a) {
   raise_error(error_bit::actuator_fault(a));
   ++actuator_errors_[index(a)];
   actuators_[index(a)].stop(false);
+}
+
+void Emulator::set_actuator_fault(int a, bool on) {
+  if (!present(a)) throw std::out_of_range("scu emulator: no actuator " + std::to_string(a));
+  lasting_fault_[index(a)] = on;
+  if (on) inject_actuator_fault(a);
 }
 
 void Emulator::inject_over_current() {

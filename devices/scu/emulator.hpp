@@ -40,13 +40,18 @@ class Emulator {
   [[nodiscard]] plant::Actuator& actuator(int a);
   [[nodiscard]] const plant::Actuator& actuator(int a) const;
   [[nodiscard]] std::int32_t position_edges(int a) const;
+  [[nodiscard]] bool has_actuator(int a) const noexcept { return present(a); }
   [[nodiscard]] Status1 status1(int a) const;
 
   // Fault injection.
   void drop_next_replies(int n) noexcept { drop_replies_ = n; }
   void set_reply_delay(link::Duration d) noexcept { reply_delay_ = d; }
   void corrupt_next_reply_crc() noexcept { corrupt_next_ = true; }
-  void inject_actuator_fault(int a);              // bit 15+a-1, actuator a fast-stopped
+  void inject_actuator_fault(int a);  // bit 15+a-1, actuator a fast-stopped
+  // A lasting defect of actuator a (a broken sensor, a short): its fault is injected now and again at
+  // every motion start while `on` — the bit is "reset with next motion" and set again at once, so the
+  // actuator does not move. Throws std::out_of_range for an actuator the config does not have.
+  void set_actuator_fault(int a, bool on);
   void inject_over_current();                     // bit 14, every actuator fast-stopped
   void inject_position_difference(int function);  // bit 21, the function's actuators fast-stopped
 
@@ -135,6 +140,7 @@ class Emulator {
   int drop_replies_ = 0;
   link::Duration reply_delay_{};
   bool corrupt_next_ = false;
+  std::array<bool, kActuatorCount> lasting_fault_{};
   static constexpr std::size_t kOutgoing = 4;
   std::array<Outgoing, kOutgoing> outgoing_{};
   std::size_t outgoing_count_ = 0;

@@ -55,7 +55,8 @@ TEST(FaultSpec, SaysWhatIsWrongWithBadText) {
   EXPECT_EQ(reason("silent@2:scu"), reason("scu"));
   EXPECT_EQ(reason("plc:silent@1"), "unknown device 'plc' (scu, spindle, encoder)");
   EXPECT_EQ(reason("SCU:silent@1"), "unknown device 'SCU' (scu, spindle, encoder)");
-  EXPECT_EQ(reason("scu:quiet@1"), "unknown kind 'quiet' (silent, disconnect, corrupt, garbage, delay=MS, error)");
+  EXPECT_EQ(reason("scu:quiet@1"),
+            "unknown kind 'quiet' (silent, disconnect, corrupt, garbage, delay=MS, error)");
   EXPECT_EQ(reason("scu:@1"), "unknown kind '' (silent, disconnect, corrupt, garbage, delay=MS, error)");
   EXPECT_EQ(reason("scu:delay@1"), "delay needs its time in milliseconds: delay=MS, e.g. delay=300");
   for (const auto* bad : {"scu:delay=0@1", "scu:delay=-5@1", "scu:delay=abc@1", "scu:delay=@1",
@@ -68,8 +69,9 @@ TEST(FaultSpec, SaysWhatIsWrongWithBadText) {
   for (const auto* bad : {"scu:silent@-1", "scu:silent@x", "scu:silent@1s", "scu:silent@nan",
                           "scu:silent@inf", "scu:silent@86401", "scu:silent@1.2.3", "scu:silent@+1"})
     EXPECT_NE(reason(bad).find("T must be the seconds after the run starts"), std::string::npos) << bad;
-  EXPECT_EQ(reason("scu:silent@1+0"),
-            "duration '0': D must be seconds above 0 and at most 86400 (leave out +D for a fault that lasts)");
+  EXPECT_EQ(
+      reason("scu:silent@1+0"),
+      "duration '0': D must be seconds above 0 and at most 86400 (leave out +D for a fault that lasts)");
   for (const auto* bad : {"scu:silent@1+", "scu:silent@1+-2", "scu:silent@1+2+3", "scu:silent@1+1 "})
     EXPECT_NE(reason(bad).find("D must be seconds above 0"), std::string::npos) << bad;
 }

@@ -238,6 +238,32 @@ TEST(ScuEmulator, FaultInjectionSetsTheManualsBitsAndStops) {
   EXPECT_GE(m.clock.now() - t0, 50ms);
 }
 
+TEST(ScuEmulator, ALastingActuatorFaultStopsEveryMotionStartUntilItIsGone) {
+  RawMaster m;
+  m.open_remote();
+  ASSERT_EQ(m.status_of(TransferRequest{0x3021, RawMaster::le<std::int32_t>(15000)}), Status::ack);
+  m.emulator.set_actuator_fault(1, true);
+  EXPECT_TRUE(m.emulator.error_word().actuator_fault(1));
+  // The RE is accepted (the manual has no refusal for it) but the fault comes back at once.
+  ASSERT_EQ(m.status_of(ExecuteRequest{0, 9, kFastStartStop}), Status::ack);
+  m.idle(50ms);
+  EXPECT_FALSE(m.emulator.actuator(1).active());
+  EXPECT_FALSE(m.emulator.status1(1).motion_active);
+  EXPECT_TRUE(m.emulator.error_word().actuator_fault(1));
+  EXPECT_NEAR(m.emulator.actuator(1).position_mm(), 0.0, 1e-9);
+  EXPECT_FALSE(m.emulator.error_word().actuator_fault(2)) << "only the faulty actuator";
+
+  m.emulator.set_actuator_fault(1, false);  // repaired: the next motion resets the bit and moves
+  EXPECT_TRUE(m.emulator.error_word().actuator_fault(1)) << "the bit stays until the next motion";
+  ASSERT_EQ(m.status_of(ExecuteRequest{0, 9, kFastStartStop}), Status::ack);
+  m.idle(50ms);
+  EXPECT_FALSE(m.emulator.error_word().actuator_fault(1));
+  EXPECT_TRUE(m.emulator.actuator(1).active());
+  EXPECT_THROW(m.emulator.set_actuator_fault(3, true), std::out_of_range);
+  EXPECT_FALSE(m.emulator.has_actuator(3));
+  EXPECT_TRUE(m.emulator.has_actuator(2));
+}
+
 TEST(ScuEmulator, SynchronizedFunctionMovesTogetherAndGuardsThePositionDifference) {
   auto config = scp11_emulator(2, testing::test_physics(), 100.0);
   config.actuators[1].physics.max_speed_mm_s = 10.0;
