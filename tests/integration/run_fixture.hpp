@@ -46,6 +46,7 @@ class RunFixture : public ::testing::Test {
     o.mode = runtime::RunMode::virtual_time;
     o.journal_dir = dir_ / "journal";
     o.supervisor = supervisor_settings_;
+    o.faults = faults_;
     run_ = std::make_unique<runtime::CellRun>(cell_, recipe_, o);
     return *run_;
   }
@@ -72,6 +73,7 @@ class RunFixture : public ::testing::Test {
   std::unique_ptr<runtime::CellRun> run_;
   std::atomic<bool> interrupt_{false};
   supervisor::SupervisorSettings supervisor_settings_;  // e.g. move.max_corrections, before make_run()
+  std::vector<runtime::FaultSpec> faults_;              // to rehearse, before make_run()
 };
 
 }  // namespace cellctl::testing
