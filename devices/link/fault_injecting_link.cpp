@@ -38,20 +38,20 @@ std::optional<LinkFault> FaultInjectingLink::active(TimePoint now) const noexcep
 IoResult FaultInjectingLink::read(std::span<std::uint8_t> buffer) {
   const TimePoint now = clock_.now();
   const auto fault = active(now);
-  const auto kind = fault ? std::optional(fault->kind) : std::nullopt;
-  if (kind == LinkFaultKind::silent || kind == LinkFaultKind::disconnect) {
+  const auto acting = [&fault](LinkFaultKind k) { return fault && fault->kind == k; };
+  if (acting(LinkFaultKind::silent) || acting(LinkFaultKind::disconnect)) {
     counters_.lost += delayed_.size();
     delayed_.clear();
     const auto r = discard_inbound();
     if (!r.ok()) return r;
-    return kind == LinkFaultKind::silent ? IoResult{} : port_gone();
+    return acting(LinkFaultKind::silent) ? IoResult{} : port_gone();
   }
-  const std::size_t injected = kind == LinkFaultKind::garbage ? garbage(buffer, inbound_, now) : 0;
+  const std::size_t injected = acting(LinkFaultKind::garbage) ? garbage(buffer, inbound_, now) : 0;
   const auto rest = buffer.subspan(injected);
   std::size_t n = 0;
-  if (kind == LinkFaultKind::delay || delayed_.size() > 0) {
+  if (acting(LinkFaultKind::delay) || delayed_.size() > 0) {
     // Replies held back by a delay that has ended still come first, in order: newer bytes queue behind.
-    const bool delaying = kind == LinkFaultKind::delay;
+    const bool delaying = acting(LinkFaultKind::delay);
     const auto r = hold_inbound(delaying ? now + fault->delay : now, delaying);
     if (!r.ok()) return r;
     n = delayed_.pop_due(rest, now);
@@ -60,7 +60,7 @@ IoResult FaultInjectingLink::read(std::span<std::uint8_t> buffer) {
     if (!r.ok()) return r;
     n = r.count;
   }
-  if (kind == LinkFaultKind::corrupt) corrupt(rest.first(n), inbound_);
+  if (acting(LinkFaultKind::corrupt)) corrupt(rest.first(n), inbound_);
   return {injected + n};
 }
 
