@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cerrno>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <numeric>
 #include <thread>
 #include <vector>
@@ -117,6 +119,29 @@ TEST(PtySerial, PeerCanReopenAfterClosing) {
   const std::vector<std::uint8_t> b{0x02, 0x03};
   ASSERT_EQ(pty.device().write(b).count, 2u);
   EXPECT_EQ(receive(*again, 2), b);
+}
+
+TEST(PtySerial, ReadsOnlyWhatHasArrivedAndNothingFromAnEmptyLine) {
+  PtyPair pty("test");
+  auto s = SerialLink::open(pty.peer_path(), line_8n1(38400));
+  std::array<std::uint8_t, 16> buf{};
+  const auto empty = s->read(buf);
+  EXPECT_TRUE(empty.ok());
+  EXPECT_EQ(empty.count, 0u);
+  const std::vector<std::uint8_t> b{0x01, 0x02, 0x03};
+  ASSERT_EQ(pty.device().write(b).count, 3u);
+  EXPECT_EQ(receive(*s, 3), b) << "bytes that arrive are read (FIONREAD counts them)";
+  EXPECT_EQ(s->read(buf).count, 0u);
+}
+
+TEST(PtySerial, APortWhoseOtherSideWentAwayReadsClosed) {
+  auto pty = std::make_unique<PtyPair>("test");
+  auto s = SerialLink::open(pty->peer_path(), line_8n1(38400));
+  pty.reset();  // the emulator's side closes: the kernel hangs the terminal up, as on an unplugged adapter
+  std::array<std::uint8_t, 16> buf{};
+  const auto r = s->read(buf);
+  EXPECT_EQ(r.status, IoStatus::closed);
+  EXPECT_EQ(r.error_number, EIO);
 }
 
 }  // namespace
