@@ -79,8 +79,10 @@ Status1 Emulator::status1(int a) const {
 void Emulator::poll(link::TimePoint now) {
   if (last_poll_ && now > *last_poll_) step_plant(now - *last_poll_);
   if (!last_poll_ || now > *last_poll_) last_poll_ = now;
-  run_watchdog(now);
+  // What has arrived is read before the watchdog is judged: when this thread was kept off the CPU,
+  // an RC that came in time must not count as missing.
   receive(now);
+  run_watchdog(now);
   flush(now);
 }
 

@@ -114,6 +114,20 @@ TEST(ScuEmulator, KeepAliveSilenceStopsTheMotionAndSetsBit22) {
   EXPECT_FALSE(m.emulator.error_word().remote_timeout()) << "RO clears bit 22";
 }
 
+TEST(ScuEmulator, AnRcThatArrivedInTimeKeepsRemoteModeEvenWhenTheEmulatorPollsLate) {
+  // The emulator's thread may be kept off the CPU: what has arrived is read before the lapse is judged.
+  RawMaster m;
+  m.open_remote();
+  m.idle(400ms);
+  RequestBytes rc;
+  ASSERT_TRUE(encode_request(CyclicRequest{}, rc));
+  ASSERT_EQ(m.sim.master().write(rc.view()).count, rc.size());  // at 400 ms: in time
+  m.clock.advance(300ms);  // the next poll comes 700 ms after the last one it answered
+  m.emulator.poll(m.clock.now());
+  EXPECT_FALSE(m.emulator.watchdog_lapsed());
+  EXPECT_FALSE(m.emulator.error_word().remote_timeout());
+}
+
 TEST(ScuEmulator, SafetyId1ResumesWithTheNextRc) {
   RawMaster m;
   m.open_remote(1);
