@@ -11,6 +11,7 @@
 #include "config/cell_config.hpp"
 #include "link/clock.hpp"
 #include "link/pty_pair.hpp"
+#include "link/tracing_link.hpp"
 #include "runtime/emulated_cell.hpp"
 
 namespace cellctl::cli {
@@ -25,10 +26,16 @@ int run_emulate(const GlobalOptions& global) {
                            cell.encoder ? &cell.encoder->port : nullptr})
     if (port) locks.push_back(std::make_unique<PublishLock>(port->publish_as));
   std::vector<std::unique_ptr<link::PtyPair>> ptys;
+  link::MonotonicClock clock;
+  // --trace: every telegram the emulators receive (RX) and send (TX), seen from the devices' side.
+  link::LogTraceSink trace_sink;
+  std::vector<std::unique_ptr<link::TracingLink>> traced;
   runtime::DeviceLinks links;
   const auto publish = [&](const char* name, const config::PortConfig& port, link::Link*& side) {
     auto& pty = *ptys.emplace_back(std::make_unique<link::PtyPair>(name, port.publish_as));
     side = &pty.device();
+    if (global.trace)
+      side = traced.emplace_back(std::make_unique<link::TracingLink>(*side, clock, trace_sink, name)).get();
     fmt::print("{:<8} {} (also {}), {}\n", name, pty.peer_path(), port.publish_as, port.line.describe());
   };
   fmt::print("cellctl: emulating cell '{}' from {}\n", cell.name, global.config);
@@ -39,7 +46,6 @@ int run_emulate(const GlobalOptions& global) {
   fmt::print("Ctrl-C ends the emulation.\n");
   std::fflush(stdout);
 
-  link::MonotonicClock clock;
   while (!g_interrupted.load() && !g_terminated.load()) {
     emulated.poll(clock.now());
     std::this_thread::sleep_for(std::chrono::microseconds(200));

@@ -4,6 +4,7 @@
 # SCU status and a move, spindle start/status/stop, encoder status — and Ctrl-C ends the emulation
 # cleanly (exit 0, published links removed). A command the SCU session refuses exits 1. A second
 # `cellctl emulate` of the same cell is refused (exit 4, naming the live one) and leaves the links alone.
+# With --trace the emulation writes a hex trace of what each device received and sent.
 #
 # usage: emulate_commissioning_test.sh <cellctl binary> <cell config>
 # The config is copied with publish_as and the encoder's EEPROM state file moved into a fresh temp
@@ -57,7 +58,7 @@ grep -q "^    state_file: $work/encoder.eeprom" "$config" ||
 links=("$work/scu" "$work/spindle" "$work/encoder")
 
 # --- cellctl emulate in the background -------------------------------------------------------------
-"$cellctl" -c "$config" emulate >"$emulate_log" 2>&1 &
+"$cellctl" -c "$config" --trace emulate >"$emulate_log" 2>&1 &
 emulate_pid=$!
 
 # Condition wait (at most 10 s): all three links published and the emulation loop running.
@@ -154,6 +155,12 @@ wait "$emulate_pid" || rc=$?
 emulate_pid=""
 [[ $rc -eq 0 ]] || fail "cellctl emulate exited $rc after SIGINT, expected 0"
 grep -q "emulation ended" "$emulate_log" || fail "cellctl emulate did not say the emulation ended"
+for device in scu spindle encoder; do
+  for dir in RX TX; do
+    grep -Eq "^trace +[0-9]+\.[0-9]{6} $device $dir ([0-9a-f]{2} ?)+$" "$emulate_log" ||
+      fail "cellctl --trace emulate wrote no $dir trace of the $device"
+  done
+done
 for l in "${links[@]}"; do
   [[ ! -e $l && ! -L $l ]] || fail "cellctl emulate left $l behind"
 done
