@@ -1,18 +1,19 @@
 #include "cli/run_command.hpp"
 
-#include <fmt/chrono.h>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <ctime>
 #include <memory>
 
 #include "cli/drive.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/operator_console.hpp"
+#include "cli/run_record_info.hpp"
 #include "cli/status_printer.hpp"
 #include "config/cell_config.hpp"
+#include "journal/record_header.hpp"
+#include "journal/run_record.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "runtime/cell_run.hpp"
 
@@ -25,12 +26,6 @@ struct RunArgs {
   bool virtual_time = false;
   std::string journal_dir;
 };
-
-std::string default_journal_dir(const recipe::Recipe& r) {
-  const auto now = std::chrono::system_clock::now();
-  return fmt::format("runs/{}-{:%Y%m%d-%H%M%S}", r.name,
-                     fmt::localtime(std::chrono::system_clock::to_time_t(now)));
-}
 
 int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   const auto cell = config::load_cell_config(global.config);
@@ -48,14 +43,16 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   options.mode = args.virtual_time ? runtime::RunMode::virtual_time
                  : args.emulate    ? runtime::RunMode::emulated
                                    : runtime::RunMode::hardware;
-  options.journal_dir = args.journal_dir.empty() ? default_journal_dir(recipe) : args.journal_dir;
+  options.journal_dir = args.journal_dir.empty() ? default_run_dir(args.recipe) : std::filesystem::path(args.journal_dir);
   options.trace = global.trace;
+  options.record_header =
+      journal::record_header(record_info(cell, global.config, recipe, recipe::unroll(recipe), options.mode));
 
   runtime::CellRun run(cell, recipe, options);
-  fmt::print("cellctl: running '{}' {} on cell '{}' ({})\n", recipe.name, recipe.version, cell.name,
-             to_string(options.mode));
+  fmt::print("cellctl: running '{}' {} ({}) on cell '{}' — {}\n", recipe.name, recipe.version, args.recipe,
+             cell.name, mode_label(cell, options.mode));
   for (const auto& d : run.links().describe()) fmt::print("  {}\n", d);
-  fmt::print("  run record: {}/journal.jsonl, plot: {}/plot.svg\n", options.journal_dir.string(),
+  fmt::print("  run record: {0}/journal.jsonl, plots: {0}/plot.svg, {0}/plot.html\n",
              options.journal_dir.string());
 
   runtime::RunResult result;
@@ -78,7 +75,9 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   fmt::print("run record: {}\n", options.journal_dir.string());
 
   if (result.final_state == supervisor::State::complete) return kExitOk;
-  return result.interrupted ? kExitInterrupted : kExitFailed;
+  // Ended by the operator (typed stop/abort, Ctrl-C, SIGTERM) with nothing else gone wrong: 130,
+  // however it was asked for; a fault or a failed step: 1.
+  return journal::RunRecord::load(options.journal_dir).ended_by_operator() ? kExitInterrupted : kExitFailed;
 }
 
 }  // namespace
@@ -89,7 +88,8 @@ void add_run_command(CLI::App& app, Commands& commands) {
   sub->footer(
       "Devices whose port is 'emulated' in the cell config run as emulators inside cellctl.\n"
       "Exit status: 0 complete, 1 stopped or aborted by a fault or a failed step, 3 bad config or recipe\n"
-      "(nothing moved), 4 a port could not be opened, 130 stopped by Ctrl-C.\n"
+      "(nothing moved), 4 a port could not be opened, 130 ended by the operator (typed stop or abort,\n"
+      "Ctrl-C, SIGTERM).\n"
       "Ctrl-C once: operator stop (category from stops.operator; 2 holds the cell); twice: emergency stop.\n"
       "SIGTERM: a controlled stop (category 1).");
   auto args = std::make_shared<RunArgs>();
@@ -100,7 +100,7 @@ void add_run_command(CLI::App& app, Commands& commands) {
                 "Every device on its emulator over simulated lines, on a virtual clock, as fast as possible")
       ->excludes(emulate);
   sub->add_option("--journal", args->journal_dir,
-                  "Directory for the run record (default runs/<recipe>-<time>)");
+                  "Directory for the run record (default runs/<recipe file name>-<start time>)");
   commands.on(sub, [&commands, args] { return run_recipe(commands.global, *args); });
 }
 

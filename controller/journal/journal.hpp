@@ -2,7 +2,7 @@
 // The run record: a JSON-lines file of every state change, step, command, fault and a periodic
 // sample. The control cycle only posts fixed-size events into a lock-free queue; a writer thread
 // formats, writes and flushes them, so nothing is lost on a fault or Ctrl-C and the cycle never
-// waits on a disk. At the end it adds the summary and draws the plot.
+// waits on a disk. At the end it adds the summary and draws the plots (plot.svg, plot.html).
 
 #include <atomic>
 #include <cstdio>
@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
-#include <vector>
 
 #include "journal/event.hpp"
 #include "journal/event_sink.hpp"
@@ -26,8 +25,9 @@ using WhenFull = wire::WhenFull;
 
 class Journal final : public EventSink {
  public:
-  // Creates `dir` if needed and opens dir/journal.jsonl; throws std::runtime_error naming the path.
-  Journal(const std::filesystem::path& dir, WhenFull when_full);
+  // Creates `dir` if needed, opens dir/journal.jsonl and writes `header` (record_header.hpp) as its
+  // first line unless it is null; throws std::runtime_error naming the path.
+  Journal(const std::filesystem::path& dir, WhenFull when_full, const nlohmann::json& header = {});
   ~Journal() override;
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;
@@ -36,7 +36,7 @@ class Journal final : public EventSink {
   void post(double t, const Payload& payload) noexcept override;
 
   // Drains everything, appends {"event":"summary",…} with `extra` merged in (cycle statistics),
-  // writes plot.svg, flushes and closes. Idempotent.
+  // writes plot.svg and plot.html, flushes and closes. Idempotent.
   void close(const nlohmann::json& extra = {});
 
   [[nodiscard]] const std::filesystem::path& dir() const noexcept { return dir_; }
@@ -54,8 +54,7 @@ class Journal final : public EventSink {
   std::unique_ptr<wire::SpscQueue<Event, 8192>> queue_;
   std::atomic<bool> closing_{false};
   std::atomic<std::uint64_t> dropped_{0};
-  std::vector<std::pair<double, Sample>> samples_;  // writer thread only
-  RunSummary summary_;                              // writer thread only until close()
+  RunSummary summary_;  // writer thread only until close()
   std::thread writer_;
   bool closed_ = false;
 };

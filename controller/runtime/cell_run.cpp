@@ -36,15 +36,22 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
                                                     : static_cast<const link::Clock&>(real_clock_)),
       journal_(options_.journal_dir, options_.mode == RunMode::virtual_time
                                          ? journal::WhenFull::wait
-                                         : journal::WhenFull::drop_and_count),
+                                         : journal::WhenFull::drop_and_count,
+               options_.record_header),
       monitor_(cell) {
   if (options_.mode == RunMode::virtual_time)
     waiter_ = std::make_unique<loop::VirtualWaiter>(virtual_clock_);
   else
     waiter_ = std::make_unique<loop::MonotonicWaiter>();
-  links_ = std::make_unique<CellLinks>(cell, options_.mode, clock_, options_.trace);
-  if (links_->any_emulated()) emulated_ = std::make_unique<EmulatedCell>(cell, links_->device());
-  devices_ = std::make_unique<CellDevices>(cell, links_->master());
+  try {
+    links_ = std::make_unique<CellLinks>(cell, options_.mode, clock_, options_.trace);
+    if (links_->any_emulated()) emulated_ = std::make_unique<EmulatedCell>(cell, links_->device());
+    devices_ = std::make_unique<CellDevices>(cell, links_->master());
+  } catch (const std::exception& e) {
+    // A port that did not open (or a device set-up refused): the record says why nothing ran.
+    journal_.close({{"outcome", "not started"}, {"reason", e.what()}});
+    throw;
+  }
   supervisor_ = std::make_unique<supervisor::Supervisor>(
       cell, recipe, program_, journal_, cell.loop.period_ms / 1000.0, settings_for(cell, options_));
   loop_ = std::make_unique<loop::Loop>(clock_, *waiter_, period_of(cell), loop::kControlStages, &real_clock_);

@@ -14,6 +14,7 @@
 #include <string>
 #include <thread>
 #include <vector>
+#include <nlohmann/json.hpp>
 
 #include "cell/cell_state.hpp"
 #include "config/cell_config.hpp"
@@ -35,6 +36,7 @@ namespace cellctl::runtime {
 struct RunOptions {
   RunMode mode = RunMode::emulated;
   std::filesystem::path journal_dir = "runs/latest";
+  nlohmann::json record_header;  // the journal's first line (journal/record_header.hpp); none if null
   bool trace = false;
   supervisor::SupervisorSettings supervisor;  // mode and sample period are filled in from the config
   double shutdown_timeout_s = 5.0;            // for sessions to close (RA, spindle stop) at the end
