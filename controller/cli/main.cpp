@@ -9,11 +9,13 @@
 
 #include "cli/check_command.hpp"
 #include "cli/commands.hpp"
+#include "cli/compare_command.hpp"
 #include "cli/drive.hpp"
 #include "cli/emulate_command.hpp"
 #include "cli/encoder_commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/logging.hpp"
+#include "cli/report_command.hpp"
 #include "cli/run_command.hpp"
 #include "cli/scu_commands.hpp"
 #include "cli/spindle_commands.hpp"
@@ -55,6 +57,8 @@ int main(int argc, char** argv) {
   add_spindle_commands(app, commands);
   add_encoder_commands(app, commands);
   add_scu_commands(app, commands);
+  add_report_command(app, commands);
+  add_compare_command(app, commands);
 
   try {
     app.parse(argc, argv);

@@ -84,7 +84,7 @@ PlotModel plot_model(const std::vector<const RunRecord*>& runs) {
     const RunRecord& run = *runs[r];
     const auto& h = run.header();
     m.subtitle.push_back(fmt::format(
-        "{}{} after {:.2f} s · {} · host {} · cellctl {} · started {} UTC", runs.size() > 1 ? (r ? "B: " : "A: ") : "",
+        "{}{} after {:.2f} s · {} · host {} · cellctl {} · started {}", runs.size() > 1 ? (r ? "B: " : "A: ") : "",
         run.outcome(), run.duration_s(), h.value("mode", "mode unknown"), h.value("host", "?"),
         h.value("cellctl", "?"), h.value("started_utc", "?")));
     m.t_hi = std::max(m.t_hi, run.duration_s());

@@ -136,11 +136,14 @@ std::string render_svg(const std::vector<const RunRecord*>& runs) {
   const Frame& f0 = frames.front();
   const Frame& fl = frames.back();
   double last_label_x = -1e9;
-  for (const auto& st : m.steps) {
+  for (std::size_t i = 0; i < m.steps.size(); ++i) {
+    const auto& st = m.steps[i];
     const double x = f0.x_of(st.t);
     svg += fmt::format(R"(<line x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="#c8c8c8" stroke-width="0.8"/>)", x,
                        f0.top, x, fl.top + fl.height);
-    if (x - last_label_x < 11) continue;  // too close to the previous name to be read
+    // Names need 11 px: a step too short for its own (a precondition) yields to the next one.
+    const bool next_too_close = i + 1 < m.steps.size() && f0.x_of(m.steps[i + 1].t) - x < 11;
+    if (x - last_label_x < 11 || next_too_close) continue;
     last_label_x = x;
     svg += fmt::format(
         R"svg(<text class="step" x="{:.1f}" y="{}" font-size="10" fill="#555" transform="rotate(-60 {:.1f} {})"><title>{}</title>{} {}</text>)svg",
