@@ -41,6 +41,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "cellctl — controller for a motion cell (Ewellix SCU actuators, SycoTec spindle, Scancon encoder)"};
   app.require_subcommand(1);
+  // Global options where a person types them: `cellctl -c cell.yaml run R` and `cellctl run R -c cell.yaml`.
+  app.fallthrough();
   app.set_version_flag("--version", "cellctl 0.1.0");
 
   Commands commands;

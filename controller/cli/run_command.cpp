@@ -9,7 +9,9 @@
 #include "cli/drive.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/operator_console.hpp"
+#include "cli/run_narrator.hpp"
 #include "cli/run_record_info.hpp"
+#include "cli/terminal_screen.hpp"
 #include "cli/status_printer.hpp"
 #include "config/cell_config.hpp"
 #include "journal/record_header.hpp"
@@ -26,6 +28,19 @@ struct RunArgs {
   bool virtual_time = false;
   std::string journal_dir;
 };
+
+// What Ctrl-C will do, as the cell's config has it.
+std::string ctrl_c_hint(config::StopCategory operator_stop) {
+  switch (operator_stop) {
+    case config::StopCategory::controlled_hold:
+      return "Ctrl-C holds the cell (then type stop to end, or reset and unhold to go on); twice: emergency stop";
+    case config::StopCategory::controlled_off:
+      return "Ctrl-C stops the cell (controlled, category 1) and ends the run; twice: emergency stop";
+    case config::StopCategory::immediate:
+      return "Ctrl-C stops the cell at once (category 0) and ends the run";
+  }
+  return "";
+}
 
 int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   const auto cell = config::load_cell_config(global.config);
@@ -45,8 +60,8 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
                                    : runtime::RunMode::hardware;
   options.journal_dir = args.journal_dir.empty() ? default_run_dir(args.recipe) : std::filesystem::path(args.journal_dir);
   options.trace = global.trace;
-  options.record_header =
-      journal::record_header(record_info(cell, global.config, recipe, recipe::unroll(recipe), options.mode));
+  const auto info = record_info(cell, global.config, recipe, recipe::unroll(recipe), options.mode);
+  options.record_header = journal::record_header(info);
 
   runtime::CellRun run(cell, recipe, options);
   fmt::print("cellctl: running '{}' {} ({}) on cell '{}' — {}\n", recipe.name, recipe.version, args.recipe,
@@ -57,11 +72,17 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
 
   runtime::RunResult result;
   {
-    StatusPrinter printer(run.status(), cell);
-    OperatorConsole console(run);
-    if (console.active())
-      fmt::print("  type hold, unhold, stop, abort or reset + Enter; Ctrl-C stops, twice aborts\n");
+    TerminalScreen screen;
+    RunNarrator narrator(screen);
+    run.on_journal_line([&narrator](const nlohmann::json& line) { narrator(line); });
+    fmt::print("  {}\n", ctrl_c_hint(cell.stops.operator_stop));
+    std::vector<std::optional<double>> planned;
+    for (const auto& st : info.steps) planned.push_back(st.planned_s);
+    StatusPrinter printer(run.status(), cell, screen, std::move(planned));
+    OperatorConsole console(run, screen);
+    if (console.active()) screen.message("  type hold, unhold, stop, abort or reset (h, u, s, a, r) and Enter");
     result = run.run(g_interrupted, &g_terminated);
+    run.on_journal_line({});
   }
   for (const auto& w : run.realtime_warnings()) spdlog::warn("real-time: {}", w);
   fmt::print("\n{}", result.summary_text);

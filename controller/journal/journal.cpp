@@ -50,12 +50,21 @@ bool Journal::drain() {
     const auto j = to_json(*e);
     summary_.add(j);
     const auto line = j.dump();
+    {
+      const std::lock_guard lock(listener_mutex_);
+      if (listener_) listener_(j);
+    }
     std::fputs(line.c_str(), file_);
     std::fputc('\n', file_);
   }
   // Flushed after every batch: what was posted is in the file within a few milliseconds.
   if (any) std::fflush(file_);
   return any;
+}
+
+void Journal::on_line(std::function<void(const nlohmann::json&)> listener) {
+  const std::lock_guard lock(listener_mutex_);
+  listener_ = std::move(listener);
 }
 
 void Journal::run_writer() {

@@ -7,7 +7,9 @@
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
@@ -39,6 +41,10 @@ class Journal final : public EventSink {
   // writes plot.svg and plot.html, flushes and closes. Idempotent.
   void close(const nlohmann::json& extra = {});
 
+  // Called on the writer thread with every line as it is written (the terminal answers typed
+  // commands and reports faults from what the run records). Never on the cycle's thread.
+  void on_line(std::function<void(const nlohmann::json&)> listener);
+
   [[nodiscard]] const std::filesystem::path& dir() const noexcept { return dir_; }
   [[nodiscard]] std::uint64_t dropped() const noexcept { return dropped_.load(); }
   // Valid after close().
@@ -55,6 +61,8 @@ class Journal final : public EventSink {
   std::atomic<bool> closing_{false};
   std::atomic<std::uint64_t> dropped_{0};
   RunSummary summary_;  // writer thread only until close()
+  std::mutex listener_mutex_;  // writer thread and the thread setting it; the cycle never takes it
+  std::function<void(const nlohmann::json&)> listener_;
   std::thread writer_;
   bool closed_ = false;
 };

@@ -81,6 +81,7 @@ void CellRun::take_commands(double t, std::atomic<bool>& interrupt) {
     interrupted_ = true;
     request(supervisor::Command::stop);  // SIGTERM: a controlled stop, whatever stops.operator says
   }
+  while (const auto text = operator_notes_.pop()) journal_.post(t, journal::Note{*text});
   const unsigned pending = requested_.exchange(0);
   // Strongest first, so that a stop typed right after a hold is never lost behind it.
   using supervisor::Command;
@@ -159,8 +160,12 @@ void CellRun::publish_status(double t) {
   v.step = static_cast<std::uint32_t>(std::min(supervisor_->step_index() + 1, supervisor_->step_count()));
   if (const auto* ins = supervisor_->current()) v.label = ins->label;
   v.axes = state_.axis_count;
-  for (std::size_t i = 0; i < state_.axis_count; ++i) v.position_mm[i] = state_.axes[i].position_mm();
+  for (std::size_t i = 0; i < state_.axis_count; ++i) {
+    v.position_mm[i] = state_.axes[i].position_mm();
+    v.position_known[i] = state_.axes[i].present;
+  }
   v.spindle_hz = state_.spindle.actual_hz;
+  v.spindle_set_hz = supervisor_->intents().spindle.run ? supervisor_->intents().spindle.frequency_hz : 0.0;
   for (std::size_t r = 0; r < monitor::kRuleCount; ++r) {
     if (!monitor_.latch(static_cast<monitor::Rule>(r)).active) continue;
     v.fault = true;
