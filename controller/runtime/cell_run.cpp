@@ -232,6 +232,7 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
 
   const auto wall_start = std::chrono::steady_clock::now();
   start_ = clock_.now();
+  links_->start_trace_clock(start_);
   devices_->activate(start_);
   (void)supervisor_->command(supervisor::Command::start, "cellctl run", 0.0);
   loop_->run([this, &interrupt](link::TimePoint now, std::uint64_t) { cycle(now, interrupt); }, loop_stop_);
