@@ -50,8 +50,11 @@ void add_compare_command(CLI::App& app, Commands& commands) {
   sub->add_option("run_a", args->a, "First run record (e.g. the virtual-time dry run)")
       ->required()
       ->check(CLI::ExistingPath);
-  sub->add_option("run_b", args->b, "Second run record (e.g. the real run)")->required()->check(CLI::ExistingPath);
-  sub->add_option("--out", args->out_dir, "Where to write compare.svg and compare.html")->capture_default_str();
+  sub->add_option("run_b", args->b, "Second run record (e.g. the real run)")
+      ->required()
+      ->check(CLI::ExistingPath);
+  sub->add_option("--out", args->out_dir, "Where to write compare.svg and compare.html")
+      ->capture_default_str();
   sub->add_flag("--force", args->force, "Compare runs of different recipes (or of unknown ones) anyway");
   sub->footer(
       "Runs are matched step by step by number; each run's time starts at its own start.\n"

@@ -11,7 +11,8 @@
 namespace cellctl::cli {
 namespace {
 
-constexpr std::string_view kWhatToType = "type hold, unhold, stop, abort or reset (or h, u, s, a, r) and Enter";
+constexpr std::string_view kWhatToType =
+    "type hold, unhold, stop, abort or reset (or h, u, s, a, r) and Enter";
 
 std::string trimmed_lower(std::string_view word) {
   while (!word.empty() && std::isspace(static_cast<unsigned char>(word.front()))) word.remove_prefix(1);
@@ -64,7 +65,8 @@ void OperatorConsole::handle(const std::string& line) {
     return;
   }
   const auto name = supervisor::to_string(*cmd);
-  if (trimmed_lower(line) != name) screen_.message(fmt::format("> {}: taken as '{}'", line, name));
+  if (trimmed_lower(line) != name)
+    screen_.message(fmt::format("> {}: taken as '{}'", line, name));
   else
     screen_.message(fmt::format("> {}", name));
   run_.request(*cmd);  // its answer comes from the journal (RunNarrator)

@@ -6,10 +6,11 @@
 // On a TTY (stdin and stdout) the terminal's echo is off and the console shows the typing after the
 // status line itself, so typed text never glues onto it; Ctrl-C still reaches the run.
 
+#include <termios.h>
+
 #include <atomic>
 #include <optional>
 #include <string>
-#include <termios.h>
 #include <thread>
 
 #include "cli/terminal_screen.hpp"

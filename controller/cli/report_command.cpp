@@ -35,13 +35,15 @@ int run_report(const ReportArgs& args) {
 }  // namespace
 
 void add_report_command(CLI::App& app, Commands& commands) {
-  auto* sub = app.add_subcommand("report", "Summarise a run record: steps (planned and actual time), faults, "
-                                           "max following error per axis, loop timing, spindle");
+  auto* sub = app.add_subcommand("report",
+                                 "Summarise a run record: steps (planned and actual time), faults, "
+                                 "max following error per axis, loop timing, spindle");
   auto args = std::make_shared<ReportArgs>();
   sub->add_option("run", args->run_dir, "Run record directory (runs/<recipe>-<time>) or its journal.jsonl")
       ->required()
       ->check(CLI::ExistingPath);
-  sub->add_option("--csv", args->csv, "Also write the samples to this CSV file (t_s, step, positions, spindle)");
+  sub->add_option("--csv", args->csv,
+                  "Also write the samples to this CSV file (t_s, step, positions, spindle)");
   sub->footer("Exit status: 0 done, 1 the record cannot be read (file:line named), 2 bad command line.");
   commands.on(sub, [args] { return run_report(*args); });
 }

@@ -11,8 +11,8 @@
 #include "cli/operator_console.hpp"
 #include "cli/run_narrator.hpp"
 #include "cli/run_record_info.hpp"
-#include "cli/terminal_screen.hpp"
 #include "cli/status_printer.hpp"
+#include "cli/terminal_screen.hpp"
 #include "config/cell_config.hpp"
 #include "journal/record_header.hpp"
 #include "journal/run_record.hpp"
@@ -33,7 +33,8 @@ struct RunArgs {
 std::string ctrl_c_hint(config::StopCategory operator_stop) {
   switch (operator_stop) {
     case config::StopCategory::controlled_hold:
-      return "Ctrl-C holds the cell (then type stop to end, or reset and unhold to go on); twice: emergency stop";
+      return "Ctrl-C holds the cell (then type stop to end, or reset and unhold to go on); twice: emergency "
+             "stop";
     case config::StopCategory::controlled_off:
       return "Ctrl-C stops the cell (controlled, category 1) and ends the run; twice: emergency stop";
     case config::StopCategory::immediate:
@@ -58,7 +59,8 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   options.mode = args.virtual_time ? runtime::RunMode::virtual_time
                  : args.emulate    ? runtime::RunMode::emulated
                                    : runtime::RunMode::hardware;
-  options.journal_dir = args.journal_dir.empty() ? default_run_dir(args.recipe) : std::filesystem::path(args.journal_dir);
+  options.journal_dir =
+      args.journal_dir.empty() ? default_run_dir(args.recipe) : std::filesystem::path(args.journal_dir);
   options.trace = global.trace;
   const auto info = record_info(cell, global.config, recipe, recipe::unroll(recipe), options.mode);
   options.record_header = journal::record_header(info);
@@ -80,7 +82,8 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
     for (const auto& st : info.steps) planned.push_back(st.planned_s);
     StatusPrinter printer(run.status(), cell, screen, std::move(planned));
     OperatorConsole console(run, screen);
-    if (console.active()) screen.message("  type hold, unhold, stop, abort or reset (h, u, s, a, r) and Enter");
+    if (console.active())
+      screen.message("  type hold, unhold, stop, abort or reset (h, u, s, a, r) and Enter");
     result = run.run(g_interrupted, &g_terminated);
     run.on_journal_line({});
   }

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "journal/run_record.hpp"
+
 namespace cellctl::cli {
 namespace {
 
@@ -28,7 +30,8 @@ void RunNarrator::operator()(const nlohmann::json& j) {
                                 j.contains("reason") ? fmt::format(" ({})", j.value("reason", "")) : ""));
   } else if (event == "command" && j.value("source", "") == "operator") {
     const auto cmd = j.value("command", "?");
-    const char* what = cmd == "hold"     ? "the cell comes to rest and holds; type unhold to go on, or stop to end"
+    const char* what = cmd == "hold"
+                           ? "the cell comes to rest and holds; type unhold to go on, or stop to end"
                        : cmd == "unhold" ? "the run goes on unless a fault is still latched"
                        : cmd == "stop"   ? "the cell comes to a controlled stop and the run ends"
                        : cmd == "abort"  ? "the cell stops at once and the run ends"
@@ -43,9 +46,11 @@ void RunNarrator::operator()(const nlohmann::json& j) {
       screen_.message(fmt::format("{} {} — remove the cause, then type reset again", at,
                                   screen_.paint("33", "refused: " + text)));
     } else if (contains(text, "unhold refused")) {
-      screen_.message(fmt::format("{} {} — type reset, then unhold", at, screen_.paint("33", "refused: " + text)));
+      screen_.message(
+          fmt::format("{} {} — type reset, then unhold", at, screen_.paint("33", "refused: " + text)));
     } else if (contains(text, "not possible")) {
-      screen_.message(fmt::format("{} {} — {}", at, screen_.paint("33", "refused: " + text), next_step_hint()));
+      screen_.message(
+          fmt::format("{} {} — {}", at, screen_.paint("33", "refused: " + text), next_step_hint()));
     } else {
       screen_.message(fmt::format("{} note: {}", at, text));
     }
@@ -53,11 +58,12 @@ void RunNarrator::operator()(const nlohmann::json& j) {
     const auto rule = j.value("rule", "?");
     const int category = j.value("category", 1);
     screen_.message(fmt::format("{} {}", at,
-                                screen_.paint("1;31", fmt::format("FAULT {} (stop category {}): {}", rule, category,
-                                                                  j.value("detail", "")))));
+                                screen_.paint("1;31", fmt::format("FAULT {} (stop category {}): {}", rule,
+                                                                  category, j.value("detail", "")))));
     if (rule == "operator_stop" && category == 2)
       screen_.message(
-          "           Ctrl-C: the cell holds — type `stop` to end, or `reset` then `unhold` to go on; Ctrl-C again "
+          "           Ctrl-C: the cell holds — type `stop` to end, or `reset` then `unhold` to go on; Ctrl-C "
+          "again "
           "is an emergency stop");
     else if (category == 2)
       screen_.message("           the cell holds — type `reset` then `unhold` to go on, or `stop` to end");
@@ -66,14 +72,13 @@ void RunNarrator::operator()(const nlohmann::json& j) {
   } else if (event == "fault_cleared") {
     screen_.message(fmt::format("{} fault cleared: {}", at, j.value("rule", "?")));
   } else if (event == "step_failed") {
-    screen_.message(fmt::format("{} {}", at,
-                                screen_.paint("31", fmt::format("step {} failed: {} — {}", j.value("step", 0),
-                                                                j.value("label", ""), j.value("detail", "")))));
+    screen_.message(
+        fmt::format("{} {}", at,
+                    screen_.paint("31", fmt::format("step {} failed: {} — {}", j.value("step", 0),
+                                                    j.value("label", ""), j.value("detail", "")))));
   } else if (event.find("inject") != std::string::npos) {
-    std::string what;
-    for (const auto& [k, v] : j.items())
-      if (k != "t" && k != "event") what += fmt::format(" {}={}", k, v.is_string() ? v.get<std::string>() : v.dump());
-    screen_.message(fmt::format("{} {}", at, screen_.paint("35", "injected fault:" + what)));
+    screen_.message(
+        fmt::format("{} {}", at, screen_.paint("35", "injected fault: " + journal::describe_event(j))));
   }
 }
 

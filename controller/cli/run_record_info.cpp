@@ -56,8 +56,8 @@ journal::RecordInfo record_info(const config::CellConfig& cell, const std::files
   info.cell = cell.name;
   info.mode = mode_label(cell, mode);
   for (const auto& d : devices(cell))
-    info.ports.push_back(fmt::format("{}: {}", d.name,
-                                     mode == runtime::RunMode::hardware ? d.port->port : std::string("emulated")));
+    info.ports.push_back(fmt::format(
+        "{}: {}", d.name, mode == runtime::RunMode::hardware ? d.port->port : std::string("emulated")));
   for (const auto& a : cell.axes) info.axes.push_back({a.name, a.encoder});
   for (const auto& ins : program.instructions) {
     auto step = std::visit(StepKind{}, ins.action);

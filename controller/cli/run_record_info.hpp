@@ -17,7 +17,8 @@ namespace cellctl::cli {
 // emulated in-process)", "virtual time": what the banner and the record say the run was.
 [[nodiscard]] std::string mode_label(const config::CellConfig& cell, runtime::RunMode mode);
 
-[[nodiscard]] journal::RecordInfo record_info(const config::CellConfig& cell, const std::filesystem::path& config_file,
+[[nodiscard]] journal::RecordInfo record_info(const config::CellConfig& cell,
+                                              const std::filesystem::path& config_file,
                                               const recipe::Recipe& recipe, const recipe::Program& program,
                                               runtime::RunMode mode);
 

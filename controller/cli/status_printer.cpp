@@ -14,15 +14,19 @@ std::string_view state_colour(supervisor::State s) {
   switch (s) {
     case State::execute:
     case State::complete:
-    case State::completing: return "32";
+    case State::completing:
+      return "32";
     case State::holding:
     case State::held:
-    case State::unholding: return "33";
+    case State::unholding:
+      return "33";
     case State::stopping:
     case State::stopped:
     case State::aborting:
-    case State::aborted: return "31";
-    default: return "0";
+    case State::aborted:
+      return "31";
+    default:
+      return "0";
   }
 }
 
@@ -30,7 +34,9 @@ std::string_view state_colour(supervisor::State s) {
 
 StatusPrinter::StatusPrinter(const runtime::StatusBoard& board, const config::CellConfig& cell,
                              TerminalScreen& screen, std::vector<std::optional<double>> planned_s)
-    : board_(board), cell_(cell), screen_(screen), planned_s_(std::move(planned_s)), thread_([this] { run(); }) {}
+    : board_(board), cell_(cell), screen_(screen), planned_s_(std::move(planned_s)), thread_([this] {
+        run();
+      }) {}
 
 StatusPrinter::~StatusPrinter() {
   stop_.store(true);
@@ -46,16 +52,16 @@ std::string StatusPrinter::line(const runtime::StatusView& v) {
   s += screen_.paint(state_colour(v.state), fmt::format("{:<10}", supervisor::to_string(v.state)));
   if (v.step != shown_step_) shown_step_ = v.step, step_since_ = v.t;
   if (v.step > 0) {
-    s += fmt::format(" step {}/{} {}", v.step, v.steps, v.label);
+    s += fmt::format(" step {}/{}", v.step, v.steps);
+    if (!v.label.empty()) s += fmt::format(" {}", v.label);
     // The step's time while it runs (a held or ended step's clock says nothing).
     const double in_step = v.t - step_since_;
     const auto& planned = v.step <= planned_s_.size() ? planned_s_[v.step - 1] : std::nullopt;
-    if (v.state != supervisor::State::execute)
-      ;
-    else if (planned && *planned > 0.0)
-      s += fmt::format(" · {:.1f} of {:.1f} s", std::min(in_step, *planned), *planned);
-    else
-      s += fmt::format(" · {:.1f} s", in_step);
+    if (v.state == supervisor::State::execute) {
+      s += planned && *planned > 0.0
+               ? fmt::format(" · {:.1f} of {:.1f} s", std::min(in_step, *planned), *planned)
+               : fmt::format(" · {:.1f} s", in_step);
+    }
   }
   s += " |";
   for (std::size_t i = 0; i < v.axes && i < cell_.axes.size(); ++i)
@@ -83,7 +89,10 @@ void StatusPrinter::run() {
     first = false;
     std::this_thread::sleep_for(std::chrono::milliseconds(screen_.tty() ? 100 : 50));
   }
-  screen_.status(line(board_.read()));  // the last status stays on the screen
+  // The last status stays on the screen; piped, only if it says something the last line did not.
+  const auto v = board_.read();
+  if (screen_.tty() || v.state != last.state || v.step != last.step || v.fault != last.fault)
+    screen_.status(line(v));
 }
 
 }  // namespace cellctl::cli

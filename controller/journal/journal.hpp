@@ -60,7 +60,7 @@ class Journal final : public EventSink {
   std::unique_ptr<wire::SpscQueue<Event, 8192>> queue_;
   std::atomic<bool> closing_{false};
   std::atomic<std::uint64_t> dropped_{0};
-  RunSummary summary_;  // writer thread only until close()
+  RunSummary summary_;         // writer thread only until close()
   std::mutex listener_mutex_;  // writer thread and the thread setting it; the cycle never takes it
   std::function<void(const nlohmann::json&)> listener_;
   std::thread writer_;

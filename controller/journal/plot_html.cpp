@@ -38,7 +38,8 @@ json model_json(const PlotModel& m) {
       }
       json v = json::array();
       for (const double x : s.v) v.push_back(tidy(x));
-      panel["series"].push_back({{"name", s.name}, {"colour", s.colour}, {"dash", s.dash}, {"t", ti}, {"v", v}});
+      panel["series"].push_back(
+          {{"name", s.name}, {"colour", s.colour}, {"dash", s.dash}, {"t", ti}, {"v", v}});
     }
     j["panels"].push_back(std::move(panel));
   }
@@ -224,7 +225,8 @@ draw();
 std::string render_html(const std::vector<const RunRecord*>& runs) {
   // "</" inside the data would end the script element early.
   std::string data = model_json(plot_model(runs)).dump();
-  for (auto pos = data.find("</"); pos != std::string::npos; pos = data.find("</", pos + 3)) data.replace(pos, 2, "<\\/");
+  for (auto pos = data.find("</"); pos != std::string::npos; pos = data.find("</", pos + 3))
+    data.replace(pos, 2, "<\\/");
   std::string page = kPage;
   page.replace(page.find("@DATA@"), 6, data);
   return page;

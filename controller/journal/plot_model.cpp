@@ -20,11 +20,16 @@ std::string prefixed(std::size_t run, std::size_t runs, const std::string& name)
 
 std::string mark_colour(MarkKind k) {
   switch (k) {
-    case MarkKind::fault: return "#d00000";
-    case MarkKind::injected_fault: return "#9b00c8";
-    case MarkKind::fault_cleared: return "#2e8b3a";
-    case MarkKind::command: return "#0060c0";
-    case MarkKind::note: return "#666666";
+    case MarkKind::fault:
+      return "#d00000";
+    case MarkKind::injected_fault:
+      return "#9b00c8";
+    case MarkKind::fault_cleared:
+      return "#2e8b3a";
+    case MarkKind::command:
+      return "#0060c0";
+    case MarkKind::note:
+      return "#666666";
   }
   return "#666666";
 }
@@ -77,16 +82,17 @@ PlotModel plot_model(const std::vector<const RunRecord*>& runs) {
   if (runs.empty()) return m;
   const RunRecord& first = *runs.front();
   m.title = fmt::format("{} — {}", first.recipe_label(), runs.size() > 1 ? "comparison" : first.outcome());
-  m.panels = {{"Axis positions", "mm", {}}, {"Following error (planned − measured, during moves)", "mm", {}},
+  m.panels = {{"Axis positions", "mm", {}},
+              {"Following error (planned − measured, during moves)", "mm", {}},
               {"Spindle frequency", "Hz", {}}};
   m.t_hi = 0.0;
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const RunRecord& run = *runs[r];
     const auto& h = run.header();
-    m.subtitle.push_back(fmt::format(
-        "{}{} after {:.2f} s · {} · host {} · cellctl {} · started {}", runs.size() > 1 ? (r ? "B: " : "A: ") : "",
-        run.outcome(), run.duration_s(), h.value("mode", "mode unknown"), h.value("host", "?"),
-        h.value("cellctl", "?"), h.value("started_utc", "?")));
+    m.subtitle.push_back(fmt::format("{}{} after {:.2f} s · {} · host {} · cellctl {} · started {}",
+                                     runs.size() > 1 ? (r ? "B: " : "A: ") : "", run.outcome(),
+                                     run.duration_s(), h.value("mode", "mode unknown"), h.value("host", "?"),
+                                     h.value("cellctl", "?"), h.value("started_utc", "?")));
     m.t_hi = std::max(m.t_hi, run.duration_s());
     const auto names = run.axis_names();
     const auto measured = run.measured_axis();
@@ -107,12 +113,15 @@ PlotModel plot_model(const std::vector<const RunRecord*>& runs) {
       const auto err = following_error(run, a);
       m.panels[1].series.push_back(
           series(run,
-                 prefixed(r, runs.size(), fmt::format("{} planned − {}", names[a], measured == a ? "encoder" : "SCU")),
+                 prefixed(r, runs.size(),
+                          fmt::format("{} planned − {}", names[a], measured == a ? "encoder" : "SCU")),
                  colour, "", [&err](std::size_t i, const SamplePoint&) { return err[i]; }));
     }
-    m.panels[2].series.push_back(series(run, prefixed(r, runs.size(), "spindle set"), kSpindleColours[pale], "7,4",
+    m.panels[2].series.push_back(series(run, prefixed(r, runs.size(), "spindle set"), kSpindleColours[pale],
+                                        "7,4",
                                         [](std::size_t, const SamplePoint& p) { return p.spindle_set_hz; }));
-    m.panels[2].series.push_back(series(run, prefixed(r, runs.size(), "spindle actual"), kSpindleColours[pale], "",
+    m.panels[2].series.push_back(series(run, prefixed(r, runs.size(), "spindle actual"),
+                                        kSpindleColours[pale], "",
                                         [](std::size_t, const SamplePoint& p) { return p.spindle_hz; }));
     for (const auto& mark : run.marks()) {
       if (mark.kind == MarkKind::note) continue;  // notes are in the report, not on the plot
@@ -122,7 +131,8 @@ PlotModel plot_model(const std::vector<const RunRecord*>& runs) {
   }
   for (const auto& s : first.steps())
     m.steps.push_back({s.start - first.start(), s.step, short_step_name(s.label), s.label});
-  std::stable_sort(m.marks.begin(), m.marks.end(), [](const PlotMark& a, const PlotMark& b) { return a.t < b.t; });
+  std::stable_sort(m.marks.begin(), m.marks.end(),
+                   [](const PlotMark& a, const PlotMark& b) { return a.t < b.t; });
   if (m.t_hi <= m.t_lo) m.t_hi = m.t_lo + 1.0;
   return m;
 }

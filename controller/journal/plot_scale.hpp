@@ -11,7 +11,7 @@ struct Scale {
   double lo = 0.0;
   double hi = 1.0;
   double step = 0.2;
-  std::vector<double> ticks;  // lo, lo + step, … hi
+  std::vector<double> ticks;                        // lo, lo + step, … hi
   [[nodiscard]] std::string label(double v) const;  // "-6", "2.5", "0.05"
 };
 

@@ -19,11 +19,20 @@ std::string xml(std::string_view s) {
   std::string out;
   for (const char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -32,7 +41,9 @@ std::string xml(std::string_view s) {
 struct Frame {
   double top, height;
   Scale t, y;
-  [[nodiscard]] double x_of(double t_s) const { return kLeft + (t_s - t.lo) / (t.hi - t.lo) * (kPlotRight - kLeft); }
+  [[nodiscard]] double x_of(double t_s) const {
+    return kLeft + (t_s - t.lo) / (t.hi - t.lo) * (kPlotRight - kLeft);
+  }
   [[nodiscard]] double y_of(double v) const { return top + height - (v - y.lo) / (y.hi - y.lo) * height; }
 };
 
@@ -50,8 +61,8 @@ std::string axes(const Frame& f, const PlotPanel& p, std::size_t index) {
   std::string s = fmt::format(R"(<text x="{}" y="{}" font-size="14" font-weight="bold">{}</text>)", kLeft,
                               f.top - 8, xml(p.title));
   for (const double v : f.y.ticks) {
-    s += fmt::format(R"(<line x1="{}" y1="{:.1f}" x2="{}" y2="{:.1f}" stroke="{}"/>)", kLeft, f.y_of(v), kPlotRight,
-                     f.y_of(v), v == 0.0 ? "#bbb" : "#eee");
+    s += fmt::format(R"(<line x1="{}" y1="{:.1f}" x2="{}" y2="{:.1f}" stroke="{}"/>)", kLeft, f.y_of(v),
+                     kPlotRight, f.y_of(v), v == 0.0 ? "#bbb" : "#eee");
     s += fmt::format(
         R"(<text class="tick" data-scale="y{}" x="{}" y="{:.1f}" font-size="11" text-anchor="end">{}</text>)",
         index, kLeft - 5, f.y_of(v) + 4, f.y.label(v));
@@ -127,7 +138,8 @@ std::string render_svg(const std::vector<const RunRecord*>& runs) {
       "\n"
       R"(<rect width="100%" height="100%" fill="white"/>)",
       kWidth, height, kWidth, height);
-  svg += fmt::format(R"(<text x="{}" y="20" font-size="15" font-weight="bold">{}</text>)", kLeft, xml(m.title));
+  svg +=
+      fmt::format(R"(<text x="{}" y="20" font-size="15" font-weight="bold">{}</text>)", kLeft, xml(m.title));
   for (std::size_t i = 0; i < m.subtitle.size(); ++i)
     svg += fmt::format(R"(<text x="{}" y="{}" font-size="11" fill="#444">{}</text>)", kLeft, 36 + 15 * i,
                        xml(m.subtitle[i]));
@@ -139,8 +151,9 @@ std::string render_svg(const std::vector<const RunRecord*>& runs) {
   for (std::size_t i = 0; i < m.steps.size(); ++i) {
     const auto& st = m.steps[i];
     const double x = f0.x_of(st.t);
-    svg += fmt::format(R"(<line x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="#c8c8c8" stroke-width="0.8"/>)", x,
-                       f0.top, x, fl.top + fl.height);
+    svg +=
+        fmt::format(R"(<line x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="#c8c8c8" stroke-width="0.8"/>)",
+                    x, f0.top, x, fl.top + fl.height);
     // Names need 11 px: a step too short for its own (a precondition) yields to the next one.
     const bool next_too_close = i + 1 < m.steps.size() && f0.x_of(m.steps[i + 1].t) - x < 11;
     if (x - last_label_x < 11 || next_too_close) continue;
@@ -161,15 +174,17 @@ std::string render_svg(const std::vector<const RunRecord*>& runs) {
     svg += fmt::format(
         R"(<line x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="{}" stroke-width="1.2" stroke-dasharray="4,2"><title>{}</title></line>)",
         x, f0.top - 14, x, fl.top + fl.height, mk.colour, xml(mk.text));
-    svg += fmt::format(R"(<text x="{:.1f}" y="{}" font-size="11" font-weight="bold" fill="{}" text-anchor="middle">{}</text>)",
-                       x, f0.top - 16, mk.colour, i + 1);
-    svg += fmt::format(R"(<text class="mark" x="{}" y="{}" font-size="11" fill="{}">{}  {:8.3f} s  {}: {}</text>)",
-                       kLeft, marks_top + 15 * static_cast<double>(i + 1), mk.colour, i + 1, mk.t, mk.kind,
-                       xml(mk.text));
+    svg += fmt::format(
+        R"(<text x="{:.1f}" y="{}" font-size="11" font-weight="bold" fill="{}" text-anchor="middle">{}</text>)",
+        x, f0.top - 16, mk.colour, i + 1);
+    svg += fmt::format(
+        R"(<text class="mark" x="{}" y="{}" font-size="11" fill="{}">{}  {:8.3f} s  {}: {}</text>)", kLeft,
+        marks_top + 15 * static_cast<double>(i + 1), mk.colour, i + 1, mk.t, mk.kind, xml(mk.text));
   }
   if (m.marks.empty())
-    svg += fmt::format(R"(<text x="{}" y="{}" font-size="11" fill="#444">no faults, no operator commands</text>)",
-                       kLeft, marks_top + 15);
+    svg += fmt::format(
+        R"(<text x="{}" y="{}" font-size="11" fill="#444">no faults, no operator commands</text>)", kLeft,
+        marks_top + 15);
   svg += "</svg>\n";
   return svg;
 }

@@ -56,8 +56,9 @@ nlohmann::json record_header(const RecordInfo& info) {
   j["mode"] = info.mode;
   j["ports"] = info.ports;
   j["host"] = host_name();
-  j["started_utc"] = fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::chrono::system_clock::to_time_t(
-                                                                std::chrono::system_clock::now())));
+  j["started_utc"] =
+      fmt::format("{:%Y-%m-%dT%H:%M:%SZ}",
+                  fmt::gmtime(std::chrono::system_clock::to_time_t(std::chrono::system_clock::now())));
   j["sample_s"] = info.sample_s;
   j["position_unit"] = "mm";
   j["spindle_unit"] = "Hz";

@@ -50,9 +50,9 @@ std::optional<std::string> different_recipes(const RunRecord& a, const RunRecord
 }
 
 std::string compare_text(const RunRecord& a, const RunRecord& b) {
-  std::string out = fmt::format("A: {} — {} after {:.2f} s, {}\nB: {} — {} after {:.2f} s, {}\n\n", a.recipe_label(),
-                                a.outcome(), a.duration_s(), a.header().value("mode", "?"), b.recipe_label(),
-                                b.outcome(), b.duration_s(), b.header().value("mode", "?"));
+  std::string out = fmt::format("A: {} — {} after {:.2f} s, {}\nB: {} — {} after {:.2f} s, {}\n\n",
+                                a.recipe_label(), a.outcome(), a.duration_s(), a.header().value("mode", "?"),
+                                b.recipe_label(), b.outcome(), b.duration_s(), b.header().value("mode", "?"));
   const auto names = a.axis_names();
   out += fmt::format("{:>4}  {:<30} {:>7} {:>7} {:>7}", "step", "label", "A s", "B s", "B−A s");
   for (const auto& n : names) out += fmt::format("  {:>15}", n + " end err A/B");
@@ -79,12 +79,16 @@ std::string compare_text(const RunRecord& a, const RunRecord& b) {
       out += fmt::format("  {:>7} {:>7}", i < ea.size() ? fmt::format("{:+.3f}", ea[i]) : "—",
                          i < eb.size() ? fmt::format("{:+.3f}", eb[i]) : "—");
     out += fmt::format("  {:7.1f} {:7.1f}", spindle_at_end(a, *sa), spindle_at_end(b, *sb));
-    if (sa->result != "done" || sb->result != "done") out += fmt::format("  (A {}, B {})", sa->result, sb->result);
+    if (sa->result != "done" || sb->result != "done")
+      out += fmt::format("  (A {}, B {})", sa->result, sb->result);
     out += "\n";
   }
-  out += fmt::format("total: B took {:+.2f} s against A over the steps both ran ({:.2f} s against {:.2f} s overall)\n",
-                     total_delta, b.duration_s(), a.duration_s());
-  out += "end err: planned − measured (encoder where it measures the axis, else the SCU) at the step's end, mm\n";
+  out += fmt::format(
+      "total: B took {:+.2f} s against A over the steps both ran ({:.2f} s against {:.2f} s overall)\n",
+      total_delta, b.duration_s(), a.duration_s());
+  out +=
+      "end err: planned − measured (encoder where it measures the axis, else the SCU) at the step's end, "
+      "mm\n";
   return out;
 }
 

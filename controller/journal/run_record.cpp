@@ -23,9 +23,13 @@ std::string text_of(const json& j, const char* key) {
   return it != j.end() && it->is_string() ? it->get<std::string>() : std::string();
 }
 
-// Whatever a fault-like event says, for an event kind this reader does not know in detail (an
-// injected fault, say): its text fields in order, "key=value" for the rest.
-std::string describe(const json& j) {
+bool operator_rule(std::string_view rule) {
+  return rule == "operator_stop" || rule == "emergency_stop";
+}
+
+}  // namespace
+
+std::string describe_event(const json& j) {
   std::string out;
   for (const auto& [k, v] : j.items()) {
     if (k == "t" || k == "event") continue;
@@ -35,19 +39,18 @@ std::string describe(const json& j) {
   return out;
 }
 
-bool operator_rule(std::string_view rule) {
-  return rule == "operator_stop" || rule == "emergency_stop";
-}
-
-}  // namespace
-
 std::string_view to_string(MarkKind k) noexcept {
   switch (k) {
-    case MarkKind::fault: return "fault";
-    case MarkKind::injected_fault: return "injected fault";
-    case MarkKind::fault_cleared: return "fault cleared";
-    case MarkKind::command: return "command";
-    case MarkKind::note: return "note";
+    case MarkKind::fault:
+      return "fault";
+    case MarkKind::injected_fault:
+      return "injected fault";
+    case MarkKind::fault_cleared:
+      return "fault cleared";
+    case MarkKind::command:
+      return "command";
+    case MarkKind::note:
+      return "note";
   }
   return "?";
 }
@@ -112,13 +115,14 @@ void RunRecord::add(const json& j) {
       operator_stop_ = true;
     else
       other_failure_ = true;
-    marks_.push_back({t, MarkKind::fault,
-                      fmt::format("{} (category {}): {}", rule, j.value("category", 0), text_of(j, "detail"))});
+    marks_.push_back(
+        {t, MarkKind::fault,
+         fmt::format("{} (category {}): {}", rule, j.value("category", 0), text_of(j, "detail"))});
   } else if (event.find("inject") != std::string::npos) {
-    marks_.push_back({t, MarkKind::injected_fault, describe(j)});
+    marks_.push_back({t, MarkKind::injected_fault, describe_event(j)});
   } else if (event.find("fault") != std::string::npos) {
     other_failure_ = true;
-    marks_.push_back({t, MarkKind::fault, describe(j)});
+    marks_.push_back({t, MarkKind::fault, describe_event(j)});
   }
 }
 
@@ -181,16 +185,16 @@ std::string RunRecord::recipe_label() const {
 
 const SamplePoint* RunRecord::sample_at(double t) const noexcept {
   if (samples_.empty()) return nullptr;
-  const auto it =
-      std::upper_bound(samples_.begin(), samples_.end(), t, [](double v, const SamplePoint& s) { return v < s.t; });
+  const auto it = std::upper_bound(samples_.begin(), samples_.end(), t,
+                                   [](double v, const SamplePoint& s) { return v < s.t; });
   return it == samples_.begin() ? &samples_.front() : &*(it - 1);
 }
 
 std::optional<double> RunRecord::planned_s(const StepRun& s) const {
   std::string kind;
   std::optional<double> declared;
-  if (const auto it = header_.find("steps"); it != header_.end() && s.step >= 1 &&
-                                             static_cast<std::size_t>(s.step) <= it->size()) {
+  if (const auto it = header_.find("steps");
+      it != header_.end() && s.step >= 1 && static_cast<std::size_t>(s.step) <= it->size()) {
     const auto& h = (*it)[static_cast<std::size_t>(s.step - 1)];
     kind = h.value("kind", "");
     if (const auto p = h.find("planned_s"); p != h.end()) declared = p->get<double>();

@@ -27,9 +27,9 @@ struct StepRun {
   std::string label;
   double start = 0.0;
   double end = 0.0;
-  double held_s = 0.0;       // of [start, end], the time the cell was held
-  std::string result;        // done, failed, interrupted (a stop or the end came first)
-  std::string detail;        // why it failed
+  double held_s = 0.0;  // of [start, end], the time the cell was held
+  std::string result;   // done, failed, interrupted (a stop or the end came first)
+  std::string detail;   // why it failed
   [[nodiscard]] double seconds() const noexcept { return end - start; }
 };
 
@@ -42,6 +42,10 @@ struct Mark {
   std::string text;
 };
 
+// What an event says, for kinds without a reader of their own (an injected fault, say): its text
+// fields in order, "key=value" for the rest; "t" and "event" left out.
+[[nodiscard]] std::string describe_event(const nlohmann::json& line);
+
 class RunRecord {
  public:
   // One journal line (any event; unknown kinds are kept only if they look like faults).
@@ -52,7 +56,7 @@ class RunRecord {
   // dir/journal.jsonl (or the file itself). Throws std::runtime_error with file:line on a bad line.
   [[nodiscard]] static RunRecord load(const std::filesystem::path& dir_or_file);
 
-  [[nodiscard]] const nlohmann::json& header() const noexcept { return header_; }   // {} if none
+  [[nodiscard]] const nlohmann::json& header() const noexcept { return header_; }    // {} if none
   [[nodiscard]] const nlohmann::json& summary() const noexcept { return summary_; }  // {} if none
   [[nodiscard]] const std::vector<SamplePoint>& samples() const noexcept { return samples_; }
   [[nodiscard]] const std::vector<StepRun>& steps() const noexcept { return steps_; }

@@ -34,16 +34,20 @@ std::string spindle_lines(const RunRecord& run) {
         if (!at_speed && std::abs(dev) <= 0.01 * set) at_speed = k;
         if (at_speed && std::abs(dev) > std::abs(worst)) worst = dev;
       }
-      out += at_speed ? fmt::format("spindle: set {:.1f} Hz at {:.2f} s, within 1 % after {:.2f} s, then within "
-                                    "{:+.1f} Hz until {:.2f} s\n",
-                                    set, ps[i].t - run.start(), ps[*at_speed].t - ps[i].t, worst, ps[j - 1].t - run.start())
-                      : fmt::format("spindle: set {:.1f} Hz at {:.2f} s, never within 1 % of it (reached {:.1f} Hz)\n",
-                                    set, ps[i].t - run.start(), ps[j - 1].spindle_hz);
+      out +=
+          at_speed
+              ? fmt::format(
+                    "spindle: set {:.1f} Hz at {:.2f} s, within 1 % after {:.2f} s, then within "
+                    "{:+.1f} Hz until {:.2f} s\n",
+                    set, ps[i].t - run.start(), ps[*at_speed].t - ps[i].t, worst, ps[j - 1].t - run.start())
+              : fmt::format(
+                    "spindle: set {:.1f} Hz at {:.2f} s, never within 1 % of it (reached {:.1f} Hz)\n", set,
+                    ps[i].t - run.start(), ps[j - 1].spindle_hz);
     } else if (i > 0 && ps[i - 1].spindle_set_hz > 0.0) {
       std::size_t k = i;
       while (k < j && ps[k].spindle_hz > 1.0) ++k;
-      out += k < j ? fmt::format("spindle: stopped at {:.2f} s, at rest {:.2f} s later\n", ps[i].t - run.start(),
-                                 ps[k].t - ps[i].t)
+      out += k < j ? fmt::format("spindle: stopped at {:.2f} s, at rest {:.2f} s later\n",
+                                 ps[i].t - run.start(), ps[k].t - ps[i].t)
                    : fmt::format("spindle: stopped at {:.2f} s, still at {:.1f} Hz when the record ends\n",
                                  ps[i].t - run.start(), ps[j - 1].spindle_hz);
     }
@@ -79,16 +83,18 @@ std::string report_text(const RunRecord& run) {
   if (!h.empty()) {
     out += fmt::format("  recipe sha256 {}…, config {} sha256 {}…\n", short_hash(h, "recipe_sha256"),
                        h.value("config_file", "?"), short_hash(h, "config_sha256"));
-    out += fmt::format("  cellctl {}, {}, host {}, started {}\n", h.value("cellctl", "?"), h.value("mode", "?"),
-                       h.value("host", "?"), h.value("started_utc", "?"));
+    out += fmt::format("  cellctl {}, {}, host {}, started {}\n", h.value("cellctl", "?"),
+                       h.value("mode", "?"), h.value("host", "?"), h.value("started_utc", "?"));
   }
   out += fmt::format("outcome: {} after {:.2f} s\n\n", run.outcome(), run.duration_s());
 
-  out += fmt::format("{:>4}  {:<52} {:>8} {:>8} {:>8}  {}\n", "step", "label", "planned", "actual", "held", "result");
+  out += fmt::format("{:>4}  {:<52} {:>8} {:>8} {:>8}  {}\n", "step", "label", "planned", "actual", "held",
+                     "result");
   for (const auto& s : run.steps()) {
     std::string label = s.label.size() > 52 ? s.label.substr(0, 51) + "…" : s.label;
-    out += fmt::format("{:>4}  {:<52} {} {:8.2f} {:>8}  {}{}\n", s.step, label, seconds_or_dash(run.planned_s(s)),
-                       s.seconds(), s.held_s > 0 ? fmt::format("{:.2f}", s.held_s) : "", s.result,
+    out += fmt::format("{:>4}  {:<52} {} {:8.2f} {:>8}  {}{}\n", s.step, label,
+                       seconds_or_dash(run.planned_s(s)), s.seconds(),
+                       s.held_s > 0 ? fmt::format("{:.2f}", s.held_s) : "", s.result,
                        s.detail.empty() ? "" : ": " + s.detail);
   }
   out += "  (planned: a move's profile, a dwell's time; — where nothing is planned, as a spindle ramp)\n\n";
@@ -112,7 +118,8 @@ std::string report_text(const RunRecord& run) {
   const auto& sm = run.summary();
   if (sm.contains("cycles"))
     out += fmt::format(
-        "loop: {} cycles, wake-up jitter p99 {:.1f} µs, {} overrun cycles, {} missed deadlines, {} journal events dropped\n",
+        "loop: {} cycles, wake-up jitter p99 {:.1f} µs, {} overrun cycles, {} missed deadlines, {} journal "
+        "events dropped\n",
         sm.value("cycles", 0), sm.value("jitter_p99_us", 0.0), sm.value("overrun_cycles", 0),
         sm.value("missed_deadlines", 0), sm.value("journal_dropped", 0));
   else

@@ -63,8 +63,8 @@ std::vector<std::string> RunSummary::faults() const {
   std::vector<std::string> out;
   for (const auto& m : record_.marks())
     if (m.kind == MarkKind::fault || m.kind == MarkKind::injected_fault)
-      out.push_back(fmt::format("{:.3f}s {}{}", m.t, m.kind == MarkKind::injected_fault ? "injected: " : "",
-                                m.text));
+      out.push_back(
+          fmt::format("{:.3f}s {}{}", m.t, m.kind == MarkKind::injected_fault ? "injected: " : "", m.text));
   return out;
 }
 
@@ -74,7 +74,8 @@ nlohmann::json RunSummary::to_json() const {
   j["duration_s"] = round_ms(duration_s());
   j["steps"] = nlohmann::json::array();
   for (const auto& s : steps()) {
-    nlohmann::json step{{"label", s.label}, {"count", s.count}, {"seconds", round_ms(s.seconds)}, {"failed", s.failed}};
+    nlohmann::json step{
+        {"label", s.label}, {"count", s.count}, {"seconds", round_ms(s.seconds)}, {"failed", s.failed}};
     if (s.interrupted) step["interrupted"] = s.interrupted;
     if (s.held_s > 0) step["held_s"] = round_ms(s.held_s);
     j["steps"].push_back(step);
@@ -88,7 +89,8 @@ std::string RunSummary::to_text() const {
   for (const auto& s : steps()) {
     std::string notes;
     if (s.failed) notes += fmt::format("  ({} failed)", s.failed);
-    if (s.interrupted) notes += fmt::format("  (interrupted by the {})", outcome() == "unfinished" ? "end" : "stop");
+    if (s.interrupted)
+      notes += fmt::format("  (interrupted by the {})", outcome() == "unfinished" ? "end" : "stop");
     if (s.held_s > 0) notes += fmt::format("  ({:.2f} s of it held)", s.held_s);
     out += fmt::format("  {:>8.2f} s  {:>3}×  {}{}\n", s.seconds, s.count, s.label, notes);
   }

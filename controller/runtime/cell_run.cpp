@@ -34,9 +34,9 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
       options_(std::move(options)),
       clock_(options_.mode == RunMode::virtual_time ? static_cast<const link::Clock&>(virtual_clock_)
                                                     : static_cast<const link::Clock&>(real_clock_)),
-      journal_(options_.journal_dir, options_.mode == RunMode::virtual_time
-                                         ? journal::WhenFull::wait
-                                         : journal::WhenFull::drop_and_count,
+      journal_(options_.journal_dir,
+               options_.mode == RunMode::virtual_time ? journal::WhenFull::wait
+                                                      : journal::WhenFull::drop_and_count,
                options_.record_header),
       monitor_(cell) {
   if (options_.mode == RunMode::virtual_time)

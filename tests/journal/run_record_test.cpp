@@ -51,7 +51,9 @@ TEST(RunRecord, PlannedTimeOfAMoveIsItsProfileAndOfADwellItsSeconds) {
   RunRecord r;
   r.add({{"t", 0.0},
          {"event", "record"},
-         {"steps", {{{"step", 1}, {"kind", "move"}, {"label", "m"}}, {{"step", 2}, {"kind", "dwell"}, {"label", "d"}, {"planned_s", 0.5}}}}});
+         {"steps",
+          {{{"step", 1}, {"kind", "move"}, {"label", "m"}},
+           {{"step", 2}, {"kind", "dwell"}, {"label", "d"}, {"planned_s", 0.5}}}}});
   r.add(to_json({0.0, StepStarted{0, "m"}}));
   for (int i = 0; i <= 20; ++i) {
     Sample smp;

@@ -127,7 +127,8 @@ TEST(LogTraceSink, TheCallersThreadOnlyQueuesTheWriterFormats) {
   const auto lines = logger.sink->lines();
   ASSERT_EQ(lines.size(), 2u);
   // Without a run's start, times count from the first telegram; then the wall-clock time.
-  EXPECT_THAT(lines[0], ::testing::MatchesRegex("   0\\.000000 s [0-9]{2}:[0-9]{2}:[0-9]{2}\\.[0-9]{6} scu TX 52 4f 00 5c 2d"));
+  EXPECT_THAT(lines[0], ::testing::MatchesRegex(
+                            "   0\\.000000 s [0-9]{2}:[0-9]{2}:[0-9]{2}\\.[0-9]{6} scu TX 52 4f 00 5c 2d"));
   EXPECT_THAT(lines[1], ::testing::MatchesRegex("   0\\.001000 s [0-9:.]{15} scu RX 52 4f 06"));
 }
 
