@@ -127,6 +127,7 @@ function draw() {
       for (let j = Math.max(0, a - 1); j < Math.min(T.length, b + 1); ++j) { const v = s.v[j]; if (v !== null) { lo = Math.min(lo, v); hi = Math.max(hi, v); } }
     });
     if (lo > hi) { lo = -1; hi = 1; }
+    if (lo === 0 && hi === 0) hi = 1;
     const ys = niceScale(lo, hi, 6); P.ys = ys;
     const top = P.top, bottom = P.h, yOf = v => bottom - (v - ys.lo) / (ys.hi - ys.lo) * (bottom - top);
     P.yOf = yOf;

@@ -52,7 +52,9 @@ Scale value_scale(const PlotPanel& p) {
   for (const auto& s : p.series)
     for (const double v : s.v)
       if (!std::isnan(v)) lo = std::min(lo, v), hi = std::max(hi, v);
-  if (lo > hi) lo = -1, hi = 1;  // nothing to show (no moves): a symmetric empty scale
+  if (lo > hi) lo = -1, hi = 1;        // nothing to show (no moves): a symmetric empty scale
+  if (lo == 0.0 && hi == 0.0) hi = 1;  // all zero (a spindle never run): no negative half
+
   return nice_scale(lo, hi, 6);
 }
 
@@ -74,8 +76,8 @@ std::string axes(const Frame& f, const PlotPanel& p, std::size_t index) {
         R"(<text class="tick" data-scale="t{}" x="{:.1f}" y="{}" font-size="11" text-anchor="middle">{}</text>)",
         index, f.x_of(t), f.top + f.height + 14, f.t.label(t));
   }
-  s += fmt::format(R"(<text x="{}" y="{}" font-size="11" text-anchor="end">time [s]</text>)", kPlotRight,
-                   f.top + f.height + 28);
+  s += fmt::format(R"(<text x="{}" y="{}" font-size="11">time [s]</text>)", kPlotRight + 14,
+                   f.top + f.height + 14);
   s += fmt::format(
       R"svg(<text x="{}" y="{}" font-size="12" text-anchor="middle" transform="rotate(-90 {} {})">{} [{}]</text>)svg",
       22, f.top + f.height / 2, 22, f.top + f.height / 2, p.unit == "Hz" ? "frequency" : "position", p.unit);
