@@ -20,6 +20,7 @@
 #include "cli/scu_commands.hpp"
 #include "cli/spindle_commands.hpp"
 #include "config/yaml_node.hpp"
+#include "journal/version.hpp"
 #include "link/link_error.hpp"
 
 namespace cellctl::cli {
@@ -43,7 +44,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   // Global options where a person types them: `cellctl -c cell.yaml run R` and `cellctl run R -c cell.yaml`.
   app.fallthrough();
-  app.set_version_flag("--version", "cellctl 0.1.0");
+  app.set_version_flag("--version", "cellctl " + std::string(cellctl::journal::cellctl_version()));
 
   Commands commands;
   GlobalOptions& global = commands.global;
