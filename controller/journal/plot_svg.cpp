@@ -170,15 +170,19 @@ std::string render_svg(const std::vector<const RunRecord*>& runs) {
     svg += legend(frames[i], m.panels[i]);
   }
   // Marks: a numbered line through every panel, listed below.
+  double last_mark_x = -1e9;
+  int stacked = 0;  // marks closer than a number's width stack their numbers upwards
   for (std::size_t i = 0; i < m.marks.size(); ++i) {
     const auto& mk = m.marks[i];
     const double x = f0.x_of(mk.t);
+    stacked = x - last_mark_x < 12 ? stacked + 1 : 0;
+    last_mark_x = x;
     svg += fmt::format(
         R"(<line x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="{}" stroke-width="1.2" stroke-dasharray="4,2"><title>{}</title></line>)",
         x, f0.top - 14, x, fl.top + fl.height, mk.colour, xml(mk.text));
     svg += fmt::format(
         R"(<text x="{:.1f}" y="{}" font-size="11" font-weight="bold" fill="{}" text-anchor="middle">{}</text>)",
-        x, f0.top - 16, mk.colour, i + 1);
+        x, f0.top - 16 - 12 * stacked, mk.colour, i + 1);
     svg += fmt::format(
         R"(<text class="mark" x="{}" y="{}" font-size="11" fill="{}">{}  {:8.3f} s  {}: {}</text>)", kLeft,
         marks_top + 15 * static_cast<double>(i + 1), mk.colour, i + 1, mk.t, mk.kind, xml(mk.text));

@@ -89,6 +89,8 @@ void RunRecord::add(const json& j) {
     if (event == "step_failed") other_failure_ = true;
   } else if (event == "state") {
     const auto to = text_of(j, "to");
+    // A stop ends the step it interrupts there and then (not when the cell is at rest, maybe much later).
+    if (to == "Stopping" || to == "Aborting") close_open_steps(t, "interrupted");
     if ((to == "Holding" || to == "Held") && !held_since_) held_since_ = t;
     if (to != "Holding" && to != "Held" && held_since_) {
       if (!steps_.empty() && steps_.back().result.empty()) steps_.back().held_s += t - *held_since_;

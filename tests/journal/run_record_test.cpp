@@ -23,13 +23,14 @@ TEST(RunRecord, AStepHeldKeepsItsTimeBeforeTheHoldAndAStopIncludesTheInterrupted
   add(s, 7.0, StepEnded{0, "go (line 3)", true, {}});
   add(s, 7.0, StepStarted{1, "drill (line 5)"});
   add(s, 8.5, Command{"stop", "operator"});
-  add(s, 9.0, RunEnded{"stopped"});
+  add(s, 8.5, StateChanged{"Execute", "Stopping", {}});  // the step ends here, not when the cell is at rest
+  add(s, 20.0, RunEnded{"stopped"});
   const auto& steps = s.record().steps();
   ASSERT_EQ(steps.size(), 2u);
   EXPECT_DOUBLE_EQ(steps[0].seconds(), 7.0);
   EXPECT_DOUBLE_EQ(steps[0].held_s, 4.0);
   EXPECT_EQ(steps[1].result, "interrupted");
-  EXPECT_DOUBLE_EQ(steps[1].seconds(), 2.0);
+  EXPECT_DOUBLE_EQ(steps[1].seconds(), 1.5);
   EXPECT_TRUE(s.record().ended_by_operator());
   const auto text = s.to_text();
   EXPECT_NE(text.find("drill (line 5)  (interrupted by the stop)"), std::string::npos) << text;
