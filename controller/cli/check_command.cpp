@@ -30,8 +30,11 @@ int run_check(const GlobalOptions& global, const std::vector<std::string>& recip
     try {
       const auto recipe = recipe::load_recipe(path, cell);
       const auto program = recipe::unroll(recipe);
-      fmt::print("{}: ok — '{}' version {} for cell '{}', {} steps\n", path, recipe.name, recipe.version,
+      fmt::print("{}: ok — '{}' version {} for cell '{}', {} steps:\n", path, recipe.name, recipe.version,
                  recipe.cell, program.instructions.size());
+      // Numbered as `cellctl run`, its journal and `cellctl report` number them.
+      for (std::size_t i = 0; i < program.instructions.size(); ++i)
+        fmt::print("  {:>3}  {}\n", i + 1, program.instructions[i].label);
     } catch (const recipe::RecipeErrors& e) {
       fmt::print("{}\n", e.what());
       fmt::print("{}: {} problem{}; nothing was moved\n", path, e.errors().size(),

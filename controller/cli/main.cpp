@@ -9,15 +9,18 @@
 
 #include "cli/check_command.hpp"
 #include "cli/commands.hpp"
+#include "cli/compare_command.hpp"
 #include "cli/drive.hpp"
 #include "cli/emulate_command.hpp"
 #include "cli/encoder_commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/logging.hpp"
+#include "cli/report_command.hpp"
 #include "cli/run_command.hpp"
 #include "cli/scu_commands.hpp"
 #include "cli/spindle_commands.hpp"
 #include "config/yaml_node.hpp"
+#include "journal/version.hpp"
 #include "link/link_error.hpp"
 
 namespace cellctl::cli {
@@ -39,7 +42,9 @@ int main(int argc, char** argv) {
   CLI::App app{
       "cellctl — controller for a motion cell (Ewellix SCU actuators, SycoTec spindle, Scancon encoder)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "cellctl 0.1.0");
+  // Global options where a person types them: `cellctl -c cell.yaml run R` and `cellctl run R -c cell.yaml`.
+  app.fallthrough();
+  app.set_version_flag("--version", "cellctl " + std::string(cellctl::journal::cellctl_version()));
 
   Commands commands;
   GlobalOptions& global = commands.global;
@@ -55,6 +60,8 @@ int main(int argc, char** argv) {
   add_spindle_commands(app, commands);
   add_encoder_commands(app, commands);
   add_scu_commands(app, commands);
+  add_report_command(app, commands);
+  add_compare_command(app, commands);
 
   try {
     app.parse(argc, argv);

@@ -1,19 +1,75 @@
 #include "cli/operator_console.hpp"
 
+#include <fmt/format.h>
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <string>
 
 namespace cellctl::cli {
+namespace {
 
-OperatorConsole::OperatorConsole(runtime::CellRun& run) : run_(run) {
-  if (isatty(STDIN_FILENO)) thread_ = std::thread([this] { read_commands(); });
+constexpr std::string_view kWhatToType =
+    "type hold, unhold, stop, abort or reset (or h, u, s, a, r) and Enter";
+
+std::string trimmed_lower(std::string_view word) {
+  while (!word.empty() && std::isspace(static_cast<unsigned char>(word.front()))) word.remove_prefix(1);
+  while (!word.empty() && std::isspace(static_cast<unsigned char>(word.back()))) word.remove_suffix(1);
+  std::string out(word);
+  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return std::tolower(c); });
+  return out;
+}
+
+}  // namespace
+
+std::optional<supervisor::Command> OperatorConsole::parse(std::string_view word) {
+  using supervisor::Command;
+  const auto w = trimmed_lower(word);
+  if (w == "hold" || w == "h") return Command::hold;
+  if (w == "unhold" || w == "u") return Command::unhold;
+  if (w == "stop" || w == "s") return Command::stop;
+  if (w == "abort" || w == "a") return Command::abort;
+  if (w == "reset" || w == "r") return Command::reset;
+  return std::nullopt;
+}
+
+OperatorConsole::OperatorConsole(runtime::CellRun& run, TerminalScreen& screen) : run_(run), screen_(screen) {
+  if (!isatty(STDIN_FILENO)) return;
+  if (screen_.tty()) {
+    termios t{};
+    if (tcgetattr(STDIN_FILENO, &t) == 0) {
+      saved_ = t;
+      t.c_lflag &= ~static_cast<tcflag_t>(ICANON | ECHO);  // ISIG stays: Ctrl-C is still the operator stop
+      t.c_cc[VMIN] = 1;
+      t.c_cc[VTIME] = 0;
+      tcsetattr(STDIN_FILENO, TCSANOW, &t);
+    }
+  }
+  thread_ = std::thread([this] { read_commands(); });
 }
 
 OperatorConsole::~OperatorConsole() {
   stop_.store(true);
   if (thread_.joinable()) thread_.join();
+  if (saved_) tcsetattr(STDIN_FILENO, TCSANOW, &*saved_);
+}
+
+void OperatorConsole::handle(const std::string& line) {
+  if (trimmed_lower(line).empty()) return;
+  const auto cmd = parse(line);
+  if (!cmd) {
+    screen_.message(fmt::format("'{}' is not a command: {}", line, kWhatToType));
+    run_.note_from_operator(journal::Text::format("operator typed '{}': not a command, ignored", line));
+    return;
+  }
+  const auto name = supervisor::to_string(*cmd);
+  if (trimmed_lower(line) != name)
+    screen_.message(fmt::format("> {}: taken as '{}'", line, name));
+  else
+    screen_.message(fmt::format("> {}", name));
+  run_.request(*cmd);  // its answer comes from the journal (RunNarrator)
 }
 
 void OperatorConsole::read_commands() {
@@ -24,16 +80,20 @@ void OperatorConsole::read_commands() {
     char buf[64];
     const ssize_t n = ::read(STDIN_FILENO, buf, sizeof buf);
     if (n <= 0) return;
-    pending.append(buf, static_cast<std::size_t>(n));
-    for (auto nl = pending.find('\n'); nl != std::string::npos; nl = pending.find('\n')) {
-      const auto word = pending.substr(0, nl);
-      pending.erase(0, nl + 1);
-      using supervisor::Command;
-      if (word == "hold" || word == "h") run_.request(Command::hold);
-      if (word == "unhold" || word == "u") run_.request(Command::unhold);
-      if (word == "stop" || word == "s") run_.request(Command::stop);
-      if (word == "abort" || word == "a") run_.request(Command::abort);
-      if (word == "reset" || word == "r") run_.request(Command::reset);
+    for (ssize_t i = 0; i < n; ++i) {
+      const char c = buf[i];
+      if (c == '\n' || c == '\r') {
+        const auto line = pending;
+        pending.clear();
+        screen_.typing({});
+        handle(line);
+      } else if (c == 0x7f || c == '\b') {
+        if (!pending.empty()) pending.pop_back();
+        screen_.typing(pending);
+      } else if (std::isprint(static_cast<unsigned char>(c)) && pending.size() < 60) {
+        pending.push_back(c);
+        screen_.typing(pending);
+      }
     }
   }
 }

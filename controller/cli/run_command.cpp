@@ -1,11 +1,9 @@
 #include "cli/run_command.hpp"
 
-#include <fmt/chrono.h>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <ctime>
 #include <memory>
 #include <string>
 #include <variant>
@@ -14,8 +12,13 @@
 #include "cli/drive.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/operator_console.hpp"
+#include "cli/run_narrator.hpp"
+#include "cli/run_record_info.hpp"
 #include "cli/status_printer.hpp"
+#include "cli/terminal_screen.hpp"
 #include "config/cell_config.hpp"
+#include "journal/record_header.hpp"
+#include "journal/run_record.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "runtime/cell_run.hpp"
 #include "runtime/fault_rehearsal.hpp"
@@ -45,10 +48,18 @@ CLI::Validator fault_spec_validator(std::vector<runtime::FaultSpec>& out) {
       "DEVICE:KIND@T[+D]");
 }
 
-std::string default_journal_dir(const recipe::Recipe& r) {
-  const auto now = std::chrono::system_clock::now();
-  return fmt::format("runs/{}-{:%Y%m%d-%H%M%S}", r.name,
-                     fmt::localtime(std::chrono::system_clock::to_time_t(now)));
+// What Ctrl-C will do, as the cell's config has it.
+std::string ctrl_c_hint(config::StopCategory operator_stop) {
+  switch (operator_stop) {
+    case config::StopCategory::controlled_hold:
+      return "Ctrl-C holds the cell (then type stop to end, or reset and unhold to go on); twice: emergency "
+             "stop";
+    case config::StopCategory::controlled_off:
+      return "Ctrl-C stops the cell (controlled, category 1) and ends the run; twice: emergency stop";
+    case config::StopCategory::immediate:
+      return "Ctrl-C stops the cell at once (category 0) and ends the run";
+  }
+  return "";
 }
 
 int run_recipe(const GlobalOptions& global, const RunArgs& args) {
@@ -75,26 +86,36 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   options.mode = args.virtual_time ? runtime::RunMode::virtual_time
                  : args.emulate    ? runtime::RunMode::emulated
                                    : runtime::RunMode::hardware;
-  options.journal_dir = args.journal_dir.empty() ? default_journal_dir(recipe) : args.journal_dir;
+  options.journal_dir =
+      args.journal_dir.empty() ? default_run_dir(args.recipe) : std::filesystem::path(args.journal_dir);
   options.trace = global.trace;
   options.faults = args.faults;
+  const auto info = record_info(cell, global.config, recipe, recipe::unroll(recipe), options.mode);
+  options.record_header = journal::record_header(info);
 
   runtime::CellRun run(cell, recipe, options);
-  fmt::print("cellctl: running '{}' {} on cell '{}' ({})\n", recipe.name, recipe.version, cell.name,
-             to_string(options.mode));
+  fmt::print("cellctl: running '{}' {} ({}) on cell '{}' — {}\n", recipe.name, recipe.version, args.recipe,
+             cell.name, mode_label(cell, options.mode));
   for (const auto& d : run.links().describe()) fmt::print("  {}\n", d);
   for (const auto& f : options.faults)
     fmt::print("  fault to rehearse: {} — {}\n", f.text, runtime::FaultRehearsal::what(f));
-  fmt::print("  run record: {}/journal.jsonl, plot: {}/plot.svg\n", options.journal_dir.string(),
+  fmt::print("  run record: {0}/journal.jsonl, plots: {0}/plot.svg, {0}/plot.html\n",
              options.journal_dir.string());
 
   runtime::RunResult result;
   {
-    StatusPrinter printer(run.status(), cell);
-    OperatorConsole console(run);
+    TerminalScreen screen;
+    RunNarrator narrator(screen);
+    run.on_journal_line([&narrator](const nlohmann::json& line) { narrator(line); });
+    fmt::print("  {}\n", ctrl_c_hint(cell.stops.operator_stop));
+    std::vector<std::optional<double>> planned;
+    for (const auto& st : info.steps) planned.push_back(st.planned_s);
+    StatusPrinter printer(run.status(), cell, screen, std::move(planned));
+    OperatorConsole console(run, screen);
     if (console.active())
-      fmt::print("  type hold, unhold, stop, abort or reset + Enter; Ctrl-C stops, twice aborts\n");
+      screen.message("  type hold, unhold, stop, abort or reset (h, u, s, a, r) and Enter");
     result = run.run(g_interrupted, &g_terminated);
+    run.on_journal_line({});
   }
   for (const auto& w : run.realtime_warnings()) spdlog::warn("real-time: {}", w);
   fmt::print("\n{}", result.summary_text);
@@ -108,7 +129,9 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   fmt::print("run record: {}\n", options.journal_dir.string());
 
   if (result.final_state == supervisor::State::complete) return kExitOk;
-  return result.interrupted ? kExitInterrupted : kExitFailed;
+  // Ended by the operator (typed stop/abort, Ctrl-C, SIGTERM) with nothing else gone wrong: 130,
+  // however it was asked for; a fault or a failed step: 1.
+  return journal::RunRecord::load(options.journal_dir).ended_by_operator() ? kExitInterrupted : kExitFailed;
 }
 
 }  // namespace
@@ -119,8 +142,8 @@ void add_run_command(CLI::App& app, Commands& commands) {
   sub->footer(
       "Devices whose port is 'emulated' in the cell config run as emulators inside cellctl.\n"
       "Exit status: 0 complete, 1 stopped or aborted by a fault or a failed step, 2 bad command line (a bad\n"
-      "--fault says why), 3 bad config or recipe "
-      "(nothing moved), 4 a port could not be opened, 130 stopped by Ctrl-C.\n"
+      "--fault says why), 3 bad config or recipe (nothing moved), 4 a port could not be opened, 130 ended\n"
+      "by the operator (typed stop or abort, Ctrl-C, SIGTERM).\n"
       "Ctrl-C once: operator stop (category from stops.operator; 2 holds the cell); twice: emergency stop.\n"
       "SIGTERM: a controlled stop (category 1).");
   auto args = std::make_shared<RunArgs>();
@@ -131,7 +154,7 @@ void add_run_command(CLI::App& app, Commands& commands) {
                 "Every device on its emulator over simulated lines, on a virtual clock, as fast as possible")
       ->excludes(emulate);
   sub->add_option("--journal", args->journal_dir,
-                  "Directory for the run record (default runs/<recipe>-<time>)");
+                  "Directory for the run record (default runs/<recipe file name>-<start time>)");
   sub->add_option("--fault", args->faults_text,
                   "Rehearse a fault (repeatable; --emulate or --virtual-time only): DEVICE:KIND@T[+D] puts\n"
                   "KIND on DEVICE T seconds after the run starts, for D seconds (for ever without +D).\n"

@@ -12,9 +12,15 @@ std::string str(std::string_view s) {
   return std::string(s);
 }
 
+// Samples are floats: written as the nearest 0.1 µm (0.0001 Hz), not as the float's binary
+// expansion (12.300000190734863), which no reader wants and which triples the file.
+double tidy(float v) {
+  return std::round(static_cast<double>(v) * 1e4) / 1e4;
+}
+
 json axes_array(const std::array<float, kMaxAxes>& v, std::uint8_t n) {
   json a = json::array();
-  for (std::uint8_t i = 0; i < n; ++i) a.push_back(v[i]);
+  for (std::uint8_t i = 0; i < n; ++i) a.push_back(tidy(v[i]));
   return a;
 }
 
@@ -63,10 +69,10 @@ struct Fill {
     j["event"] = "sample";
     j["planned_mm"] = axes_array(e.planned_mm, e.axes);
     j["scu_mm"] = axes_array(e.scu_mm, e.axes);
-    j["encoder_mm"] = e.encoder_mm;
-    j["encoder_mm_s"] = e.encoder_mm_s;
-    j["spindle_set_hz"] = e.spindle_set_hz;
-    j["spindle_hz"] = e.spindle_actual_hz;
+    j["encoder_mm"] = tidy(e.encoder_mm);
+    j["encoder_mm_s"] = tidy(e.encoder_mm_s);
+    j["spindle_set_hz"] = tidy(e.spindle_set_hz);
+    j["spindle_hz"] = tidy(e.spindle_actual_hz);
   }
   void operator()(const Note& e) const {
     j["event"] = "note";

@@ -7,11 +7,12 @@
 #include <stdexcept>
 
 #include "journal/event_json.hpp"
+#include "journal/plot_html.hpp"
 #include "journal/plot_svg.hpp"
 
 namespace cellctl::journal {
 
-Journal::Journal(const std::filesystem::path& dir, WhenFull when_full)
+Journal::Journal(const std::filesystem::path& dir, WhenFull when_full, const nlohmann::json& header)
     : dir_(dir), when_full_(when_full), queue_(std::make_unique<wire::SpscQueue<Event, 8192>>()) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
@@ -19,6 +20,11 @@ Journal::Journal(const std::filesystem::path& dir, WhenFull when_full)
   file_ = std::fopen(path.c_str(), "w");
   if (file_ == nullptr)
     throw std::runtime_error(fmt::format("cannot write the run record {}", path.string()));
+  if (!header.is_null()) {
+    summary_.add(header);
+    std::fputs((header.dump() + "\n").c_str(), file_);
+    std::fflush(file_);
+  }
   writer_ = std::thread([this] { run_writer(); });
 }
 
@@ -41,15 +47,24 @@ bool Journal::drain() {
   bool any = false;
   while (auto e = queue_->pop()) {
     any = true;
-    summary_.add(*e);
-    if (const auto* s = std::get_if<Sample>(&e->payload)) samples_.emplace_back(e->t, *s);
-    const auto line = to_json(*e).dump();
+    const auto j = to_json(*e);
+    summary_.add(j);
+    const auto line = j.dump();
+    {
+      const std::lock_guard lock(listener_mutex_);
+      if (listener_) listener_(j);
+    }
     std::fputs(line.c_str(), file_);
     std::fputc('\n', file_);
   }
   // Flushed after every batch: what was posted is in the file within a few milliseconds.
   if (any) std::fflush(file_);
   return any;
+}
+
+void Journal::on_line(std::function<void(const nlohmann::json&)> listener) {
+  const std::lock_guard lock(listener_mutex_);
+  listener_ = std::move(listener);
 }
 
 void Journal::run_writer() {
@@ -64,6 +79,7 @@ void Journal::close(const nlohmann::json& extra) {
   closed_ = true;
   closing_.store(true);
   if (writer_.joinable()) writer_.join();
+  summary_.record().finish();
   auto j = summary_.to_json();
   j["event"] = "summary";
   j["journal_dropped"] = dropped_.load();
@@ -73,7 +89,8 @@ void Journal::close(const nlohmann::json& extra) {
   std::fputc('\n', file_);
   std::fclose(file_);
   file_ = nullptr;
-  std::ofstream(dir_ / "plot.svg") << render_svg(samples_, summary_);
+  std::ofstream(dir_ / "plot.svg") << render_svg({&summary_.record()});
+  std::ofstream(dir_ / "plot.html") << render_html({&summary_.record()});
 }
 
 }  // namespace cellctl::journal

@@ -2,16 +2,17 @@
 // The run record: a JSON-lines file of every state change, step, command, fault and a periodic
 // sample. The control cycle only posts fixed-size events into a lock-free queue; a writer thread
 // formats, writes and flushes them, so nothing is lost on a fault or Ctrl-C and the cycle never
-// waits on a disk. At the end it adds the summary and draws the plot.
+// waits on a disk. At the end it adds the summary and draws the plots (plot.svg, plot.html).
 
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
-#include <vector>
 
 #include "journal/event.hpp"
 #include "journal/event_sink.hpp"
@@ -26,8 +27,9 @@ using WhenFull = wire::WhenFull;
 
 class Journal final : public EventSink {
  public:
-  // Creates `dir` if needed and opens dir/journal.jsonl; throws std::runtime_error naming the path.
-  Journal(const std::filesystem::path& dir, WhenFull when_full);
+  // Creates `dir` if needed, opens dir/journal.jsonl and writes `header` (record_header.hpp) as its
+  // first line unless it is null; throws std::runtime_error naming the path.
+  Journal(const std::filesystem::path& dir, WhenFull when_full, const nlohmann::json& header = {});
   ~Journal() override;
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;
@@ -36,8 +38,12 @@ class Journal final : public EventSink {
   void post(double t, const Payload& payload) noexcept override;
 
   // Drains everything, appends {"event":"summary",…} with `extra` merged in (cycle statistics),
-  // writes plot.svg, flushes and closes. Idempotent.
+  // writes plot.svg and plot.html, flushes and closes. Idempotent.
   void close(const nlohmann::json& extra = {});
+
+  // Called on the writer thread with every line as it is written (the terminal answers typed
+  // commands and reports faults from what the run records). Never on the cycle's thread.
+  void on_line(std::function<void(const nlohmann::json&)> listener);
 
   [[nodiscard]] const std::filesystem::path& dir() const noexcept { return dir_; }
   [[nodiscard]] std::uint64_t dropped() const noexcept { return dropped_.load(); }
@@ -54,8 +60,9 @@ class Journal final : public EventSink {
   std::unique_ptr<wire::SpscQueue<Event, 8192>> queue_;
   std::atomic<bool> closing_{false};
   std::atomic<std::uint64_t> dropped_{0};
-  std::vector<std::pair<double, Sample>> samples_;  // writer thread only
-  RunSummary summary_;                              // writer thread only until close()
+  RunSummary summary_;         // writer thread only until close()
+  std::mutex listener_mutex_;  // writer thread and the thread setting it; the cycle never takes it
+  std::function<void(const nlohmann::json&)> listener_;
   std::thread writer_;
   bool closed_ = false;
 };

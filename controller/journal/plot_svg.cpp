@@ -3,127 +3,194 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <limits>
+#include <cmath>
+
+#include "journal/plot_model.hpp"
+#include "journal/plot_scale.hpp"
 
 namespace cellctl::journal {
 namespace {
 
-constexpr double kWidth = 1000, kPanel = 260, kLeft = 70, kRight = 20, kTop = 40, kGap = 50;
-constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#e377c2"};
+constexpr double kWidth = 1200, kLeft = 80, kPlotRight = 960, kLegendX = 975;
+constexpr double kStepBand = 120, kGap = 44;
+constexpr double kPanelHeights[] = {300, 150, 190};
 
-struct Range {
-  double lo = std::numeric_limits<double>::max();
-  double hi = std::numeric_limits<double>::lowest();
-  void add(double v) {
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
+std::string xml(std::string_view s) {
+  std::string out;
+  for (const char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
   }
-  void pad() {
-    if (lo > hi) lo = 0, hi = 1;
-    if (hi - lo < 1e-9) hi = lo + 1;
-    const double p = (hi - lo) * 0.05;
-    lo -= p, hi += p;
+  return out;
+}
+
+struct Frame {
+  double top, height;
+  Scale t, y;
+  [[nodiscard]] double x_of(double t_s) const {
+    return kLeft + (t_s - t.lo) / (t.hi - t.lo) * (kPlotRight - kLeft);
   }
+  [[nodiscard]] double y_of(double v) const { return top + height - (v - y.lo) / (y.hi - y.lo) * height; }
 };
 
-class Panel {
- public:
-  Panel(double top, Range t, Range y, std::string title, std::string unit)
-      : top_(top), t_(t), y_(y), title_(std::move(title)), unit_(std::move(unit)) {}
+Scale value_scale(const PlotPanel& p) {
+  double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
+  for (const auto& s : p.series)
+    for (const double v : s.v)
+      if (!std::isnan(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (lo > hi) lo = -1, hi = 1;        // nothing to show (no moves): a symmetric empty scale
+  if (lo == 0.0 && hi == 0.0) hi = 1;  // all zero (a spindle never run): no negative half
 
-  [[nodiscard]] double x(double t) const {
-    return kLeft + (t - t_.lo) / (t_.hi - t_.lo) * (kWidth - kLeft - kRight);
+  return nice_scale(lo, hi, 6);
+}
+
+// Tick labels carry their scale's name (data-scale="y0", "t0"), so a test can check each scale.
+std::string axes(const Frame& f, const PlotPanel& p, std::size_t index) {
+  std::string s = fmt::format(R"(<text x="{}" y="{}" font-size="14" font-weight="bold">{}</text>)", kLeft,
+                              f.top - 8, xml(p.title));
+  for (const double v : f.y.ticks) {
+    s += fmt::format(R"(<line x1="{}" y1="{:.1f}" x2="{}" y2="{:.1f}" stroke="{}"/>)", kLeft, f.y_of(v),
+                     kPlotRight, f.y_of(v), v == 0.0 ? "#bbb" : "#eee");
+    s += fmt::format(
+        R"(<text class="tick" data-scale="y{}" x="{}" y="{:.1f}" font-size="11" text-anchor="end">{}</text>)",
+        index, kLeft - 5, f.y_of(v) + 4, f.y.label(v));
   }
-  [[nodiscard]] double y(double v) const { return top_ + kPanel - (v - y_.lo) / (y_.hi - y_.lo) * kPanel; }
+  for (const double t : f.t.ticks) {
+    s += fmt::format(R"(<line x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="#f2f2f2"/>)", f.x_of(t), f.top,
+                     f.x_of(t), f.top + f.height);
+    s += fmt::format(
+        R"(<text class="tick" data-scale="t{}" x="{:.1f}" y="{}" font-size="11" text-anchor="middle">{}</text>)",
+        index, f.x_of(t), f.top + f.height + 14, f.t.label(t));
+  }
+  s += fmt::format(R"(<text x="{}" y="{}" font-size="11">time [s]</text>)", kPlotRight + 14,
+                   f.top + f.height + 14);
+  s += fmt::format(
+      R"svg(<text x="{}" y="{}" font-size="12" text-anchor="middle" transform="rotate(-90 {} {})">{} [{}]</text>)svg",
+      22, f.top + f.height / 2, 22, f.top + f.height / 2, p.unit == "Hz" ? "frequency" : "position", p.unit);
+  s += fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#888"/>)", kLeft, f.top,
+                   kPlotRight - kLeft, f.height);
+  return s;
+}
 
-  std::string frame() const {
-    std::string s = fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#999"/>)",
-                                kLeft, top_, kWidth - kLeft - kRight, kPanel);
-    s += fmt::format(R"(<text x="{}" y="{}" font-size="14" font-weight="bold">{}</text>)", kLeft, top_ - 8,
-                     title_);
-    for (int i = 0; i <= 4; ++i) {
-      const double v = y_.lo + (y_.hi - y_.lo) * i / 4.0;
-      s += fmt::format(R"(<text x="{}" y="{:.1f}" font-size="11" text-anchor="end">{:.1f} {}</text>)",
-                       kLeft - 4, y(v) + 4, v, unit_);
-      s += fmt::format(R"(<line x1="{}" y1="{:.1f}" x2="{}" y2="{:.1f}" stroke="#eee"/>)", kLeft, y(v),
-                       kWidth - kRight, y(v));
+// A polyline per stretch of values (NaN breaks it).
+std::string curve(const Frame& f, const PlotSeries& s) {
+  std::string out, pts;
+  const auto flush = [&] {
+    if (!pts.empty())
+      out += fmt::format(R"(<polyline fill="none" stroke="{}" stroke-width="1.4"{} points="{}"/>)", s.colour,
+                         s.dash.empty() ? "" : fmt::format(R"( stroke-dasharray="{}")", s.dash), pts);
+    pts.clear();
+  };
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    if (std::isnan(s.v[i])) {
+      flush();
+      continue;
     }
-    for (int i = 0; i <= 5; ++i) {
-      const double t = t_.lo + (t_.hi - t_.lo) * i / 5.0;
-      s += fmt::format(R"(<text x="{:.1f}" y="{}" font-size="11" text-anchor="middle">{:.1f} s</text>)", x(t),
-                       top_ + kPanel + 14, t);
-    }
-    return s;
+    pts += fmt::format("{:.1f},{:.1f} ", f.x_of(s.t[i]), f.y_of(s.v[i]));
   }
+  flush();
+  return out;
+}
 
-  template <class Get>
-  std::string line(const std::vector<std::pair<double, Sample>>& samples, Get get, const char* colour,
-                   const char* dash) const {
-    std::string pts;
-    for (const auto& [t, s] : samples) pts += fmt::format("{:.1f},{:.1f} ", x(t), y(get(s)));
-    return fmt::format(
-        R"(<polyline fill="none" stroke="{}" stroke-width="1.5" stroke-dasharray="{}" points="{}"/>)", colour,
-        dash, pts);
+std::string legend(const Frame& f, const PlotPanel& p) {
+  std::string s;
+  double y = f.top + 10;
+  for (const auto& series : p.series) {
+    s += fmt::format(R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="2"{}/>)", kLegendX, y,
+                     kLegendX + 26, y, series.colour,
+                     series.dash.empty() ? "" : fmt::format(R"( stroke-dasharray="{}")", series.dash));
+    s += fmt::format(R"(<text class="legend" x="{}" y="{}" font-size="11">{}</text>)", kLegendX + 32, y + 4,
+                     xml(series.name));
+    y += 16;
   }
-
- private:
-  double top_;
-  Range t_, y_;
-  std::string title_, unit_;
-};
-
-std::string legend(double x, double y, const char* colour, const char* dash, const std::string& text) {
-  return fmt::format(
-      R"(<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="2" stroke-dasharray="{}"/>)"
-      R"(<text x="{}" y="{}" font-size="12">{}</text>)",
-      x, y, x + 24, y, colour, dash, x + 30, y + 4, text);
+  return s;
 }
 
 }  // namespace
 
-std::string render_svg(const std::vector<std::pair<double, Sample>>& samples, const RunSummary& summary) {
-  Range t, pos, hz;
-  std::uint8_t axes = 0;
-  for (const auto& [time, s] : samples) {
-    t.add(time);
-    axes = std::max(axes, s.axes);
-    for (std::uint8_t a = 0; a < s.axes; ++a) pos.add(s.planned_mm[a]), pos.add(s.scu_mm[a]);
-    pos.add(s.encoder_mm);
-    hz.add(s.spindle_set_hz), hz.add(s.spindle_actual_hz);
+std::string render_svg(const std::vector<const RunRecord*>& runs) {
+  const PlotModel m = plot_model(runs);
+  const Scale t = nice_scale(m.t_lo, m.t_hi, 14);
+  const double header = 30 + 15.0 * static_cast<double>(m.subtitle.size());
+  std::vector<Frame> frames;
+  double top = header + kStepBand;
+  for (std::size_t i = 0; i < m.panels.size(); ++i) {
+    frames.push_back({top, kPanelHeights[i % 3], t, value_scale(m.panels[i])});
+    top += kPanelHeights[i % 3] + kGap;
   }
-  t.pad(), pos.pad(), hz.pad();
-  const double height = kTop + 2 * kPanel + kGap + 90;
+  const double marks_top = top + 10;
+  const double height = marks_top + 20 + 15.0 * static_cast<double>(m.marks.size());
+
   std::string svg = fmt::format(
-      R"(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" font-family="sans-serif">)"
+      R"(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{:.0f}" viewBox="0 0 {} {:.0f}" font-family="sans-serif">)"
+      "\n"
       R"(<rect width="100%" height="100%" fill="white"/>)",
-      kWidth, height);
-  svg += fmt::format(R"(<text x="{}" y="20" font-size="13">outcome: {} after {:.2f} s, {} faults</text>)",
-                     kLeft, summary.outcome(), summary.duration_s(), summary.faults().size());
-  const Panel p1(kTop + 10, t, pos, "Axis positions", "mm");
-  const Panel p2(kTop + 10 + kPanel + kGap, t, hz, "Spindle frequency", "Hz");
-  svg += p1.frame() + p2.frame();
-  for (std::uint8_t a = 0; a < axes; ++a) {
-    svg += p1.line(
-        samples, [a](const Sample& s) { return s.planned_mm[a]; }, kColours[a], "6,3");
-    svg += p1.line(
-        samples, [a](const Sample& s) { return s.scu_mm[a]; }, kColours[a], "none");
+      kWidth, height, kWidth, height);
+  svg +=
+      fmt::format(R"(<text x="{}" y="20" font-size="15" font-weight="bold">{}</text>)", kLeft, xml(m.title));
+  for (std::size_t i = 0; i < m.subtitle.size(); ++i)
+    svg += fmt::format(R"(<text x="{}" y="{}" font-size="11" fill="#444">{}</text>)", kLeft, 36 + 15 * i,
+                       xml(m.subtitle[i]));
+
+  // Step boundaries: a line through every panel, the step's number and name above them.
+  const Frame& f0 = frames.front();
+  const Frame& fl = frames.back();
+  double last_label_x = -1e9;
+  for (std::size_t i = 0; i < m.steps.size(); ++i) {
+    const auto& st = m.steps[i];
+    const double x = f0.x_of(st.t);
+    svg +=
+        fmt::format(R"(<line x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="#c8c8c8" stroke-width="0.8"/>)",
+                    x, f0.top, x, fl.top + fl.height);
+    // Names need 11 px: a step too short for its own (a precondition) yields to the next one.
+    const bool next_too_close = i + 1 < m.steps.size() && f0.x_of(m.steps[i + 1].t) - x < 11;
+    if (x - last_label_x < 11 || next_too_close) continue;
+    last_label_x = x;
+    svg += fmt::format(
+        R"svg(<text class="step" x="{:.1f}" y="{}" font-size="10" fill="#555" transform="rotate(-60 {:.1f} {})"><title>{}</title>{} {}</text>)svg",
+        x + 3, f0.top - 24, x + 3, f0.top - 24, xml(st.full), st.step, xml(st.name));
   }
-  svg += p1.line(
-      samples, [](const Sample& s) { return s.encoder_mm; }, "#000", "2,2");
-  svg += p2.line(
-      samples, [](const Sample& s) { return s.spindle_set_hz; }, "#ff7f0e", "6,3");
-  svg += p2.line(
-      samples, [](const Sample& s) { return s.spindle_actual_hz; }, "#ff7f0e", "none");
-  const double ly = height - 30;
-  double lx = kLeft;
-  for (std::uint8_t a = 0; a < axes; ++a) {
-    svg += legend(lx, ly, kColours[a], "none", fmt::format("axis {} (SCU)", a + 1));
-    svg += legend(lx, ly + 16, kColours[a], "6,3", fmt::format("axis {} planned", a + 1));
-    lx += 160;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    svg += axes(frames[i], m.panels[i], i);
+    for (const auto& s : m.panels[i].series) svg += curve(frames[i], s);
+    svg += legend(frames[i], m.panels[i]);
   }
-  svg += legend(lx, ly, "#000", "2,2", "encoder");
-  svg += legend(lx + 120, ly, "#ff7f0e", "none", "spindle actual");
-  svg += legend(lx + 120, ly + 16, "#ff7f0e", "6,3", "spindle set");
+  // Marks: a numbered line through every panel, listed below.
+  double last_mark_x = -1e9;
+  int stacked = 0;  // marks closer than a number's width stack their numbers upwards
+  for (std::size_t i = 0; i < m.marks.size(); ++i) {
+    const auto& mk = m.marks[i];
+    const double x = f0.x_of(mk.t);
+    stacked = x - last_mark_x < 12 ? stacked + 1 : 0;
+    last_mark_x = x;
+    svg += fmt::format(
+        R"(<line x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="{}" stroke-width="1.2" stroke-dasharray="4,2"><title>{}</title></line>)",
+        x, f0.top - 14, x, fl.top + fl.height, mk.colour, xml(mk.text));
+    svg += fmt::format(
+        R"(<text x="{:.1f}" y="{}" font-size="11" font-weight="bold" fill="{}" text-anchor="middle">{}</text>)",
+        x, f0.top - 16 - 12 * stacked, mk.colour, i + 1);
+    svg += fmt::format(
+        R"(<text class="mark" x="{}" y="{}" font-size="11" fill="{}">{}  {:8.3f} s  {}: {}</text>)", kLeft,
+        marks_top + 15 * static_cast<double>(i + 1), mk.colour, i + 1, mk.t, mk.kind, xml(mk.text));
+  }
+  if (m.marks.empty())
+    svg += fmt::format(
+        R"(<text x="{}" y="{}" font-size="11" fill="#444">no faults, no operator commands</text>)", kLeft,
+        marks_top + 15);
   svg += "</svg>\n";
   return svg;
 }

@@ -1,17 +1,15 @@
 #pragma once
-// A plot a person can open in any browser: axis positions (planned, SCU, encoder) and the spindle
-// frequency against time, from the run's samples.
+// plot.svg: the run (or two runs overlaid) as a static picture any browser or viewer opens —
+// positions, following error and spindle against time on round-numbered scales, step boundaries
+// named, faults, injected faults and operator commands marked and listed.
 
 #include <string>
-#include <utility>
 #include <vector>
 
-#include "journal/event.hpp"
-#include "journal/run_summary.hpp"
+#include "journal/run_record.hpp"
 
 namespace cellctl::journal {
 
-[[nodiscard]] std::string render_svg(const std::vector<std::pair<double, Sample>>& samples,
-                                     const RunSummary& summary);
+[[nodiscard]] std::string render_svg(const std::vector<const RunRecord*>& runs);
 
 }  // namespace cellctl::journal

@@ -2,6 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
+#include <cmath>
+#include <map>
+
+#include "journal/event_json.hpp"
+
 namespace cellctl::journal {
 namespace {
 
@@ -28,51 +34,69 @@ std::string summary_label(std::string_view label) {
 
 }  // namespace
 
+double round_ms(double seconds) noexcept {
+  return std::round(seconds * 1e3) / 1e3;
+}
+
 void RunSummary::add(const Event& e) {
-  end_ = std::max(end_, e.t);
-  if (const auto* s = std::get_if<RunStarted>(&e.payload)) {
-    (void)s;
-    start_ = e.t;
-  } else if (const auto* st = std::get_if<StepStarted>(&e.payload)) {
-    open_[st->index] = e.t;
-  } else if (const auto* en = std::get_if<StepEnded>(&e.payload)) {
-    const auto it = open_.find(en->index);
-    const double began = it == open_.end() ? e.t : it->second;
-    if (it != open_.end()) open_.erase(it);
-    const auto label = summary_label(en->label);
-    auto [pos, fresh] = by_label_.try_emplace(label, steps_.size());
-    if (fresh) steps_.push_back({label});
-    auto& step = steps_[pos->second];
+  record_.add(journal::to_json(e));
+}
+
+std::vector<RunSummary::StepTime> RunSummary::steps() const {
+  std::vector<StepTime> out;  // in order of first appearance
+  std::map<std::string, std::size_t> by_label;
+  for (const auto& s : record_.steps()) {
+    const auto label = summary_label(s.label);
+    const auto [pos, fresh] = by_label.try_emplace(label, out.size());
+    if (fresh) out.push_back({label});
+    auto& step = out[pos->second];
     ++step.count;
-    step.seconds += e.t - began;
-    if (!en->ok) ++step.failed;
-  } else if (const auto* f = std::get_if<Fault>(&e.payload)) {
-    faults_.push_back(
-        fmt::format("{:.3f}s {} (category {}): {}", e.t, f->rule, f->category, f->detail.view()));
-  } else if (const auto* r = std::get_if<RunEnded>(&e.payload)) {
-    outcome_ = std::string(r->outcome);
+    step.seconds += s.seconds();
+    step.held_s += s.held_s;
+    if (s.result == "failed") ++step.failed;
+    if (s.result == "interrupted") ++step.interrupted;
   }
+  return out;
+}
+
+std::vector<std::string> RunSummary::faults() const {
+  std::vector<std::string> out;
+  for (const auto& m : record_.marks())
+    if (m.kind == MarkKind::fault || m.kind == MarkKind::injected_fault)
+      out.push_back(
+          fmt::format("{:.3f}s {}{}", m.t, m.kind == MarkKind::injected_fault ? "injected: " : "", m.text));
+  return out;
 }
 
 nlohmann::json RunSummary::to_json() const {
   nlohmann::json j;
-  j["outcome"] = outcome_;
-  j["duration_s"] = duration_s();
+  j["outcome"] = outcome();
+  j["duration_s"] = round_ms(duration_s());
   j["steps"] = nlohmann::json::array();
-  for (const auto& s : steps_)
-    j["steps"].push_back(
-        {{"label", s.label}, {"count", s.count}, {"seconds", s.seconds}, {"failed", s.failed}});
-  j["faults"] = faults_;
+  for (const auto& s : steps()) {
+    nlohmann::json step{
+        {"label", s.label}, {"count", s.count}, {"seconds", round_ms(s.seconds)}, {"failed", s.failed}};
+    if (s.interrupted) step["interrupted"] = s.interrupted;
+    if (s.held_s > 0) step["held_s"] = round_ms(s.held_s);
+    j["steps"].push_back(step);
+  }
+  j["faults"] = faults();
   return j;
 }
 
 std::string RunSummary::to_text() const {
-  std::string out = fmt::format("outcome: {} after {:.2f} s\n", outcome_, duration_s());
-  for (const auto& s : steps_)
-    out += fmt::format("  {:>8.2f} s  {:>3}×  {}{}\n", s.seconds, s.count, s.label,
-                       s.failed ? fmt::format("  ({} failed)", s.failed) : "");
-  if (faults_.empty()) out += "  no faults\n";
-  for (const auto& f : faults_) out += "  fault: " + f + "\n";
+  std::string out = fmt::format("outcome: {} after {:.2f} s\n", outcome(), duration_s());
+  for (const auto& s : steps()) {
+    std::string notes;
+    if (s.failed) notes += fmt::format("  ({} failed)", s.failed);
+    if (s.interrupted)
+      notes += fmt::format("  (interrupted by the {})", outcome() == "unfinished" ? "end" : "stop");
+    if (s.held_s > 0) notes += fmt::format("  ({:.2f} s of it held)", s.held_s);
+    out += fmt::format("  {:>8.2f} s  {:>3}×  {}{}\n", s.seconds, s.count, s.label, notes);
+  }
+  const auto f = faults();
+  if (f.empty()) out += "  no faults\n";
+  for (const auto& line : f) out += "  fault: " + line + "\n";
   return out;
 }
 

@@ -45,6 +45,8 @@ class CellLinks {
   [[nodiscard]] bool any_emulated() const noexcept {
     return device_.scu || device_.spindle || device_.encoder;
   }
+  // --trace times count from the run's start (as the journal's do) and tell the wall clock.
+  void start_trace_clock(link::TimePoint run_start) noexcept { sink_.start_clock(run_start); }
   // "scu: /dev/ttyUSB0 (38400 8N1)", one line per device, for the operator.
   [[nodiscard]] std::vector<std::string> describe() const;
 

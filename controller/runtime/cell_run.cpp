@@ -34,9 +34,10 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
       options_(std::move(options)),
       clock_(options_.mode == RunMode::virtual_time ? static_cast<const link::Clock&>(virtual_clock_)
                                                     : static_cast<const link::Clock&>(real_clock_)),
-      journal_(options_.journal_dir, options_.mode == RunMode::virtual_time
-                                         ? journal::WhenFull::wait
-                                         : journal::WhenFull::drop_and_count),
+      journal_(options_.journal_dir,
+               options_.mode == RunMode::virtual_time ? journal::WhenFull::wait
+                                                      : journal::WhenFull::drop_and_count,
+               options_.record_header),
       monitor_(cell) {
   if (options_.mode == RunMode::virtual_time)
     waiter_ = std::make_unique<loop::VirtualWaiter>(virtual_clock_);
@@ -47,10 +48,16 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
       throw std::invalid_argument("faults are rehearsed on emulators only (--emulate or --virtual-time)");
     rehearsal_ = std::make_unique<FaultRehearsal>(options_.faults, cell);
   }
-  links_ = std::make_unique<CellLinks>(cell, options_.mode, clock_, options_.trace,
-                                       rehearsal_ ? rehearsal_->lines() : std::bitset<cell::kDevices>{});
-  if (links_->any_emulated()) emulated_ = std::make_unique<EmulatedCell>(cell, links_->device());
-  devices_ = std::make_unique<CellDevices>(cell, links_->master());
+  try {
+    links_ = std::make_unique<CellLinks>(cell, options_.mode, clock_, options_.trace,
+                                         rehearsal_ ? rehearsal_->lines() : std::bitset<cell::kDevices>{});
+    if (links_->any_emulated()) emulated_ = std::make_unique<EmulatedCell>(cell, links_->device());
+    devices_ = std::make_unique<CellDevices>(cell, links_->master());
+  } catch (const std::exception& e) {
+    // A port that did not open (or a device set-up refused): the record says why nothing ran.
+    journal_.close({{"outcome", "not started"}, {"reason", e.what()}});
+    throw;
+  }
   supervisor_ = std::make_unique<supervisor::Supervisor>(
       cell, recipe, program_, journal_, cell.loop.period_ms / 1000.0, settings_for(cell, options_));
   loop_ = std::make_unique<loop::Loop>(clock_, *waiter_, period_of(cell), loop::kControlStages, &real_clock_);
@@ -82,6 +89,7 @@ void CellRun::take_commands(double t, std::atomic<bool>& interrupt) {
     interrupted_ = true;
     request(supervisor::Command::stop);  // SIGTERM: a controlled stop, whatever stops.operator says
   }
+  while (const auto text = operator_notes_.pop()) journal_.post(t, journal::Note{*text});
   const unsigned pending = requested_.exchange(0);
   // Strongest first, so that a stop typed right after a hold is never lost behind it.
   using supervisor::Command;
@@ -160,8 +168,12 @@ void CellRun::publish_status(double t) {
   v.step = static_cast<std::uint32_t>(std::min(supervisor_->step_index() + 1, supervisor_->step_count()));
   if (const auto* ins = supervisor_->current()) v.label = ins->label;
   v.axes = state_.axis_count;
-  for (std::size_t i = 0; i < state_.axis_count; ++i) v.position_mm[i] = state_.axes[i].position_mm();
+  for (std::size_t i = 0; i < state_.axis_count; ++i) {
+    v.position_mm[i] = state_.axes[i].position_mm();
+    v.position_known[i] = state_.axes[i].present;
+  }
   v.spindle_hz = state_.spindle.actual_hz;
+  v.spindle_set_hz = supervisor_->intents().spindle.run ? supervisor_->intents().spindle.frequency_hz : 0.0;
   for (std::size_t r = 0; r < monitor::kRuleCount; ++r) {
     if (!monitor_.latch(static_cast<monitor::Rule>(r)).active) continue;
     v.fault = true;
@@ -229,6 +241,7 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   }
   const auto wall_start = std::chrono::steady_clock::now();
   start_ = clock_.now();
+  links_->start_trace_clock(start_);
   if (rehearsal_) rehearsal_->start(start_, links_->fault_links());
   if (emulated_ && options_.mode != RunMode::virtual_time)
     emulator_thread_ = std::thread([this] { run_emulator_thread(); });

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <thread>
@@ -37,6 +38,7 @@ namespace cellctl::runtime {
 struct RunOptions {
   RunMode mode = RunMode::emulated;
   std::filesystem::path journal_dir = "runs/latest";
+  nlohmann::json record_header;  // the journal's first line (journal/record_header.hpp); none if null
   bool trace = false;
   supervisor::SupervisorSettings supervisor;  // mode and sample period are filled in from the config
   double shutdown_timeout_s = 5.0;            // for sessions to close (RA, spindle stop) at the end
@@ -72,6 +74,13 @@ class CellRun {
 
   // An operator command from any thread; carried out at the next cycle.
   void request(supervisor::Command c) noexcept { requested_.fetch_or(bit(c)); }
+
+  // Text the operator typed that is no command: journaled at the next cycle. One thread may call it.
+  void note_from_operator(const journal::Text& text) noexcept { (void)operator_notes_.push(text); }
+  // Every journal line as it is written, on the journal's thread (journal::Journal::on_line).
+  void on_journal_line(std::function<void(const nlohmann::json&)> listener) {
+    journal_.on_line(std::move(listener));
+  }
 
   // Tests in virtual time: called at the start of every cycle, on the loop's thread.
   void on_cycle(std::function<void(double t, CellRun&)> hook) { hook_ = std::move(hook); }
@@ -117,6 +126,7 @@ class CellRun {
   cell::CellState state_;
   StatusBoard board_;
   std::atomic<unsigned> requested_{0};  // one bit per supervisor::Command
+  wire::SpscQueue<journal::Text, 16> operator_notes_;
   std::atomic<bool>* terminate_ = nullptr;
   bool interrupted_ = false;
   link::TimePoint start_{};

@@ -22,7 +22,9 @@ struct StatusView {
   std::string_view label;  // the program's label (lives as long as the run)
   std::uint8_t axes = 0;
   std::array<double, cell::kMaxAxes> position_mm{};
+  std::array<bool, cell::kMaxAxes> position_known{};  // the SCU has reported the actuator
   double spindle_hz = 0.0;
+  double spindle_set_hz = 0.0;
   bool fault = false;
   monitor::Rule first_fault = monitor::Rule::operator_stop;
 };

@@ -1,5 +1,6 @@
 #include "link/tracing_link.hpp"
 
+#include <fmt/chrono.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -41,13 +42,25 @@ void LogTraceSink::record(TimePoint at, std::string_view link, Direction dir,
   } while (!bytes.empty());
 }
 
+void LogTraceSink::start_clock(TimePoint run_start) noexcept {
+  epoch_ = run_start;
+  wall_epoch_ = std::chrono::system_clock::now();
+  epoch_set_.store(true, std::memory_order_release);
+}
+
 std::size_t LogTraceSink::drain() {
   const auto logger = spdlog::get("trace");
   std::size_t n = 0;
   while (const auto r = queue_->pop()) {
     ++n;
+    if (!epoch_set_.load(std::memory_order_acquire)) start_clock(r->at);  // no run: from the first telegram
+    const auto since = r->at - epoch_;
+    const auto wall = std::chrono::floor<std::chrono::microseconds>(
+        wall_epoch_ + std::chrono::duration_cast<std::chrono::system_clock::duration>(since));
+    const auto micros = (wall.time_since_epoch() % std::chrono::seconds(1)).count();
     if (logger)
-      logger->info("{:12.6f} {} {} {}", to_seconds(r->at.time_since_epoch()),
+      logger->info("{:11.6f} s {:%H:%M:%S}.{:06} {} {} {}", to_seconds(since),
+                   fmt::localtime(std::chrono::system_clock::to_time_t(wall)), micros,
                    std::string_view(r->link.data(), r->link_size), r->dir == Direction::tx ? "TX" : "RX",
                    wire::to_hex(r->bytes.view()));
   }

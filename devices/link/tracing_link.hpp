@@ -39,7 +39,9 @@ struct TraceRecord {
   wire::FixedBytes<kMaxBytes> bytes;
 };
 
-// Writes "  12.345678 scu TX 52 4f 00 5c 2d" lines to the spdlog logger named "trace", but never on
+// Writes "   0.512345 s 09:12:03.456789 scu TX 52 4f 00 5c 2d" lines — seconds of the run (the time a
+// run's journal uses) and the wall-clock time of the telegram — to the spdlog logger named "trace",
+// but never on
 // the caller's thread: record() copies into a lock-free ring (no lock, no allocation — it runs in the
 // control cycle) and a writer thread formats and logs. Every TracingLink sharing one sink must call it
 // from the same thread (single producer). A full ring drops the record and counts it (the writer
@@ -56,6 +58,9 @@ class LogTraceSink final : public TraceSink {
 
   void record(TimePoint at, std::string_view link, Direction dir,
               std::span<const std::uint8_t> bytes) noexcept override;
+  // The run started at `run_start` on the links' clock, now on the wall clock: trace times count from
+  // there. Without it they count from the first telegram. Before the first record is written.
+  void start_clock(TimePoint run_start) noexcept;
   // Formats and logs every queued record; returns how many. The consumer side: the writer thread's,
   // or the caller's with Writer::manual.
   std::size_t drain();
@@ -68,6 +73,9 @@ class LogTraceSink final : public TraceSink {
   std::unique_ptr<wire::SpscQueue<TraceRecord, 512>> queue_;
   std::atomic<std::uint64_t> dropped_{0};
   std::uint64_t reported_drops_ = 0;  // writer side
+  std::atomic<bool> epoch_set_{false};
+  TimePoint epoch_{};                                   // written before epoch_set_ is released
+  std::chrono::system_clock::time_point wall_epoch_{};  // the wall clock at epoch_
   std::atomic<bool> stop_{false};
   std::thread writer_;
 };

@@ -157,7 +157,7 @@ emulate_pid=""
 grep -q "emulation ended" "$emulate_log" || fail "cellctl emulate did not say the emulation ended"
 for device in scu spindle encoder; do
   for dir in RX TX; do
-    grep -Eq "^trace +[0-9]+\.[0-9]{6} $device $dir ([0-9a-f]{2} ?)+$" "$emulate_log" ||
+    grep -Eq "^trace +[0-9]+\.[0-9]{6} s [0-9:]{8}\.[0-9]{6} $device $dir ([0-9a-f]{2} ?)+$" "$emulate_log" ||
       fail "cellctl --trace emulate wrote no $dir trace of the $device"
   done
 done

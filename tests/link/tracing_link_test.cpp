@@ -1,5 +1,7 @@
 #include "link/tracing_link.hpp"
 
+#include <fmt/chrono.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <spdlog/sinks/base_sink.h>
 #include <spdlog/spdlog.h>
@@ -124,8 +126,31 @@ TEST(LogTraceSink, TheCallersThreadOnlyQueuesTheWriterFormats) {
   EXPECT_EQ(sink.drain(), 2u);
   const auto lines = logger.sink->lines();
   ASSERT_EQ(lines.size(), 2u);
-  EXPECT_EQ(lines[0], "    1.500000 scu TX 52 4f 00 5c 2d");
-  EXPECT_EQ(lines[1], "    1.501000 scu RX 52 4f 06");
+  // Without a run's start, times count from the first telegram; then the wall-clock time.
+  EXPECT_THAT(lines[0], ::testing::MatchesRegex(
+                            "   0\\.000000 s [0-9]{2}:[0-9]{2}:[0-9]{2}\\.[0-9]{6} scu TX 52 4f 00 5c 2d"));
+  EXPECT_THAT(lines[1], ::testing::MatchesRegex("   0\\.001000 s [0-9:.]{15} scu RX 52 4f 06"));
+}
+
+TEST(LogTraceSink, TimesCountFromTheRunsStartAndTellTheWallClock) {
+  TraceLogger logger;
+  VirtualClock clock(TimePoint{} + 1500ms);
+  SimLink sim(clock, line_8n1(38400));
+  LogTraceSink sink(wire::WhenFull::drop_and_count, LogTraceSink::Writer::manual);
+  TracingLink traced(sim.master(), clock, sink, "scu");
+  sink.start_clock(TimePoint{} + 1000ms);  // the run started half a second before
+  const auto wall = std::chrono::system_clock::now();
+  const std::array<std::uint8_t, 2> ro{0x52, 0x4f};
+  ASSERT_EQ(traced.write(ro).count, 2u);
+  EXPECT_EQ(sink.drain(), 1u);
+  const auto lines = logger.sink->lines();
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0].substr(0, 14), "   0.500000 s ");
+  // The wall clock half a second after start_clock (this test's own reading, to the second).
+  const auto expected = std::chrono::system_clock::to_time_t(wall + 500ms);
+  const auto shown = fmt::format("{:%H:%M:%S}", fmt::localtime(expected));
+  const auto one_later = fmt::format("{:%H:%M:%S}", fmt::localtime(expected + 1));
+  EXPECT_TRUE(lines[0].substr(14, 8) == shown || lines[0].substr(14, 8) == one_later) << lines[0];
 }
 
 TEST(LogTraceSink, AFullRingDropsAndTheWriterSaysHowMany) {
@@ -148,7 +173,7 @@ TEST(LogTraceSink, ALongRunIsSplitIntoRecords) {
   EXPECT_EQ(sink.drain(), 3u);
   const auto lines = logger.sink->lines();
   ASSERT_EQ(lines.size(), 3u);
-  EXPECT_EQ(lines[2], "    0.000000 a-link-name-longer-than- RX 00 00 00");
+  EXPECT_THAT(lines[2], ::testing::EndsWith(" a-link-name-longer-than- RX 00 00 00"));
 }
 
 TEST(LogTraceSink, WaitingForTheWriterLosesNothing) {
@@ -172,7 +197,7 @@ TEST(LogTraceSink, TheWriterThreadWritesWithoutADrainCall) {
     std::this_thread::sleep_for(1ms);
   const auto lines = logger.sink->lines();
   ASSERT_EQ(lines.size(), 1u);
-  EXPECT_EQ(lines[0], "    0.000000 spindle TX ab cd");
+  EXPECT_THAT(lines[0], ::testing::MatchesRegex("   0\\.000000 s [0-9:.]{15} spindle TX ab cd"));
 }
 
 }  // namespace

@@ -1,0 +1,140 @@
+#include "journal/plot_model.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace cellctl::journal {
+namespace {
+
+// Per axis; the second run of a comparison in the paler twin of each.
+constexpr const char* kAxisColours[2][6] = {
+    {"#1f5fa8", "#c0392b", "#2e8b3a", "#7b4fa0", "#8c564b", "#d0508f"},
+    {"#7fb2e5", "#eea39a", "#8fd19b", "#c2a5df", "#c9a196", "#f0a8cb"}};
+constexpr const char* kSpindleColours[2] = {"#e07b00", "#f5bf73"};
+constexpr const char* kEncoderColours[2] = {"#222222", "#9a9a9a"};
+
+std::string prefixed(std::size_t run, std::size_t runs, const std::string& name) {
+  return runs > 1 ? fmt::format("{}: {}", run == 0 ? "A" : "B", name) : name;
+}
+
+std::string mark_colour(MarkKind k) {
+  switch (k) {
+    case MarkKind::fault:
+      return "#d00000";
+    case MarkKind::injected_fault:
+      return "#9b00c8";
+    case MarkKind::fault_cleared:
+      return "#2e8b3a";
+    case MarkKind::command:
+      return "#0060c0";
+    case MarkKind::note:
+      return "#666666";
+  }
+  return "#666666";
+}
+
+bool is_move(const RunRecord& run, const StepRun& s) {
+  const auto it = run.header().find("steps");
+  if (it == run.header().end() || s.step < 1 || static_cast<std::size_t>(s.step) > it->size()) return true;
+  return (*it)[static_cast<std::size_t>(s.step - 1)].value("kind", "") == "move";
+}
+
+template <class Get>
+PlotSeries series(const RunRecord& run, std::string name, std::string colour, std::string dash, Get get) {
+  PlotSeries s{std::move(name), std::move(colour), std::move(dash), {}, {}};
+  s.t.reserve(run.samples().size());
+  s.v.reserve(run.samples().size());
+  for (std::size_t i = 0; i < run.samples().size(); ++i) {
+    s.t.push_back(run.samples()[i].t - run.start());
+    s.v.push_back(get(i, run.samples()[i]));
+  }
+  return s;
+}
+
+}  // namespace
+
+std::string short_step_name(std::string_view label) {
+  if (const auto arrow = label.rfind("› "); arrow != std::string_view::npos)
+    label.remove_prefix(arrow + std::string_view("› ").size());
+  if (const auto line = label.rfind(" (line "); line != std::string_view::npos) label = label.substr(0, line);
+  return std::string(label);
+}
+
+std::vector<double> following_error(const RunRecord& run, std::size_t axis) {
+  const auto& samples = run.samples();
+  std::vector<double> err(samples.size(), kNoValue);
+  const auto measured = run.measured_axis();
+  for (const auto& step : run.steps()) {
+    if (!is_move(run, step)) continue;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const auto& p = samples[i];
+      if (p.t < step.start || p.t > step.end || axis >= p.planned_mm.size()) continue;
+      const double actual = measured == axis ? p.encoder_mm : p.scu_mm[axis];
+      err[i] = p.planned_mm[axis] - actual;
+    }
+  }
+  return err;
+}
+
+PlotModel plot_model(const std::vector<const RunRecord*>& runs) {
+  PlotModel m;
+  if (runs.empty()) return m;
+  const RunRecord& first = *runs.front();
+  m.title = fmt::format("{} — {}", first.recipe_label(), runs.size() > 1 ? "comparison" : first.outcome());
+  m.panels = {{"Axis positions", "mm", {}},
+              {"Following error (planned − measured, during moves)", "mm", {}},
+              {"Spindle frequency", "Hz", {}}};
+  m.t_hi = 0.0;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const RunRecord& run = *runs[r];
+    const auto& h = run.header();
+    m.subtitle.push_back(fmt::format("{}{} after {:.2f} s · {} · host {} · cellctl {} · started {}",
+                                     runs.size() > 1 ? (r ? "B: " : "A: ") : "", run.outcome(),
+                                     run.duration_s(), h.value("mode", "mode unknown"), h.value("host", "?"),
+                                     h.value("cellctl", "?"), h.value("started_utc", "?")));
+    m.t_hi = std::max(m.t_hi, run.duration_s());
+    const auto names = run.axis_names();
+    const auto measured = run.measured_axis();
+    const auto pale = std::min<std::size_t>(r, 1);
+    for (std::size_t a = 0; a < names.size(); ++a) {
+      const char* colour = kAxisColours[pale][a % 6];
+      m.panels[0].series.push_back(series(run, prefixed(r, runs.size(), names[a] + " planned"), colour, "7,4",
+                                          [a](std::size_t, const SamplePoint& p) {
+                                            return a < p.planned_mm.size() ? p.planned_mm[a] : kNoValue;
+                                          }));
+      m.panels[0].series.push_back(series(
+          run, prefixed(r, runs.size(), names[a] + " SCU"), colour, "",
+          [a](std::size_t, const SamplePoint& p) { return a < p.scu_mm.size() ? p.scu_mm[a] : kNoValue; }));
+      if (measured == a)
+        m.panels[0].series.push_back(series(run, prefixed(r, runs.size(), names[a] + " encoder"),
+                                            kEncoderColours[pale], "2,3",
+                                            [](std::size_t, const SamplePoint& p) { return p.encoder_mm; }));
+      const auto err = following_error(run, a);
+      m.panels[1].series.push_back(
+          series(run,
+                 prefixed(r, runs.size(),
+                          fmt::format("{} planned − {}", names[a], measured == a ? "encoder" : "SCU")),
+                 colour, "", [&err](std::size_t i, const SamplePoint&) { return err[i]; }));
+    }
+    m.panels[2].series.push_back(series(run, prefixed(r, runs.size(), "spindle set"), kSpindleColours[pale],
+                                        "7,4",
+                                        [](std::size_t, const SamplePoint& p) { return p.spindle_set_hz; }));
+    m.panels[2].series.push_back(series(run, prefixed(r, runs.size(), "spindle actual"),
+                                        kSpindleColours[pale], "",
+                                        [](std::size_t, const SamplePoint& p) { return p.spindle_hz; }));
+    for (const auto& mark : run.marks()) {
+      if (mark.kind == MarkKind::note) continue;  // notes are in the report, not on the plot
+      m.marks.push_back({mark.t - run.start(), std::string(to_string(mark.kind)),
+                         prefixed(r, runs.size(), mark.text), mark_colour(mark.kind)});
+    }
+  }
+  for (const auto& s : first.steps())
+    m.steps.push_back({s.start - first.start(), s.step, short_step_name(s.label), s.label});
+  std::stable_sort(m.marks.begin(), m.marks.end(),
+                   [](const PlotMark& a, const PlotMark& b) { return a.t < b.t; });
+  if (m.t_hi <= m.t_lo) m.t_hi = m.t_lo + 1.0;
+  return m;
+}
+
+}  // namespace cellctl::journal
