@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libyaml-cpp-dev libspdlog-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   socat python3
+  clang libclang-rt-14-dev  # the fuzz preset: clang with libFuzzer (fuzz/README.md)
 )
 
 missing=()
