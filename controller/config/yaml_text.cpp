@@ -79,7 +79,7 @@ std::string read_yaml_file(const std::filesystem::path& path) {
   if (!S_ISREG(st.st_mode)) refuse_path(path, "it is not a regular file (a device, a pipe or a socket)");
   const auto too_big = [&](std::size_t size) {
     refuse_path(path,
-                fmt::format("it is {} bytes; at most {} bytes (1 MiB) are read", size, kMaxYamlFileBytes));
+                fmt::format("it is {} bytes, over the limit of {} bytes (1 MiB)", size, kMaxYamlFileBytes));
   };
   if (static_cast<std::uintmax_t>(st.st_size) > kMaxYamlFileBytes)
     too_big(static_cast<std::size_t>(st.st_size));

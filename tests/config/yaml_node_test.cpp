@@ -208,7 +208,7 @@ TEST_F(YamlFile, AFileOverTheSizeLimitIsRefusedUnread) {
   const auto over = write("over.yaml", std::string(kMaxYamlFileBytes + 1, '#'));
   expect_error([&] { (void)YamlNode::load_file(over); },
                over.string() +
-                   ":1:1: cannot read the file: it is 1048577 bytes; at most 1048576 bytes (1 MiB) are read");
+                   ":1:1: cannot read the file: it is 1048577 bytes, over the limit of 1048576 bytes (1 MiB)");
 }
 
 }  // namespace
