@@ -48,6 +48,41 @@ std::size_t check_request_round_trip(const scu::Request& request) {
   return first.size();
 }
 
+// Bytes fed into a stream, and bytes it accounted for: dropped by errors or part of telegrams.
+struct Ledger {
+  std::size_t fed = 0;
+  std::size_t accounted = 0;
+};
+
+// Feeds one piece into `stream` (through `feed`, which returns how many bytes it took) and drains
+// its events after every feed. Properties both streams share: an error drops something, events run
+// dry, and a stream never sits full waiting for more. `decoded` checks a decoded telegram and
+// returns its length.
+template <class Stream, class Feed, class Decoded>
+void feed_piece(Stream& stream, std::span<const std::uint8_t> chunk, Ledger& ledger, Feed&& feed,
+                Decoded&& decoded) {
+  using Kind = typename Stream::Event::Kind;
+  while (!chunk.empty()) {
+    const std::size_t taken = feed(chunk);
+    chunk = chunk.subspan(taken);
+    ledger.fed += taken;
+    bool progress = taken > 0;
+    for (int events = 1;; ++events) {
+      FUZZ_CHECK(events < kMaxEventsPerChunk);
+      const auto e = stream.next();
+      if (e.kind == Kind::need_more) break;
+      progress = true;
+      if (e.kind == Kind::error) {
+        FUZZ_CHECK(e.dropped > 0);
+        ledger.accounted += e.dropped;
+        continue;
+      }
+      ledger.accounted += decoded(e);
+    }
+    FUZZ_CHECK(progress);
+  }
+}
+
 }  // namespace
 
 void scu_reply_stream(std::span<const std::uint8_t> bytes) {
@@ -57,33 +92,16 @@ void scu_reply_stream(std::span<const std::uint8_t> bytes) {
   const std::size_t piece = chunk_size(in);
   scu::ReplyStream stream;
   stream.expect(shape);
-  std::size_t fed = 0;
-  std::size_t accounted = 0;
-  while (!in.empty()) {
-    auto chunk = in.take(piece);
-    while (!chunk.empty()) {
-      const std::size_t taken = stream.feed(chunk);
-      chunk = chunk.subspan(taken);
-      fed += taken;
-      int events = 0;
-      bool progress = taken > 0;
-      for (;;) {
-        const auto e = stream.next();
-        FUZZ_CHECK(++events < kMaxEventsPerChunk);
-        if (e.kind == scu::ReplyStream::Event::Kind::need_more) break;
-        progress = true;
-        if (e.kind == scu::ReplyStream::Event::Kind::error) {
-          FUZZ_CHECK(e.dropped > 0);
-          accounted += e.dropped;
-          continue;
-        }
-        FUZZ_CHECK(e.reply.command == shape.command);
-        accounted += check_reply_round_trip(e.reply, shape);
-      }
-      FUZZ_CHECK(progress);  // a full buffer that waits for more would never end
-    }
-  }
-  FUZZ_CHECK(accounted + stream.buffered() == fed);
+  Ledger ledger;
+  while (!in.empty())
+    feed_piece(
+        stream, in.take(piece), ledger,
+        [&](std::span<const std::uint8_t> chunk) { return stream.feed(chunk); },
+        [&](const scu::ReplyStream::Event& e) {
+          FUZZ_CHECK(e.reply.command == shape.command);
+          return check_reply_round_trip(e.reply, shape);
+        });
+  FUZZ_CHECK(ledger.accounted + stream.buffered() == ledger.fed);
 }
 
 void scu_request_stream(std::span<const std::uint8_t> bytes) {
@@ -93,38 +111,24 @@ void scu_request_stream(std::span<const std::uint8_t> bytes) {
   const auto gap = std::chrono::milliseconds(10 * in.byte());
   scu::RequestStream stream;
   link::TimePoint now{std::chrono::seconds(1)};
-  std::size_t fed = 0;
-  std::size_t accounted = 0;
+  Ledger ledger;
   while (!in.empty()) {
     now += gap;
-    auto chunk = in.take(piece);
-    while (!chunk.empty()) {
-      const std::size_t buffered_before = stream.buffered();
-      const std::size_t expired = stream.expire(now);
-      FUZZ_CHECK(expired == 0 || expired == buffered_before);
-      accounted += expired;
-      const std::size_t taken = stream.feed(chunk, now);
-      chunk = chunk.subspan(taken);
-      fed += taken;
-      int events = 0;
-      bool progress = taken > 0;
-      for (;;) {
-        const auto e = stream.next();
-        FUZZ_CHECK(++events < kMaxEventsPerChunk);
-        if (e.kind == scu::RequestStream::Event::Kind::need_more) break;
-        progress = true;
-        if (e.kind == scu::RequestStream::Event::Kind::error) {
-          FUZZ_CHECK(e.dropped > 0);
-          accounted += e.dropped;
-          continue;
-        }
-        FUZZ_CHECK(static_cast<std::uint8_t>(scu::command_of(e.request)) == e.command_byte);
-        accounted += check_request_round_trip(e.request);
-      }
-      FUZZ_CHECK(progress);  // a full buffer that waits for more would never end
-    }
+    feed_piece(
+        stream, in.take(piece), ledger,
+        [&](std::span<const std::uint8_t> chunk) {
+          const std::size_t buffered_before = stream.buffered();
+          const std::size_t expired = stream.expire(now);
+          FUZZ_CHECK(expired == 0 || expired == buffered_before);
+          ledger.accounted += expired;
+          return stream.feed(chunk, now);
+        },
+        [&](const scu::RequestStream::Event& e) {
+          FUZZ_CHECK(static_cast<std::uint8_t>(scu::command_of(e.request)) == e.command_byte);
+          return check_request_round_trip(e.request);
+        });
   }
-  FUZZ_CHECK(accounted + stream.buffered() == fed);
+  FUZZ_CHECK(ledger.accounted + stream.buffered() == ledger.fed);
 }
 
 }  // namespace cellctl::fuzz
