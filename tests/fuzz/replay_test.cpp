@@ -12,11 +12,19 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <ostream>
 #include <vector>
 
 #include "fuzz/targets.hpp"
 
 namespace cellctl::fuzz {
+
+// Test output names the target, not its bytes (found by argument-dependent lookup).
+void PrintTo(const NamedTarget& target, std::ostream* os);
+void PrintTo(const NamedTarget& target, std::ostream* os) {
+  *os << target.name;
+}
+
 namespace {
 
 const std::filesystem::path kFuzzDir = CELLCTL_FUZZ_DIR;
