@@ -82,7 +82,7 @@ void dp_diagnosis(std::span<const std::uint8_t> bytes) {
     // Nothing silently cut: the extended part is all the octets after the standard ones. A
     // Slave_Diag over 244 octets is cut to 244 today (issue 12 part 2).
     FUZZ_CHECK_OPEN(diag->extended.size() == bytes.size() - profibus::kStandardDiagSize,
-                    "issue 12 part 2, branch dpgsd");
+                    "devices/profibus decode_diagnosis, issue 12 part 2");
     std::array<std::uint8_t, profibus::kStandardDiagSize> standard{};
     FUZZ_CHECK(profibus::encode(diag->standard, standard) == profibus::kStandardDiagSize);
     const auto again = profibus::decode_standard_diag(standard);
