@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs what cellctl needs to build and test on Debian 12, from Debian's packages only.
 # Safe to run again: when everything is there it installs nothing and says so.
+# --fuzz adds clang with libFuzzer for the fuzz preset (fuzz/README.md); the build, the demo and the
+# test suite do not need it.
 set -euo pipefail
 
 packages=(
@@ -9,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   socat python3 librsvg2-bin
 )
+if [ "${1:-}" = "--fuzz" ]; then packages+=(clang libclang-rt-14-dev); fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -41,7 +41,8 @@ int run_check(const GlobalOptions& global, const std::vector<std::string>& recip
                  e.errors().size() == 1 ? "" : "s");
       ++bad;
     } catch (const config::ConfigError& e) {
-      fmt::print("{}\n", e.what());
+      // Not read at all: unreadable, not UTF-8 text, or not one well-formed YAML document.
+      fmt::print("{}\n{}: 1 problem; nothing was moved\n", e.what(), path);
       ++bad;
     }
   }
@@ -53,7 +54,9 @@ int run_check(const GlobalOptions& global, const std::vector<std::string>& recip
 void add_check_command(CLI::App& app, Commands& commands) {
   auto* sub = app.add_subcommand("check", "Validate recipes against the cell config without moving anything");
   auto recipes = std::make_shared<std::vector<std::string>>();
-  sub->add_option("recipes", *recipes, "Recipe files")->required()->check(CLI::ExistingFile);
+  // No CLI::ExistingFile: a missing or unreadable recipe is bad input (exit 3, file:line:column and
+  // the reason, from the loader), not a bad command line (exit 2).
+  sub->add_option("recipes", *recipes, "Recipe files")->required();
   commands.on(sub, [&commands, recipes] { return run_check(commands.global, *recipes); });
 }
 

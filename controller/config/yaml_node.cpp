@@ -6,6 +6,9 @@
 #include <charconv>
 #include <cmath>
 
+#include "config/yaml_structure.hpp"
+#include "config/yaml_text.hpp"
+
 namespace cellctl::config {
 namespace {
 
@@ -41,22 +44,19 @@ ConfigError::ConfigError(std::string file, int line, int column, std::string fie
       rule_(std::move(rule)) {}
 
 YamlNode YamlNode::load_file(const std::filesystem::path& path) {
-  auto file = std::make_shared<const std::string>(path.string());
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw ConfigError(*file, 0, 0, "", "no such file");
-  try {
-    return YamlNode(YAML::LoadFile(path.string()), file, "");
-  } catch (const YAML::Exception& e) {
-    throw ConfigError(*file, e.mark.line + 1, e.mark.column + 1, "", "invalid YAML: " + e.msg);
-  }
+  return load_string(read_yaml_file(path), path.string());
 }
 
 YamlNode YamlNode::load_string(const std::string& text, const std::string& file_label) {
   auto file = std::make_shared<const std::string>(file_label);
+  check_yaml_text(text, *file);
+  check_yaml_structure(text, *file);
   try {
     return YamlNode(YAML::Load(text), file, "");
   } catch (const YAML::Exception& e) {
-    throw ConfigError(*file, e.mark.line + 1, e.mark.column + 1, "", "invalid YAML: " + e.msg);
+    // check_yaml_structure parsed the same text already; kept so that no yaml-cpp error escapes.
+    throw ConfigError(*file, std::max(e.mark.line, 0) + 1, std::max(e.mark.column, 0) + 1, "",
+                      "invalid YAML: " + e.msg);
   }
 }
 
@@ -104,7 +104,7 @@ std::vector<YamlNode> YamlNode::items() const {
 std::vector<std::string> YamlNode::keys() const {
   if (!node_.IsMap()) fail("expected a mapping of fields");
   std::vector<std::string> out;
-  for (const auto& kv : node_) out.push_back(kv.first.as<std::string>());
+  for (const auto& kv : node_) out.push_back(kv.first.Scalar());
   return out;
 }
 
@@ -114,7 +114,7 @@ void YamlNode::only_keys(std::initializer_list<std::string_view> allowed,
   std::vector<std::string_view> all(allowed);
   all.insert(all.end(), also.begin(), also.end());
   for (const auto& kv : node_) {
-    const auto key = kv.first.as<std::string>();
+    const auto& key = kv.first.Scalar();
     if (std::find(all.begin(), all.end(), key) != all.end()) continue;
     std::string_view best;
     std::size_t best_d = 3;  // suggest only close matches
@@ -145,36 +145,38 @@ bool YamlNode::as_bool() const {
 }
 
 double YamlNode::as_double() const {
-  const auto text = scalar_text("a number");
-  double v = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc{} || end != text.data() + text.size() || !std::isfinite(v))
-    fail(fmt::format("expected a number, got '{}'", text));
-  return v;
+  return as_double_in(-std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
 }
 
 long long YamlNode::as_integer() const {
+  return as_integer_in(std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());
+}
+
+// Numbers are checked against their field's range as text is converted, before any arithmetic:
+// a value beyond what the conversion can hold is out of the field's range too.
+long long YamlNode::as_integer_in(long long min, long long max) const {
   const auto text = scalar_text("a whole number");
   long long v = 0;
   const bool hex = text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
   const char* begin = text.data() + (hex ? 2 : 0);
   const auto [end, ec] = std::from_chars(begin, text.data() + text.size(), v, hex ? 16 : 10);
-  if (ec != std::errc{} || end != text.data() + text.size() || begin == end)
+  const bool whole = end == text.data() + text.size() && begin != end && !(hex && *begin == '-');
+  if (!whole || (ec != std::errc{} && ec != std::errc::result_out_of_range))
     fail(fmt::format("expected a whole number, got '{}'", text));
-  return v;
-}
-
-long long YamlNode::as_integer_in(long long min, long long max) const {
-  const long long v = as_integer();
-  if (v < min || v > max) fail(fmt::format("{} is out of range [{}, {}]", v, min, max));
+  if (ec == std::errc::result_out_of_range || v < min || v > max)
+    fail(fmt::format("{} is out of range [{}, {}]", text, min, max));
   return v;
 }
 
 double YamlNode::as_double_in(double min, double max) const {
-  const double v = as_double();
-  if (v < min || v > max)
-    fail(
-        fmt::format("{} is out of range [{}, {}]", format_number(v), format_number(min), format_number(max)));
+  const auto text = scalar_text("a number");
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  const bool whole = end == text.data() + text.size() && !text.empty();
+  if (!whole || (ec != std::errc{} && ec != std::errc::result_out_of_range) || std::isnan(v))
+    fail(fmt::format("expected a number, got '{}'", text));
+  if (ec == std::errc::result_out_of_range || !std::isfinite(v) || v < min || v > max)
+    fail(fmt::format("{} is out of range [{}, {}]", text, format_number(min), format_number(max)));
   return v;
 }
 

@@ -38,20 +38,27 @@ class Parser {
     });
     if (limits_ok) {
       limits_ = &r.limits;
-      attempt([&] {
-        const auto steps = root.at("steps");
-        if (steps.items().empty()) steps.fail("a recipe needs at least one step");
-        long count = 0;
-        r.steps = parse_steps(steps, 0, count);
-        if (count > kMaxInstructions)
-          steps.fail(fmt::format("unrolls to {} steps; at most {} are allowed", count, kMaxInstructions));
-      });
+      try {
+        attempt([&] {
+          const auto steps = root.at("steps");
+          if (steps.items().empty()) steps.fail("a recipe needs at least one step");
+          r.steps = parse_steps(steps, 0);
+        });
+      } catch (const TooLong& e) {
+        errors_.push_back(e.error);
+      }
     }
     if (!errors_.empty()) throw RecipeErrors(std::move(errors_));
     return r;
   }
 
  private:
+  // Ends the whole parse (attempt() does not catch it): past the limit, every further step would
+  // only cost time, and a list given by an alias can repeat the same steps many times over.
+  struct TooLong {
+    ConfigError error;
+  };
+
   template <class Fn>
   void attempt(Fn&& fn) {
     try {
@@ -117,18 +124,25 @@ class Parser {
     return l;
   }
 
-  std::vector<Step> parse_steps(const YamlNode& list, int depth, long& count) {
+  std::vector<Step> parse_steps(const YamlNode& list, int depth) {
     std::vector<Step> steps;
     for (const auto& item : list.items()) {
-      attempt([&] { steps.push_back(parse_step(item, depth, count)); });
+      if (++checked_ > kMaxInstructions)
+        throw TooLong{make_error(
+            item, fmt::format("more than {} steps to check, aliases counted (the limit)", kMaxInstructions))};
+      attempt([&] { steps.push_back(parse_step(item, depth)); });
     }
     return steps;
+  }
+
+  static ConfigError make_error(const YamlNode& n, const std::string& rule) {
+    return ConfigError(n.file(), std::max(n.line(), 1), std::max(n.column(), 1), n.field(), rule);
   }
 
   static constexpr std::array<std::string_view, 6> kActions = {"move", "spindle", "dwell",
                                                                "wait", "repeat",  "require"};
 
-  Step parse_step(const YamlNode& item, int depth, long& count) {
+  Step parse_step(const YamlNode& item, int depth) {
     if (!item.is_map())
       item.fail("a step is a mapping with one of: move, spindle, dwell, wait, repeat, require");
     item.only_keys({"name", "move", "spindle", "dwell", "wait", "repeat", "require"});
@@ -150,10 +164,15 @@ class Parser {
     if (action == "wait") s.action = parse_wait(body);
     if (action == "require") s.action = parse_require(body);
     if (action == "repeat") {
-      s.action = parse_repeat(body, depth, count);
+      s.action = parse_repeat(body, depth);
       return s;
     }
-    ++count;
+    // One instruction for every time the enclosing repeats run it; multiplier_ ≤ the limit, so the
+    // sum cannot overflow before it is compared.
+    unrolled_ += multiplier_;
+    if (unrolled_ > kMaxInstructions)
+      throw TooLong{make_error(
+          item, fmt::format("the recipe unrolls to more than {} steps here (the limit)", kMaxInstructions))};
     return s;
   }
 
@@ -256,20 +275,30 @@ class Parser {
     return r;
   }
 
-  Repeat parse_repeat(const YamlNode& n, int depth, long& count) {
+  Repeat parse_repeat(const YamlNode& n, int depth) {
     n.only_keys({"times", "steps"});
     if (depth + 1 > kMaxRepeatDepth) n.fail(fmt::format("repeats nest at most {} deep", kMaxRepeatDepth));
     Repeat r;
-    r.times = n.int_in<int>("times", 1, 10000);
+    r.times = n.int_in<int>("times", 1, kMaxRepeatTimes);
+    // Compared by division: the product of the counts is never formed beyond the limit.
+    if (multiplier_ > kMaxInstructions / r.times)
+      throw TooLong{
+          make_error(n.at("times"), fmt::format("{} times inside repeats that run {} times unrolls to "
+                                                "more than {} steps (the limit)",
+                                                r.times, multiplier_, kMaxInstructions))};
     const auto steps = n.at("steps");
     if (steps.items().empty()) steps.fail("a repeat needs at least one step");
-    long inner = 0;
-    r.steps = parse_steps(steps, depth + 1, inner);
-    count += inner * r.times;
+    const long outer = multiplier_;
+    multiplier_ *= r.times;
+    r.steps = parse_steps(steps, depth + 1);
+    multiplier_ = outer;
     return r;
   }
 
   const CellConfig& cell_;
+  long checked_ = 0;     // step entries looked at, each alias use counted
+  long unrolled_ = 0;    // instructions the recipe unrolls to so far
+  long multiplier_ = 1;  // how often the enclosing repeats run the steps being parsed
   const Limits* limits_ = nullptr;
   bool has_spindle_limits_ = false;
   std::vector<ConfigError> errors_;

@@ -28,8 +28,11 @@ class RecipeErrors : public std::runtime_error {
 [[nodiscard]] Recipe load_recipe(const std::filesystem::path& path, const config::CellConfig& cell);
 [[nodiscard]] Recipe parse_recipe(const config::YamlNode& root, const config::CellConfig& cell);
 
-// Upper bounds that keep a recipe's unrolled program small enough to build before the run.
+// Upper bounds that keep a recipe's unrolled program small enough to build before the run: repeats
+// nest at most 4 deep and run at most 10000 times each, and the whole recipe unrolls to at most
+// 100000 instructions. Counts are checked as they are read, before any multiplication.
 inline constexpr int kMaxRepeatDepth = 4;
+inline constexpr int kMaxRepeatTimes = 10'000;
 inline constexpr long kMaxInstructions = 100'000;
 
 }  // namespace cellctl::recipe

@@ -11,6 +11,9 @@ template <class... Fs>
 struct Overloaded : Fs... {
   using Fs::operator()...;
 };
+// Written out for clang 14 (the fuzz preset), which does not yet deduce aggregates' arguments.
+template <class... Fs>
+Overloaded(Fs...) -> Overloaded<Fs...>;
 
 // Appends the CRC of everything written so far and publishes the telegram into `out`.
 template <std::size_t N>

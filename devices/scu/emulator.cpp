@@ -15,6 +15,9 @@ template <class... Fs>
 struct Overloaded : Fs... {
   using Fs::operator()...;
 };
+// Written out for clang 14 (the fuzz preset), which does not yet deduce aggregates' arguments.
+template <class... Fs>
+Overloaded(Fs...) -> Overloaded<Fs...>;
 
 // The plant is integrated in steps of at most this, whatever the poll rate, so ramps stay accurate.
 constexpr link::Duration kMaxPlantStep = std::chrono::milliseconds(1);

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <ctime>
+#include <thread>
+
 namespace cellctl::link {
 namespace {
 
@@ -19,14 +22,33 @@ TEST(VirtualClock, MovesOnlyWhenTold) {
   EXPECT_EQ(c.now() - t0, 2ms);
 }
 
-TEST(MonotonicClock, NeverRunsBackwards) {
+TimePoint clock_monotonic() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return TimePoint{std::chrono::seconds{ts.tv_sec} + std::chrono::nanoseconds{ts.tv_nsec}};
+}
+
+// MonotonicClock is CLOCK_MONOTONIC itself, origin included: loop::MonotonicWaiter hands its time
+// points to clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME) unconverted. Another clock (the wall
+// clock, or one counting from the program's start) falls outside the bracket.
+TEST(MonotonicClock, ReadsClockMonotonicWithItsOrigin) {
   MonotonicClock c;
-  auto prev = c.now();
-  for (int i = 0; i < 1000; ++i) {
+  for (int i = 0; i < 100; ++i) {
+    const auto before = clock_monotonic();
     const auto t = c.now();
-    ASSERT_GE(t, prev);
-    prev = t;
+    const auto after = clock_monotonic();
+    ASSERT_LE(before, t);
+    ASSERT_LE(t, after);
   }
+}
+
+// It moves with real time: after a 20 ms sleep it has advanced at least 20 ms (a lower bound holds
+// on a loaded machine; no upper bound is asserted).
+TEST(MonotonicClock, AdvancesWithRealTime) {
+  MonotonicClock c;
+  const auto t0 = c.now();
+  std::this_thread::sleep_for(20ms);
+  EXPECT_GE(c.now() - t0, 20ms);
 }
 
 TEST(Milliseconds, ConvertBothWaysWithoutTruncating) {

@@ -172,12 +172,22 @@ TEST(Loop, RunDoesNotAllocate) {
   EXPECT_GT(loop.stats().missed_deadlines, 0u);
 }
 
-TEST(MonotonicWaiter, ReturnsAtOnceForAPassedDeadline) {
+// Real time, so bounds with stated margins. Deadlines are absolute: three that have passed return
+// at once, together well inside 500 ms even on a loaded two-core machine (a waiter that took the
+// deadline for a relative sleep would sleep for the whole uptime); one 30 ms ahead is never
+// returned from early (a lower bound holds under any load).
+TEST(MonotonicWaiter, ReturnsAtOnceForAPassedDeadlineAndNotBeforeAFutureOne) {
   link::MonotonicClock clock;
   MonotonicWaiter waiter;
-  const link::TimePoint passed = clock.now() - 1ms;
-  waiter.wait_until(passed);
-  EXPECT_GE(clock.now(), passed);
+  const link::TimePoint start = clock.now();
+  waiter.wait_until(start - 1ms);
+  waiter.wait_until(start - 10s);
+  waiter.wait_until(link::TimePoint{});  // the clock's origin
+  EXPECT_LT(clock.now() - start, 500ms);
+
+  const link::TimePoint ahead = clock.now() + 30ms;
+  waiter.wait_until(ahead);
+  EXPECT_GE(clock.now(), ahead);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include "recipe/recipe_loader.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <string>
@@ -283,8 +284,64 @@ TEST(RecipeLoader, RepeatsAreBoundedInDepthAndSize) {
   EXPECT_NE(deep[0].find("repeats nest at most 4 deep"), std::string::npos) << deep[0];
   const auto big = errors_of(
       with_steps("  - repeat: {times: 10000, steps: [{repeat: {times: 10000, steps: [{dwell: 1}]}}]}\n"));
-  ASSERT_FALSE(big.empty());
-  EXPECT_EQ(big[0], "r.yaml:11:3: steps: unrolls to 100000000 steps; at most 100000 are allowed");
+  ASSERT_EQ(big.size(), 1u);
+  EXPECT_EQ(big[0],
+            "r.yaml:11:53: steps[0].repeat.steps[0].repeat.times: 10000 times inside repeats that run 10000 "
+            "times unrolls to more than 100000 steps (the limit)");
+}
+
+// The limit is exact: 10000 × 10 steps load, one more step is refused where the count passes it.
+TEST(RecipeLoader, TheInstructionLimitIsExact) {
+  std::string ten;
+  for (int i = 0; i < 10; ++i) ten += "{dwell: 1}, ";
+  const auto at_limit = load(with_steps("  - repeat: {times: 10000, steps: [" + ten + "]}\n"));
+  EXPECT_EQ(std::get<Repeat>(at_limit.steps[0].action).steps.size(), 10u);
+  const auto over = errors_of(with_steps("  - repeat: {times: 10000, steps: [" + ten + "]}\n  - dwell: 1\n"));
+  ASSERT_EQ(over.size(), 1u);
+  EXPECT_EQ(over[0], "r.yaml:12:5: steps[1]: the recipe unrolls to more than 100000 steps here (the limit)");
+}
+
+// UBSan found the product of nested counts overflowing before it was compared: four levels of
+// 10000 times 1000 steps. Refused at the first count that passes the limit, nothing multiplied.
+TEST(RecipeLoader, HugeNestedCountsAreRefusedBeforeTheyAreMultiplied) {
+  const auto errors = errors_of(with_steps(
+      "  - repeat: {times: 10000, steps: [{repeat: {times: 10000, steps: [{repeat: {times: 10000, steps: "
+      "[{repeat: {times: 10000, steps: [{dwell: 1}]}}]}}]}}]}\n"));
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("10000 times inside repeats that run 10000 times"), std::string::npos)
+      << errors[0];
+  const auto huge =
+      errors_of(with_steps("  - repeat: {times: 99999999999999999999999, steps: [{dwell: 1}]}\n"));
+  ASSERT_EQ(huge.size(), 1u);
+  EXPECT_EQ(huge[0],
+            "r.yaml:11:21: steps[0].repeat.times: 99999999999999999999999 is out of range [1, 10000]");
+}
+
+// A list of steps reused through aliases costs at most the limit's work, then the parse stops.
+TEST(RecipeLoader, AliasedStepListsAreCountedEveryTimeTheyAreUsed) {
+  std::string text = kHeader + "  - repeat:\n      times: 1\n      steps: &s0 [";
+  for (int i = 0; i < 100; ++i) text += "{dwell: 1},";
+  text += "]\n";
+  for (int level = 1; level <= 3; ++level) {
+    text += fmt::format("  - repeat:\n      times: 1\n      steps: &s{} [", level);
+    for (int i = 0; i < 100; ++i) text += fmt::format("{{repeat: {{times: 1, steps: *s{}}}}},", level - 1);
+    text += "]\n";
+  }
+  const auto errors = errors_of(text);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("100000 steps"), std::string::npos) << errors[0];
+  EXPECT_NE(errors[0].find("(the limit)"), std::string::npos) << errors[0];
+}
+
+// yaml-cpp keeps one of two equal keys silently; the recipe would move to a target nobody checked.
+TEST(RecipeLoader, ADuplicateKeyIsRefusedNamingBothPlaces) {
+  const auto errors =
+      errors_of(with_steps("  - move:\n      to: {x: 30}\n      speed_mm_s: 5\n      to: {x: 150}\n"));
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(
+      errors[0],
+      "r.yaml:14:7: steps[0].move.to: duplicate key 'to': also given at line 12, column 7; which one is "
+      "meant?");
 }
 
 }  // namespace
