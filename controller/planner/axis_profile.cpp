@@ -1,0 +1,177 @@
+#include "planner/axis_profile.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "planner/brake.hpp"
+
+namespace cellctl::planner {
+namespace {
+
+// g(lo) and g(hi) lie on different sides of "g >= 0"; halves the bracket to the last bit and returns
+// its end on the side where g >= 0 (so the returned duration is feasible for this side).
+template <typename G>
+double bisect(const G& g, double lo, double hi, bool lo_reaches) noexcept {
+  for (int i = 0; i < 200; ++i) {
+    const double mid = lo + (hi - lo) / 2.0;
+    if (mid <= lo || mid >= hi) break;
+    if ((g(mid) >= 0.0) == lo_reaches) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  return lo_reaches ? lo : hi;
+}
+
+// The minimum of a convex g on [lo, hi] by golden-section search: its argument.
+template <typename G>
+double golden_minimum(const G& g, double lo, double hi) noexcept {
+  constexpr double kInvPhi = 0.6180339887498949;
+  double x1 = hi - kInvPhi * (hi - lo);
+  double x2 = lo + kInvPhi * (hi - lo);
+  double g1 = g(x1);
+  double g2 = g(x2);
+  for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+    if (g1 <= g2) {
+      hi = x2;
+      x2 = x1;
+      g2 = g1;
+      x1 = hi - kInvPhi * (hi - lo);
+      g1 = g(x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      g1 = g2;
+      x2 = lo + kInvPhi * (hi - lo);
+      g2 = g(x2);
+    }
+  }
+  return g1 <= g2 ? x1 : x2;
+}
+
+bool target_within(const MotionState& target, const AxisLimits& l) noexcept {
+  const double v = target.velocity;
+  const double a = target.acceleration;
+  const double ramp = a * a / (2.0 * l.jerk);  // velocity change while the acceleration ramps from 0
+  return std::isfinite(v) && std::isfinite(a) && v <= l.max_velocity && v >= l.min_velocity &&
+         a <= l.max_acceleration && a >= l.min_acceleration && (a <= 0.0 || v - ramp >= l.min_velocity) &&
+         (a >= 0.0 || v + ramp <= l.max_velocity);
+}
+
+}  // namespace
+
+AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target, const AxisLimits& limits) noexcept {
+  limits_ = limits;
+  blocked_count_ = 0;
+  if (!target_within(target, limits)) return AxisStatus::target_outside_limits;
+  brake_ = brake_profile(start, limits);
+  const MotionState s = brake_.end();
+  if (!is_safe(s.velocity, s.acceleration, limits)) return AxisStatus::limits_too_narrow;
+  main_start_ = {s.position, std::clamp(s.velocity, limits.min_velocity, limits.max_velocity),
+                 std::clamp(s.acceleration, limits.min_acceleration, limits.max_acceleration)};
+  target_offset_ = target.position - s.position;
+  const double v = main_start_.velocity;
+  const double a = main_start_.acceleration;
+  extremes_[0] = FarthestProfile(v, a, target.velocity, target.acceleration, limits);
+  extremes_[1] = FarthestProfile(-v, -a, -target.velocity, -target.acceleration, limits.mirrored());
+  reach_ = reach_time(v, a, target.velocity, target.acceleration, limits);
+
+  const ShortSet up = short_set(extremes_[0], target_offset_, limits.max_velocity);
+  const ShortSet down = short_set(extremes_[1], -target_offset_, -limits.min_velocity);
+  double t = reach_;
+  for (const ShortSet* s2 : {&up, &down}) {
+    if (s2->from_reach) t = std::max(t, s2->end);
+  }
+  // The shortest duration may land in the other side's dip: it then starts after the dip.
+  for (int pass = 0; pass < 2; ++pass) {
+    for (const ShortSet* s2 : {&up, &down}) {
+      if (s2->dip && t > s2->dip_lo && t < s2->dip_hi) t = s2->dip_hi;
+    }
+  }
+  const double brake = brake_.duration();
+  min_duration_ = brake + t;
+  for (const ShortSet* s2 : {&up, &down}) {
+    if (s2->dip && s2->dip_lo >= t) blocked_[blocked_count_++] = {brake + s2->dip_lo, brake + s2->dip_hi};
+  }
+  if (blocked_count_ == 2 && blocked_[1].lo < blocked_[0].lo) std::swap(blocked_[0], blocked_[1]);
+  return AxisStatus::ok;
+}
+
+AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double target, double slope) const noexcept {
+  ShortSet set;
+  const auto g = [&](double T) { return f.position(T) - target; };
+  const double t0 = reach_;
+  const double tc = std::max(f.cruise_from(), t0);
+  const double g0 = g(t0);
+  if (g0 < 0.0) {
+    set.from_reach = true;
+    const double gc = g(tc);
+    if (gc < 0.0) {
+      // Linear from tc on; step up an ulp at a time if rounding left the root just short.
+      double end = tc - gc / slope;
+      for (int i = 0; i < 8 && g(end) < 0.0; ++i) end = std::nextafter(end, 2.0 * end + 1.0);
+      set.end = end;
+    } else {
+      set.end = bisect(g, t0, tc, false);
+    }
+    return set;
+  }
+  if (tc - t0 <= 1e-15 * tc) return set;
+  const double t_min = golden_minimum(g, t0, tc);
+  if (g(t_min) >= 0.0) return set;
+  set.dip = true;
+  set.dip_lo = bisect(g, t0, t_min, true);
+  set.dip_hi = bisect(g, t_min, tc, false);
+  return set;
+}
+
+bool AxisProfile::feasible(double T) const noexcept {
+  if (T < min_duration_) return false;
+  for (std::size_t i = 0; i < blocked_count_; ++i) {
+    if (blocked_[i].contains(T)) return false;
+  }
+  return true;
+}
+
+void AxisProfile::build(double T, JerkProfile& out) const noexcept {
+  out = brake_;
+  const double main = std::max(T - brake_.duration(), reach_);
+  SevenDurations up{};
+  SevenDurations down{};
+  const bool has_up = extremes_[0].durations(main, up);
+  const bool has_down = extremes_[1].durations(main, down);
+  const double far = has_up ? extremes_[0].position_of(up) : 0.0;
+  const double near = has_down ? -extremes_[1].position_of(down) : 0.0;
+  // The share of the farthest profile's jerk in the blend that ends exactly at the target.
+  double share = 1.0;
+  if (!has_up) {
+    share = 0.0;
+  } else if (has_down && far - near > 0.0) {
+    share = std::clamp((target_offset_ - near) / (far - near), 0.0, 1.0);
+  }
+  const double j = limits_.jerk;
+  if (share == 1.0 || share == 0.0) {
+    const bool use_up = share == 1.0;
+    const SevenDurations& d = use_up ? up : down;
+    const double sign = use_up ? 1.0 : -1.0;
+    for (std::size_t i = 0; i < d.size(); ++i) out.append({sign * kFarthestJerkSigns[i] * j, d[i]});
+    return;
+  }
+  // Merge the two switching sequences; in each piece the jerk is the blend of both.
+  std::size_t iu = 0;
+  std::size_t id = 0;
+  double left_u = up[0];
+  double left_d = down[0];
+  while (iu < up.size() && id < down.size()) {
+    const double piece = std::min(left_u, left_d);
+    const double jerk = j * (share * kFarthestJerkSigns[iu] - (1.0 - share) * kFarthestJerkSigns[id]);
+    out.append({jerk, piece});
+    left_u -= piece;
+    left_d -= piece;
+    if (left_u <= 0.0 && ++iu < up.size()) left_u = up[iu];
+    if (left_d <= 0.0 && ++id < down.size()) left_d = down[id];
+  }
+}
+
+}  // namespace cellctl::planner
