@@ -8,18 +8,37 @@
 namespace cellctl::planner {
 namespace {
 
-// g(lo) and g(hi) lie on different sides of "g >= 0"; halves the bracket to the last bit and returns
-// its end on the side where g >= 0 (so the returned duration is feasible for this side).
+// g(lo) and g(hi) lie on different sides of "g >= 0"; narrows the bracket to the last bit and
+// returns its end on the side where g >= 0 (so the returned duration is feasible for this side).
+// Regula falsi with the Illinois fix (superlinear on these smooth pieces), falling back to a
+// bisection step whenever the bracket stops halving.
 template <typename G>
-double bisect(const G& g, double lo, double hi, bool lo_reaches) noexcept {
+double find_root(const G& g, double lo, double hi, bool lo_reaches) noexcept {
+  double g_lo = g(lo);
+  double g_hi = g(hi);
+  int side = 0;  // which end stayed last time (for the Illinois halving)
+  double width = hi - lo;
   for (int i = 0; i < 200; ++i) {
-    const double mid = lo + (hi - lo) / 2.0;
+    double mid = lo - g_lo * (hi - lo) / (g_hi - g_lo);
+    if (!(mid > lo && mid < hi) || i % 4 == 3) {
+      if (hi - lo > 0.5 * width) mid = lo + (hi - lo) / 2.0;
+      width = hi - lo;
+    }
+    if (!(mid > lo && mid < hi)) mid = lo + (hi - lo) / 2.0;
     if (mid <= lo || mid >= hi) break;
-    if ((g(mid) >= 0.0) == lo_reaches) {
+    const double g_mid = g(mid);
+    if ((g_mid >= 0.0) == lo_reaches) {
       lo = mid;
+      g_lo = g_mid;
+      if (side == -1) g_hi /= 2.0;
+      side = -1;
     } else {
       hi = mid;
+      g_hi = g_mid;
+      if (side == 1) g_lo /= 2.0;
+      side = 1;
     }
+    if (g_mid == 0.0) return mid;
   }
   return lo_reaches ? lo : hi;
 }
@@ -71,6 +90,7 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   main_start_ = {s.position, std::clamp(s.velocity, limits.min_velocity, limits.max_velocity),
                  std::clamp(s.acceleration, limits.min_acceleration, limits.max_acceleration)};
   target_offset_ = target.position - s.position;
+  target_ = target;
   const double v = main_start_.velocity;
   const double a = main_start_.acceleration;
   extremes_[0] = FarthestProfile(v, a, target.velocity, target.acceleration, limits);
@@ -81,6 +101,7 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   const ShortSet down = short_set(extremes_[1], -target_offset_, -limits.min_velocity);
   double t = reach_;
   for (const ShortSet* s2 : {&up, &down}) {
+    if (s2->gap) return AxisStatus::unsupported_target;
     if (s2->from_reach) t = std::max(t, s2->end);
   }
   // The shortest duration may land in the other side's dip: it then starts after the dip.
@@ -95,15 +116,27 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
     if (s2->dip && s2->dip_lo >= t) blocked_[blocked_count_++] = {brake + s2->dip_lo, brake + s2->dip_hi};
   }
   if (blocked_count_ == 2 && blocked_[1].lo < blocked_[0].lo) std::swap(blocked_[0], blocked_[1]);
+  if (!std::isfinite(min_duration_)) return AxisStatus::unsupported_target;
+  if (target.acceleration != 0.0) {
+    JerkProfile check;
+    if (!build(min_duration_, check)) return AxisStatus::unsupported_target;
+  }
   return AxisStatus::ok;
 }
 
 AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double target, double slope) const noexcept {
   ShortSet set;
-  const auto g = [&](double T) { return f.position(T) - target; };
+  // A duration with no extreme profile (possible only with a target acceleration) makes the
+  // search unreliable: the plan is then refused rather than trusted.
+  const auto g = [&](double T) {
+    const double p = f.position(T);
+    if (std::isnan(p)) set.gap = true;
+    return p - target;
+  };
   const double t0 = reach_;
   const double tc = std::max(f.cruise_from(), t0);
   const double g0 = g(t0);
+  if (set.gap) return set;
   if (g0 < 0.0) {
     set.from_reach = true;
     const double gc = g(tc);
@@ -113,16 +146,19 @@ AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double ta
       for (int i = 0; i < 8 && g(end) < 0.0; ++i) end = std::nextafter(end, 2.0 * end + 1.0);
       set.end = end;
     } else {
-      set.end = bisect(g, t0, tc, false);
+      set.end = find_root(g, t0, tc, false);
     }
     return set;
   }
   if (tc - t0 <= 1e-15 * tc) return set;
+  // Convex: no dip when g does not fall at first (checked a step of a millionth of the range in).
+  const double step = 1e-6 * (tc - t0);
+  if (g(t0 + step) >= g0) return set;
   const double t_min = golden_minimum(g, t0, tc);
   if (g(t_min) >= 0.0) return set;
   set.dip = true;
-  set.dip_lo = bisect(g, t0, t_min, true);
-  set.dip_hi = bisect(g, t_min, tc, false);
+  set.dip_lo = find_root(g, t0, t_min, true);
+  set.dip_hi = find_root(g, t_min, tc, false);
   return set;
 }
 
@@ -134,13 +170,14 @@ bool AxisProfile::feasible(double T) const noexcept {
   return true;
 }
 
-void AxisProfile::build(double T, JerkProfile& out) const noexcept {
+bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
   out = brake_;
   const double main = std::max(T - brake_.duration(), reach_);
   SevenDurations up{};
   SevenDurations down{};
   const bool has_up = extremes_[0].durations(main, up);
   const bool has_down = extremes_[1].durations(main, down);
+  if (!has_up && !has_down) return false;
   const double far = has_up ? extremes_[0].position_of(up) : 0.0;
   const double near = has_down ? -extremes_[1].position_of(down) : 0.0;
   // The share of the farthest profile's jerk in the blend that ends exactly at the target.
@@ -156,7 +193,7 @@ void AxisProfile::build(double T, JerkProfile& out) const noexcept {
     const SevenDurations& d = use_up ? up : down;
     const double sign = use_up ? 1.0 : -1.0;
     for (std::size_t i = 0; i < d.size(); ++i) out.append({sign * kFarthestJerkSigns[i] * j, d[i]});
-    return;
+    return arrives(out);
   }
   // Merge the two switching sequences; in each piece the jerk is the blend of both.
   std::size_t iu = 0;
@@ -172,6 +209,16 @@ void AxisProfile::build(double T, JerkProfile& out) const noexcept {
     if (left_u <= 0.0 && ++iu < up.size()) left_u = up[iu];
     if (left_d <= 0.0 && ++id < down.size()) left_d = down[id];
   }
+  return arrives(out);
+}
+
+bool AxisProfile::arrives(const JerkProfile& p) const noexcept {
+  const MotionState& e = p.end();
+  const double scale = 1.0 + std::abs(target_offset_);
+  return std::abs(e.position - target_.position) <= 1e-9 * scale &&
+         std::abs(e.velocity - target_.velocity) <= 1e-9 * (1.0 + limits_.max_velocity - limits_.min_velocity) &&
+         std::abs(e.acceleration - target_.acceleration) <=
+             1e-9 * (1.0 + limits_.max_acceleration - limits_.min_acceleration);
 }
 
 }  // namespace cellctl::planner

@@ -9,8 +9,13 @@
 // defined from the reach time on, are linear once the extreme profile cruises, and farthest is
 // convex (nearest concave): each side's infeasible set is one interval, either starting at the
 // reach time (the shortest duration is its end) or a blocked interval (a dip in between). Roots
-// are found by bisection on T to the last bit; the optimum itself is an extreme profile, any other
-// feasible duration a blend of the two.
+// are found by regula falsi on T to the last bit; the optimum itself is an extreme profile, any
+// other feasible duration a blend of the two.
+//
+// Known limit: with a non-zero target acceleration the end velocity and acceleration alone can be
+// unreachable for some durations above the reach time (abnormal extremals, not covered by the
+// seven-segment family). Such plans are detected (the built profile misses the target) and refused
+// as unsupported_target, never followed; targets with zero acceleration are always covered.
 
 #include <array>
 #include <cstdint>
@@ -32,6 +37,7 @@ enum class AxisStatus : std::uint8_t {
   ok,
   target_outside_limits,  // target velocity/acceleration beyond the limits or bound to cross them
   limits_too_narrow,      // no state in which the velocity limits can be kept (brake cannot end)
+  unsupported_target,     // a non-zero target acceleration this method has no profile for (see below)
 };
 
 class AxisProfile {
@@ -47,8 +53,9 @@ class AxisProfile {
   [[nodiscard]] const Interval& blocked(std::size_t i) const noexcept { return blocked_[i]; }
   // Whether a profile of total duration T exists (T >= min_duration, outside every blocked interval).
   [[nodiscard]] bool feasible(double T) const noexcept;
-  // The brake then the profile ending in the target exactly at T (a feasible duration).
-  void build(double T, JerkProfile& out) const noexcept;
+  // The brake then the profile ending in the target exactly at T (a feasible duration). False
+  // (and `out` unusable) when the profile misses the target: an unsupported_target case.
+  [[nodiscard]] bool build(double T, JerkProfile& out) const noexcept;
   [[nodiscard]] const JerkProfile& brake() const noexcept { return brake_; }
 
  private:
@@ -59,11 +66,14 @@ class AxisProfile {
     bool dip = false;  // (dip_lo, dip_hi)
     double dip_lo = 0.0;
     double dip_hi = 0.0;
+    bool gap = false;  // some duration searched had no extreme profile
   };
+  [[nodiscard]] bool arrives(const JerkProfile& p) const noexcept;
   [[nodiscard]] ShortSet short_set(const FarthestProfile& f, double target, double slope) const noexcept;
 
   JerkProfile brake_;
   MotionState main_start_;
+  MotionState target_;
   double target_offset_ = 0.0;  // target position - main start position
   AxisLimits limits_;
   // Farthest in the positive direction, and in the mirrored frame (the nearest profile).

@@ -94,6 +94,8 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t) const noexcept {
   const double dv = vf_ - v0_;
   const double tol_a = 1e-10 * (amax - amin);
   const double tol_t = 1e-12 * (T + (amax - amin) / j);
+  // A double root (the held level equals the start or end level) comes out a rounding below zero.
+  const double tol_disc = 1e-12 * (amax - amin) * (amax - amin);
 
   // One set of active bounds: peak level a1 (held t2), low level a3 (held t6); checks and fills t.
   const auto accept = [&](double a1, double t2, double a3, double t6) {
@@ -127,8 +129,8 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t) const noexcept {
     const double k = (2.0 * amax - a0 + af) / j;
     const double c = 2.0 * amax * amax - a0 * a0 + af * af + 2.0 * j * amax * (T - k) - 2.0 * j * dv;
     const double disc = amax * amax + c / 2.0;
-    if (disc >= 0.0) {
-      const double a3 = amax - std::sqrt(disc);
+    if (disc >= -tol_disc) {
+      const double a3 = amax - std::sqrt(std::max(disc, 0.0));
       if (accept(amax, T - k + 2.0 * a3 / j, a3, 0.0)) return true;
     }
   }
@@ -136,8 +138,8 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t) const noexcept {
   {
     const double d = -a0 * a0 + 2.0 * amin * amin + af * af + 2.0 * amin * (j * T + a0 - af) - 2.0 * j * dv;
     const double disc = amin * amin - d / 2.0;
-    if (disc >= 0.0) {
-      const double a1 = amin + std::sqrt(disc);
+    if (disc >= -tol_disc) {
+      const double a1 = amin + std::sqrt(std::max(disc, 0.0));
       if (accept(a1, 0.0, amin, T - (2.0 * a1 - a0 - 2.0 * amin + af) / j)) return true;
     }
   }

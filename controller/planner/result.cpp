@@ -17,6 +17,9 @@ std::string_view to_string(Result r) noexcept {
       return "target outside the limits: its velocity or acceleration is beyond them or bound to cross them";
     case Result::limits_too_narrow:
       return "limits too narrow: the velocity range is smaller than one acceleration ramp changes it by";
+    case Result::unsupported_target:
+      return "unsupported target: no profile to this non-zero target acceleration from this state at the "
+             "needed duration (plan to zero acceleration instead)";
     case Result::outside_travel:
       return "outside the travel: the target, or the motion to it, leaves the axis's position limits";
   }

@@ -14,6 +14,7 @@ enum class Result {
   target_outside_limits,   // a target velocity/acceleration is beyond the limits or bound to cross them
   limits_too_narrow,       // the velocity range is narrower than one acceleration ramp: no safe state
   outside_travel,          // the target, or the motion to it (overshoot included), leaves the travel
+  unsupported_target,      // a non-zero target acceleration without a profile of this method (rare)
 };
 
 [[nodiscard]] constexpr bool is_error(Result r) noexcept { return r != Result::working && r != Result::finished; }

@@ -70,7 +70,14 @@ class Trajectory {
   }
   static Result validate(const Input<N>& in, int& axis) noexcept;
   static Result status_result(AxisStatus s) noexcept {
-    return s == AxisStatus::target_outside_limits ? Result::target_outside_limits : Result::limits_too_narrow;
+    switch (s) {
+      case AxisStatus::target_outside_limits:
+        return Result::target_outside_limits;
+      case AxisStatus::limits_too_narrow:
+        return Result::limits_too_narrow;
+      default:
+        return Result::unsupported_target;
+    }
   }
   [[nodiscard]] bool plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept;
 
@@ -152,7 +159,11 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
     return true;
   }
   JerkProfile s;
-  scalar.build(scalar.min_duration(), s);
+  if (!scalar.build(scalar.min_duration(), s)) {
+    error_axis = lead;
+    r = Result::unsupported_target;
+    return true;
+  }
   for (int i = 0; i < N; ++i) {
     if (!in.enabled[idx(i)]) continue;
     JerkProfile& p = profiles_[idx(i)];
@@ -224,7 +235,10 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
     for (int i = 0; i < N; ++i) {
       if (!in.enabled[idx(i)]) continue;
       const bool own = t.synchronization_ == Synchronization::none;
-      axes[idx(i)].build(own ? axes[idx(i)].min_duration() : common, t.profiles_[idx(i)]);
+      if (!axes[idx(i)].build(own ? axes[idx(i)].min_duration() : common, t.profiles_[idx(i)])) {
+        error_axis = i;  // only with a non-zero target acceleration (see axis_profile.hpp)
+        return Result::unsupported_target;
+      }
     }
     t.duration_ = common;
   }

@@ -3,15 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
-#include "optimum_oracle.hpp"
-#include "random_problems.hpp"
+#include "planner/optimum_oracle.hpp"
+#include "planner/random_problems.hpp"
 
 namespace cellctl::planner {
 namespace {
 
 using testing::Start;
+using testing::Target;
 
 AxisLimits limits_of(const oracle::Problem& p) {
   return AxisLimits{p.limits.vmax, p.limits.vmin, p.limits.amax, p.limits.amin, p.limits.jerk};
@@ -52,16 +54,20 @@ void expect_within(const JerkProfile& profile, const MotionState& target, const 
   }
 }
 
-void check_problem(const oracle::Problem& p, std::mt19937_64& rng, const std::string& what) {
+// Returns false when the plan was refused as unsupported (allowed only with a target acceleration).
+bool check_problem(const oracle::Problem& p, std::mt19937_64& rng, const std::string& what) {
   AxisProfile axis;
   const AxisLimits l = limits_of(p);
   const MotionState target{p.pf, p.vf, p.af};
-  ASSERT_EQ(axis.plan({p.p0, p.v0, p.a0}, target, l), AxisStatus::ok) << what;
+  const AxisStatus status = axis.plan({p.p0, p.v0, p.a0}, target, l);
+  if (status == AxisStatus::unsupported_target && p.af != 0.0) return false;
+  EXPECT_EQ(status, AxisStatus::ok) << what;
+  if (status != AxisStatus::ok) return true;
   const double T = axis.min_duration();
-  const double best = oracle::min_duration(p, 1.01 * T + 1e-9);
-  ASSERT_NEAR(T, best, 1e-9 * std::max(best, 1e-3)) << what;
+  EXPECT_TRUE(oracle::confirms_min_duration(p, T, 1e-9))
+      << what << ": planned " << T << " s, the independent optimum is " << oracle::min_duration(p, 1.01 * T + 1e-9);
   JerkProfile profile;
-  axis.build(T, profile);
+  EXPECT_TRUE(axis.build(T, profile)) << what;
   EXPECT_NEAR(profile.duration(), T, 1e-9 * T + 1e-12) << what;
   expect_within(profile, target, l, 0.0, what);
   // Every blocked interval: infeasible inside by the oracle, feasible at its end.
@@ -77,10 +83,14 @@ void check_problem(const oracle::Problem& p, std::mt19937_64& rng, const std::st
   for (std::size_t b = 0; b < axis.blocked_count(); ++b) {
     if (axis.blocked(b).contains(longer)) longer = axis.blocked(b).hi;
   }
-  ASSERT_TRUE(axis.feasible(longer)) << what;
-  axis.build(longer, profile);
+  EXPECT_TRUE(axis.feasible(longer)) << what;
+  if (!axis.build(longer, profile)) {
+    EXPECT_NE(p.af, 0.0) << what << ": no profile for the feasible duration " << longer;
+    return true;
+  }
   EXPECT_NEAR(profile.duration(), longer, 1e-9 * longer) << what;
   expect_within(profile, target, l, 0.0, what + " stretched");
+  return true;
 }
 
 std::string describe(const oracle::Problem& p, long i, std::uint64_t seed) {
@@ -93,20 +103,38 @@ std::string describe(const oracle::Problem& p, long i, std::uint64_t seed) {
   return buf;
 }
 
-void run_random(Start start, bool moving_target, long fallback_count, std::uint64_t fallback_seed) {
+// Returns how many plans were refused as unsupported.
+long run_random(Start start, Target target, long fallback_count, std::uint64_t fallback_seed) {
   const long count = testing::problem_count(fallback_count);
   const std::uint64_t seed = testing::problem_seed(fallback_seed);
   std::mt19937_64 rng(seed);
+  long refused = 0;
   for (long i = 0; i < count; ++i) {
-    const oracle::Problem p = testing::random_problem(rng, start, moving_target);
-    check_problem(p, rng, describe(p, i, seed));
-    if (::testing::Test::HasFailure()) return;
+    const oracle::Problem p = testing::random_problem(rng, start, target);
+    if (!check_problem(p, rng, describe(p, i, seed))) ++refused;
+    if (::testing::Test::HasFailure()) break;
   }
+  std::printf("%ld problems (seed %llu), %ld refused as unsupported\n", count, static_cast<unsigned long long>(seed),
+              refused);
+  return refused;
 }
 
-TEST(AxisProfileRandom, RestToRestMatchesTheIndependentOptimum) { run_random(Start::at_rest, false, 2000, 1); }
-TEST(AxisProfileRandom, MovingStartMatchesTheIndependentOptimum) { run_random(Start::moving, false, 2000, 2); }
-TEST(AxisProfileRandom, MovingTargetMatchesTheIndependentOptimum) { run_random(Start::moving, true, 2000, 3); }
+// 3 x 35 000 problems (CELLCTL_PLANNER_PROBLEMS sets the count per test, CELLCTL_PLANNER_SEED the seed).
+TEST(AxisProfileRandom, RestToRestMatchesTheIndependentOptimum) {
+  EXPECT_EQ(run_random(Start::at_rest, Target::at_rest, 35000, 1), 0);
+}
+TEST(AxisProfileRandom, MovingStartMatchesTheIndependentOptimum) {
+  EXPECT_EQ(run_random(Start::moving, Target::at_rest, 35000, 2), 0);
+}
+TEST(AxisProfileRandom, MovingTargetMatchesTheIndependentOptimum) {
+  EXPECT_EQ(run_random(Start::moving, Target::moving, 35000, 3), 0);
+}
+// With a target acceleration some plans are refused (see axis_profile.hpp); every plan made is
+// optimal and exact, and the refusals stay rare.
+TEST(AxisProfileRandom, AcceleratingTargetIsOptimalOrRefused) {
+  const long count = testing::problem_count(5000);
+  EXPECT_LE(run_random(Start::moving, Target::accelerating, 5000, 4), count / 20);
+}
 
 }  // namespace
 }  // namespace cellctl::planner

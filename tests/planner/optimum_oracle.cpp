@@ -1,4 +1,4 @@
-#include "optimum_oracle.hpp"
+#include "planner/optimum_oracle.hpp"
 
 #include <algorithm>
 #include <array>
@@ -70,27 +70,16 @@ double farthest(const Problem& pr, double T) {
   const Limits& l = pr.limits;
   const double j = l.jerk;
   const State s0{0.0, pr.v0, pr.a0};
-  // Largest usable effort: the end ramp to af must still fit.
+  // More effort, more end velocity; too much effort leaves no time for the end (counted as "too
+  // fast"), so the end velocity is increasing over the whole range and one bisection finds it.
   const double u_top = (l.amax - pr.a0) + j * T;
   std::array<Piece, 7> seq{};
   const auto end_v = [&](double u) { return sequence(pr, T, u, seq) ? run(s0, seq).v - pr.vf : 1e300; };
-  double lo = 0.0;
-  if (!sequence(pr, T, lo, seq) || end_v(lo) > 0.0) return std::numeric_limits<double>::quiet_NaN();
-  // The largest valid effort (validity is an interval starting at 0).
-  double hi = u_top;
-  if (!sequence(pr, T, hi, seq)) {
-    double ok = 0.0;
-    double bad = hi;
-    for (int i = 0; i < 200; ++i) {
-      const double mid = 0.5 * (ok + bad);
-      if (mid <= ok || mid >= bad) break;
-      (sequence(pr, T, mid, seq) ? ok : bad) = mid;
-    }
-    hi = ok;
+  if (end_v(0.0) > 0.0) return std::numeric_limits<double>::quiet_NaN();
+  const double u = solve_increasing(end_v, 0.0, u_top);
+  if (!sequence(pr, T, u, seq) || std::abs(run(s0, seq).v - pr.vf) > 1e-9 * (1.0 + std::abs(pr.vf) + l.vmax)) {
+    return std::numeric_limits<double>::quiet_NaN();  // even the most effort cannot reach vf at T
   }
-  if (end_v(hi) < 0.0) return std::numeric_limits<double>::quiet_NaN();
-  const double u = solve_increasing(end_v, lo, hi);
-  sequence(pr, T, u, seq);
   double peak = -1e300;
   const State end = run(s0, seq, &peak);
   if (peak <= l.vmax * (1.0 + 1e-12)) return end.p;
@@ -166,6 +155,23 @@ double first_feasible(const Feasible& ok, double upper) {
 }
 
 }  // namespace
+
+bool confirms_min_common_duration(const std::vector<Problem>& problems, double T, double relative) {
+  const auto all = [&](double t) {
+    return std::all_of(problems.begin(), problems.end(), [t](const Problem& p) { return feasible(p, t); });
+  };
+  if (!all(T * (1.0 + relative / 10.0) + 1e-15)) return false;
+  const double below = T * (1.0 - relative);
+  constexpr int kScan = 12;
+  for (int k = 0; k <= kScan; ++k) {
+    if (all(below * k / kScan)) return false;
+  }
+  return true;
+}
+
+bool confirms_min_duration(const Problem& p, double T, double relative) {
+  return confirms_min_common_duration({p}, T, relative);
+}
 
 double min_duration(const Problem& p, double upper) {
   return first_feasible([&](double T) { return feasible(p, T); }, upper);

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "optimum_oracle.hpp"
+#include "planner/optimum_oracle.hpp"
 #include "support/allocation_counter.hpp"
 
 namespace cellctl::planner {
@@ -52,7 +52,7 @@ int run_checked(Planner<N>& planner, Input<N>& in, Output<N>& out, int max_steps
   const LimitChecker<N> checker;
   for (int step = 1; step <= max_steps; ++step) {
     const Result r = planner.update(in, out);
-    EXPECT_FALSE(is_error(r)) << to_string(r);
+    EXPECT_FALSE(is_error(r)) << to_string(r) << " for\n" << to_string(in);
     checker.check_step(in, in, out);
     if (::testing::Test::HasFatalFailure()) return -1;
     out.pass_to_input(in);

@@ -10,18 +10,20 @@
 #include <random>
 #include <string>
 
-#include "optimum_oracle.hpp"
+#include "planner/optimum_oracle.hpp"
 
 namespace cellctl::planner::testing {
 
 enum class Start { at_rest, moving };
+// The target state: at rest; moving (a velocity, zero acceleration); accelerating (both).
+enum class Target { at_rest, moving, accelerating };
 
 inline bool stays_within(double v, double a, const oracle::Limits& l) {
   const double ramp = a * a / (2.0 * l.jerk);
   return (a <= 0.0 || v + ramp <= l.vmax) && (a >= 0.0 || v - ramp >= l.vmin);
 }
 
-inline oracle::Problem random_problem(std::mt19937_64& rng, Start start, bool moving_target = false) {
+inline oracle::Problem random_problem(std::mt19937_64& rng, Start start, Target target = Target::at_rest) {
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   const auto U = [&](double lo, double hi) { return lo + (hi - lo) * u01(rng); };
   oracle::Problem p{};
@@ -36,7 +38,8 @@ inline oracle::Problem random_problem(std::mt19937_64& rng, Start start, bool mo
       p.a0 = U(-a, a);
     } while (!stays_within(p.v0, p.a0, p.limits));
   }
-  if (moving_target) {
+  if (target == Target::moving) p.vf = U(-v, v);
+  if (target == Target::accelerating) {
     do {
       p.vf = U(-v, v);
       p.af = U(-a, a);

@@ -1,0 +1,140 @@
+// Planner benchmark (issue 11): time-synchronised plans for 3 and 6 DoF, from rest and from an
+// arbitrary moving state (per axis max velocity U(0.5, 5), max acceleration U(1, 20), max jerk
+// U(10, 200), positions U(-5, 5), target at rest, start velocity/acceleration within the limits).
+// Prints per configuration:
+//  - mean and p99 compute time per DoF of Trajectory::calculate [µs];
+//  - the mean and max ratio of the planned duration to the independent numerical optimum
+//    (tests/planner/optimum_oracle: bisection over durations with a feasibility check; 1.000000
+//    means time-optimal), on the first --oracle problems;
+//  - the reference measured in the same run: the oracle's own compute time per DoF, and the
+//    planner's speed-up over it.
+// Usage: planner_bench [--problems N (20000)] [--oracle N (1000)] [--seed S]
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "planner/optimum_oracle.hpp"
+#include "planner/random_problems.hpp"
+#include "planner/trajectory.hpp"
+
+namespace {
+
+using namespace cellctl::planner;
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  long problems = 20000;
+  long oracle = 1000;
+  std::uint64_t seed = 11;
+};
+
+template <int N>
+Input<N> input_of(const std::vector<oracle::Problem>& axes) {
+  Input<N> in;
+  for (int i = 0; i < N; ++i) {
+    const oracle::Problem& p = axes[static_cast<std::size_t>(i)];
+    in.current_position[i] = p.p0;
+    in.current_velocity[i] = p.v0;
+    in.current_acceleration[i] = p.a0;
+    in.target_position[i] = p.pf;
+    in.max_velocity[i] = p.limits.vmax;
+    in.max_acceleration[i] = p.limits.amax;
+    in.max_jerk[i] = p.limits.jerk;
+  }
+  return in;
+}
+
+template <int N>
+void run(const Options& o, testing::Start start, const char* name) {
+  std::mt19937_64 rng(o.seed + static_cast<std::uint64_t>(N) * 10 + (start == testing::Start::moving ? 1 : 0));
+  std::vector<std::vector<oracle::Problem>> problems(static_cast<std::size_t>(o.problems));
+  std::vector<Input<N>> inputs;
+  inputs.reserve(problems.size());
+  for (auto& p : problems) {
+    for (int i = 0; i < N; ++i) p.push_back(testing::random_problem(rng, start));
+    inputs.push_back(input_of<N>(p));
+  }
+  std::vector<double> us(problems.size());
+  std::vector<double> durations(problems.size());
+  Trajectory<N> trajectory;
+  int error_axis = -1;
+  long errors = 0;
+  // Warm up the caches and branch predictors on the first few.
+  for (std::size_t k = 0; k < std::min<std::size_t>(100, inputs.size()); ++k) {
+    (void)Trajectory<N>::calculate(inputs[k], trajectory, error_axis);
+  }
+  for (std::size_t k = 0; k < inputs.size(); ++k) {
+    const auto t0 = Clock::now();
+    const Result r = Trajectory<N>::calculate(inputs[k], trajectory, error_axis);
+    const auto t1 = Clock::now();
+    if (is_error(r)) ++errors;
+    us[k] = std::chrono::duration<double, std::micro>(t1 - t0).count() / N;
+    durations[k] = trajectory.duration();
+  }
+  // The clock's own cost, measured the same way, is taken off.
+  std::vector<double> empty(inputs.size());
+  for (auto& e : empty) {
+    const auto t0 = Clock::now();
+    const auto t1 = Clock::now();
+    e = std::chrono::duration<double, std::micro>(t1 - t0).count() / N;
+  }
+  double clock_cost = 0.0;
+  for (const double e : empty) clock_cost += e;
+  clock_cost /= static_cast<double>(empty.size());
+  double mean = 0.0;
+  for (const double u : us) mean += u;
+  mean = mean / static_cast<double>(us.size()) - clock_cost;
+  std::vector<double> sorted = us;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() * 99 / 100), sorted.end());
+  const double p99 = sorted[sorted.size() * 99 / 100] - clock_cost;
+
+  double ratio_sum = 0.0;
+  double ratio_max = 0.0;
+  const long checked = std::min<long>(o.oracle, o.problems);
+  const auto o0 = Clock::now();
+  for (long k = 0; k < checked; ++k) {
+    const auto idx = static_cast<std::size_t>(k);
+    const double best = oracle::min_common_duration(problems[idx], 1.01 * durations[idx] + 1e-9);
+    const double ratio = best > 0.0 ? durations[idx] / best : 1.0;
+    ratio_sum += ratio;
+    ratio_max = std::max(ratio_max, ratio);
+  }
+  const auto o1 = Clock::now();
+  const double oracle_us =
+      std::chrono::duration<double, std::micro>(o1 - o0).count() / static_cast<double>(std::max(checked, 1L)) / N;
+  std::printf("%d DoF %-8s  %7ld problems  mean %.3f us/DoF  p99 %.3f us/DoF  | duration / optimum (%ld): mean "
+              "%.6f max %.6f  | reference (oracle) %.1f us/DoF, %.0fx  | errors %ld\n",
+              N, name, o.problems, mean, p99, checked, checked > 0 ? ratio_sum / static_cast<double>(checked) : 0.0,
+              ratio_max, oracle_us, oracle_us / mean, errors);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--problems" && i + 1 < argc) {
+      o.problems = std::strtol(argv[++i], nullptr, 10);
+    } else if (a == "--oracle" && i + 1 < argc) {
+      o.oracle = std::strtol(argv[++i], nullptr, 10);
+    } else if (a == "--seed" && i + 1 < argc) {
+      o.seed = std::strtoull(argv[++i], nullptr, 10);
+    } else {
+      std::fprintf(stderr, "usage: planner_bench [--problems N] [--oracle N] [--seed S]\n");
+      return 2;
+    }
+  }
+  std::printf("planner_bench: time-synchronised plans, targets at rest; per-axis limits as in issue 11\n");
+  run<3>(o, testing::Start::at_rest, "rest");
+  run<3>(o, testing::Start::moving, "moving");
+  run<6>(o, testing::Start::at_rest, "rest");
+  run<6>(o, testing::Start::moving, "moving");
+  return 0;
+}
