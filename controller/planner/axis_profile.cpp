@@ -151,11 +151,27 @@ AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double ta
     return set;
   }
   if (tc - t0 <= 1e-15 * tc) return set;
-  // Convex: no dip when g does not fall at first (checked a step of a millionth of the range in).
-  const double step = 1e-6 * (tc - t0);
-  if (g(t0 + step) >= g0) return set;
-  const double t_min = golden_minimum(g, t0, tc);
-  if (g(t_min) >= 0.0) return set;
+  // From rest to rest the extremes are monotone: no dip.
+  if (main_start_.velocity == 0.0 && main_start_.acceleration == 0.0 && target_.velocity == 0.0 &&
+      target_.acceleration == 0.0) {
+    return set;
+  }
+  // Otherwise g need not be convex near the reach time: sample, then refine the lowest sample's
+  // neighbourhood (a golden-section search, unimodal there).
+  constexpr int kSamples = 8;
+  int lowest = 0;
+  double g_lowest = g0;
+  for (int k = 1; k <= kSamples; ++k) {
+    const double gk = g(t0 + (tc - t0) * k / kSamples);
+    if (gk < g_lowest) {
+      g_lowest = gk;
+      lowest = k;
+    }
+  }
+  const double left = t0 + (tc - t0) * std::max(lowest - 1, 0) / kSamples;
+  const double right = t0 + (tc - t0) * std::min(lowest + 1, kSamples) / kSamples;
+  const double t_min = g_lowest < 0.0 ? t0 + (tc - t0) * lowest / kSamples : golden_minimum(g, left, right);
+  if (set.gap || g(t_min) >= 0.0) return set;
   set.dip = true;
   set.dip_lo = find_root(g, t0, t_min, true);
   set.dip_hi = find_root(g, t_min, tc, false);

@@ -92,7 +92,8 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t) const noexcept {
   const double a0 = a0_;
   const double af = af_;
   const double dv = vf_ - v0_;
-  const double tol_a = 1e-10 * (amax - amin);
+  // Near the reach time the levels are ill-conditioned (a tiny S divides): generous, then clamped.
+  const double tol_a = 1e-8 * (amax - amin);
   const double tol_t = 1e-12 * (T + (amax - amin) / j);
   // A double root (the held level equals the start or end level) comes out a rounding below zero.
   const double tol_disc = 1e-12 * (amax - amin) * (amax - amin);

@@ -76,7 +76,7 @@ double farthest(const Problem& pr, double T) {
   std::array<Piece, 7> seq{};
   const auto end_v = [&](double u) { return sequence(pr, T, u, seq) ? run(s0, seq).v - pr.vf : 1e300; };
   if (end_v(0.0) > 0.0) return std::numeric_limits<double>::quiet_NaN();
-  const double u = solve_increasing(end_v, 0.0, u_top);
+  const double u = end_v(0.0) == 0.0 ? 0.0 : solve_increasing(end_v, 0.0, u_top);
   if (!sequence(pr, T, u, seq) || std::abs(run(s0, seq).v - pr.vf) > 1e-9 * (1.0 + std::abs(pr.vf) + l.vmax)) {
     return std::numeric_limits<double>::quiet_NaN();  // even the most effort cannot reach vf at T
   }
@@ -160,7 +160,8 @@ bool confirms_min_common_duration(const std::vector<Problem>& problems, double T
   const auto all = [&](double t) {
     return std::all_of(problems.begin(), problems.end(), [t](const Problem& p) { return feasible(p, t); });
   };
-  if (!all(T * (1.0 + relative / 10.0) + 1e-15)) return false;
+  if (T == 0.0) return all(0.0);
+  if (!all(T * (1.0 + relative) + 1e-15)) return false;
   const double below = T * (1.0 - relative);
   constexpr int kScan = 12;
   for (int k = 0; k <= kScan; ++k) {
