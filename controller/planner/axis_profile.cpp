@@ -51,7 +51,10 @@ double golden_minimum(const G& g, double lo, double hi) noexcept {
   double x2 = lo + kInvPhi * (hi - lo);
   double g1 = g(x1);
   double g2 = g(x2);
-  for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+  // To the tenth digit of the range is enough to tell whether the minimum is below zero (the
+  // function is flat there); a negative value ends the search at once.
+  const double width = 1e-10 * (hi - lo);
+  for (int i = 0; i < 200 && hi - lo > width && g1 >= 0.0 && g2 >= 0.0; ++i) {
     if (g1 <= g2) {
       hi = x2;
       x2 = x1;
@@ -155,6 +158,11 @@ AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double ta
   if (main_start_.velocity == 0.0 && main_start_.acceleration == 0.0 && target_.velocity == 0.0 &&
       target_.acceleration == 0.0) {
     return set;
+  }
+  // An extreme profile that never moves backwards only gains from more time: no dip.
+  {
+    SevenDurations d{};
+    if (f.durations(t0, d) && f.lowest_velocity_of(d) >= 0.0) return set;
   }
   // Otherwise g need not be convex near the reach time: sample, then refine the lowest sample's
   // neighbourhood (a golden-section search, unimodal there).

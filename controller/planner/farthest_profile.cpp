@@ -169,6 +169,21 @@ double FarthestProfile::position_of(const SevenDurations& t) const noexcept {
   return p;
 }
 
+double FarthestProfile::lowest_velocity_of(const SevenDurations& t) const noexcept {
+  const double j = lim_.jerk;
+  double v = v0_;
+  double a = a0_;
+  double lowest = v;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double jk = kFarthestJerkSigns[i] * j;
+    if (jk > 0.0 && a < 0.0 && a + jk * t[i] > 0.0) lowest = std::min(lowest, v - a * a / (2.0 * jk));
+    v += t[i] * (a + t[i] * jk / 2.0);
+    a += t[i] * jk;
+    lowest = std::min(lowest, v);
+  }
+  return lowest;
+}
+
 double FarthestProfile::position(double T) const noexcept {
   SevenDurations t{};
   if (!durations(T, t)) return std::numeric_limits<double>::quiet_NaN();

@@ -44,6 +44,8 @@ class FarthestProfile {
   [[nodiscard]] bool durations(double T, SevenDurations& t) const noexcept;
   // The end position of the farthest profile of duration T (NaN when durations() fails).
   [[nodiscard]] double position(double T) const noexcept;
+  // The lowest velocity along the profile with these durations.
+  [[nodiscard]] double lowest_velocity_of(const SevenDurations& t) const noexcept;
   // The end position of the profile with these durations.
   [[nodiscard]] double position_of(const SevenDurations& t) const noexcept;
 
