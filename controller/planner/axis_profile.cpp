@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "planner/brake.hpp"
+#include "planner/rest_to_rest.hpp"
 
 namespace cellctl::planner {
 namespace {
@@ -99,6 +100,11 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   extremes_[0] = FarthestProfile(v, a, target.velocity, target.acceleration, limits);
   extremes_[1] = FarthestProfile(-v, -a, -target.velocity, -target.acceleration, limits.mirrored());
   reach_ = reach_time(v, a, target.velocity, target.acceleration, limits);
+  if (v == 0.0 && a == 0.0 && target.velocity == 0.0 && target.acceleration == 0.0) {
+    // From rest to rest: closed form, and never a blocked interval.
+    min_duration_ = brake_.duration() + rest_to_rest_time(target_offset_, limits);
+    return AxisStatus::ok;
+  }
 
   const ShortSet up = short_set(extremes_[0], target_offset_, limits.max_velocity);
   const ShortSet down = short_set(extremes_[1], -target_offset_, -limits.min_velocity);
@@ -154,11 +160,10 @@ AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double ta
     return set;
   }
   if (tc - t0 <= 1e-15 * tc) return set;
-  // From rest to rest the extremes are monotone: no dip.
-  if (main_start_.velocity == 0.0 && main_start_.acceleration == 0.0 && target_.velocity == 0.0 &&
-      target_.acceleration == 0.0) {
-    return set;
-  }
+  // A target at rest can be reached at the reach time and then held, so for every longer duration
+  // the stop position stays within [nearest, farthest]: this side (not short at the reach time,
+  // so the target lies beyond the stop position from it) can never fall short later: no dip.
+  if (target_.velocity == 0.0 && target_.acceleration == 0.0) return set;
   // An extreme profile that never moves backwards only gains from more time: no dip.
   {
     SevenDurations d{};

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string_view>
 
 #include "planner/axis_profile.hpp"
@@ -22,6 +23,8 @@
 #include "planner/result.hpp"
 
 namespace cellctl::planner {
+
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 inline constexpr std::string_view kPhaseFallbackNote =
     "phase synchronisation impossible (the current or target velocities and accelerations are not on the "
@@ -244,7 +247,7 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
   }
   // The travel: the target and the whole motion inside it.
   for (int i = 0; i < N; ++i) {
-    if (!in.enabled[idx(i)]) continue;
+    if (!in.enabled[idx(i)] || (in.min_position[i] == -kInf && in.max_position[i] == kInf)) continue;
     const PositionExtrema e = t.profiles_[idx(i)].extrema();
     const double slack = 1e-9 * (1.0 + std::abs(in.target_position[i]));
     if (e.min.position < in.min_position[i] - slack || e.max.position > in.max_position[i] + slack) {
