@@ -35,30 +35,15 @@ struct Options {
 };
 
 template <int N>
-Input<N> input_of(const std::vector<oracle::Problem>& axes) {
-  Input<N> in;
-  for (int i = 0; i < N; ++i) {
-    const oracle::Problem& p = axes[static_cast<std::size_t>(i)];
-    in.current_position[i] = p.p0;
-    in.current_velocity[i] = p.v0;
-    in.current_acceleration[i] = p.a0;
-    in.target_position[i] = p.pf;
-    in.max_velocity[i] = p.limits.vmax;
-    in.max_acceleration[i] = p.limits.amax;
-    in.max_jerk[i] = p.limits.jerk;
-  }
-  return in;
-}
-
-template <int N>
 void run(const Options& o, testing::Start start, const char* name) {
-  std::mt19937_64 rng(o.seed + static_cast<std::uint64_t>(N) * 10 + (start == testing::Start::moving ? 1 : 0));
+  std::mt19937_64 rng(o.seed + static_cast<std::uint64_t>(N) * 10 +
+                      (start == testing::Start::moving ? 1 : 0));
   std::vector<std::vector<oracle::Problem>> problems(static_cast<std::size_t>(o.problems));
   std::vector<Input<N>> inputs;
   inputs.reserve(problems.size());
   for (auto& p : problems) {
     for (int i = 0; i < N; ++i) p.push_back(testing::random_problem(rng, start));
-    inputs.push_back(input_of<N>(p));
+    inputs.push_back(testing::input_of<N>(p));
   }
   std::vector<double> us(problems.size());
   std::vector<double> durations(problems.size());
@@ -114,12 +99,14 @@ void run(const Options& o, testing::Start start, const char* name) {
     ratio_max = std::max(ratio_max, ratio);
   }
   const auto o1 = Clock::now();
-  const double oracle_us =
-      std::chrono::duration<double, std::micro>(o1 - o0).count() / static_cast<double>(std::max(checked, 1L)) / N;
-  std::printf("%d DoF %-7s %6ld problems  mean %.3f  median %.3f  p99 %.3f us/DoF | duration / optimum (%ld): mean "
-              "%.6f max %.6f | reference (oracle) %.0f us/DoF, %.0fx slower | errors %ld\n",
-              N, name, o.problems, mean, p50, p99, checked, checked > 0 ? ratio_sum / static_cast<double>(checked) : 0.0,
-              ratio_max, oracle_us, oracle_us / mean, errors);
+  const double oracle_us = std::chrono::duration<double, std::micro>(o1 - o0).count() /
+                           static_cast<double>(std::max(checked, 1L)) / N;
+  std::printf(
+      "%d DoF %-7s %6ld problems  mean %.3f  median %.3f  p99 %.3f us/DoF | duration / optimum (%ld): mean "
+      "%.6f max %.6f | reference (oracle) %.0f us/DoF, %.0fx slower | errors %ld\n",
+      N, name, o.problems, mean, p50, p99, checked,
+      checked > 0 ? ratio_sum / static_cast<double>(checked) : 0.0, ratio_max, oracle_us, oracle_us / mean,
+      errors);
 }
 
 }  // namespace

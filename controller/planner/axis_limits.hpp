@@ -13,7 +13,8 @@ struct AxisLimits {
   double jerk = 0.0;
 
   // Symmetric limits ±velocity, ±acceleration.
-  [[nodiscard]] static constexpr AxisLimits symmetric(double velocity, double acceleration, double jerk) noexcept {
+  [[nodiscard]] static constexpr AxisLimits symmetric(double velocity, double acceleration,
+                                                      double jerk) noexcept {
     return AxisLimits{velocity, -velocity, acceleration, -acceleration, jerk};
   }
   // The limits seen in the mirrored frame (position, velocity, acceleration negated).

@@ -84,7 +84,8 @@ bool target_within(const MotionState& target, const AxisLimits& l) noexcept {
 
 }  // namespace
 
-AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target, const AxisLimits& limits) noexcept {
+AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target,
+                             const AxisLimits& limits) noexcept {
   limits_ = limits;
   blocked_count_ = 0;
   if (!target_within(target, limits)) return AxisStatus::target_outside_limits;
@@ -133,7 +134,8 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   return AxisStatus::ok;
 }
 
-AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double target, double slope) const noexcept {
+AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double target,
+                                             double slope) const noexcept {
   ShortSet set;
   // A duration with no extreme profile (possible only with a target acceleration) makes the
   // search unreliable: the plan is then refused rather than trusted.
@@ -245,7 +247,8 @@ bool AxisProfile::arrives(const JerkProfile& p) const noexcept {
   const MotionState& e = p.end();
   const double scale = 1.0 + std::abs(target_offset_);
   return std::abs(e.position - target_.position) <= 1e-9 * scale &&
-         std::abs(e.velocity - target_.velocity) <= 1e-9 * (1.0 + limits_.max_velocity - limits_.min_velocity) &&
+         std::abs(e.velocity - target_.velocity) <=
+             1e-9 * (1.0 + limits_.max_velocity - limits_.min_velocity) &&
          std::abs(e.acceleration - target_.acceleration) <=
              1e-9 * (1.0 + limits_.max_acceleration - limits_.min_acceleration);
 }

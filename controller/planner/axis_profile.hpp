@@ -79,7 +79,7 @@ class AxisProfile {
   // Farthest in the positive direction, and in the mirrored frame (the nearest profile).
   std::array<FarthestProfile, 2> extremes_{};
   double reach_ = 0.0;
-  double min_duration_ = 0.0;  // brake included
+  double min_duration_ = 0.0;                    // brake included
   std::array<Interval, kMaxBlocked> blocked_{};  // brake included
   std::size_t blocked_count_ = 0;
 };

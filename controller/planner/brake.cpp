@@ -6,7 +6,9 @@ namespace cellctl::planner {
 namespace {
 
 // Rounding allowance: the planner's own outputs fed back may sit an ulp outside a bound.
-double tolerance(double bound) noexcept { return 1e-12 * (1.0 + std::abs(bound)); }
+double tolerance(double bound) noexcept {
+  return 1e-12 * (1.0 + std::abs(bound));
+}
 
 bool over_max(double v, double a, const AxisLimits& l) noexcept {
   const double tol = tolerance(l.max_velocity);

@@ -37,7 +37,8 @@ double reach_time(double v0, double a0, double vf, double af, const AxisLimits& 
   return std::min(up, down);
 }
 
-FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept
+FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
+                                 const AxisLimits& limits) noexcept
     : v0_(v0), a0_(a0), vf_(vf), af_(af), lim_(limits) {
   const double j = lim_.jerk;
   const double amax = lim_.max_acceleration;

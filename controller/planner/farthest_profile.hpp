@@ -27,7 +27,8 @@ using SevenDurations = std::array<double, 7>;
 
 // The shortest time in which (v0, a0) can become (vf, af) within the limits, the position ignored.
 // Both states must be inside the limits (see is_safe in axis_profile.hpp).
-[[nodiscard]] double reach_time(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept;
+[[nodiscard]] double reach_time(double v0, double a0, double vf, double af,
+                                const AxisLimits& limits) noexcept;
 
 class FarthestProfile {
  public:

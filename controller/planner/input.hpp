@@ -69,12 +69,13 @@ struct Input {
       return true;
     };
     return same(a.current_position, b.current_position) && same(a.current_velocity, b.current_velocity) &&
-           same(a.current_acceleration, b.current_acceleration) && same(a.target_position, b.target_position) &&
-           same(a.target_velocity, b.target_velocity) && same(a.target_acceleration, b.target_acceleration) &&
-           same(a.max_velocity, b.max_velocity) && same(a.max_acceleration, b.max_acceleration) &&
-           same(a.max_jerk, b.max_jerk) && same(a.min_velocity, b.min_velocity) &&
-           same(a.min_acceleration, b.min_acceleration) && same(a.min_position, b.min_position) &&
-           same(a.max_position, b.max_position) && a.enabled == b.enabled && a.synchronization == b.synchronization;
+           same(a.current_acceleration, b.current_acceleration) &&
+           same(a.target_position, b.target_position) && same(a.target_velocity, b.target_velocity) &&
+           same(a.target_acceleration, b.target_acceleration) && same(a.max_velocity, b.max_velocity) &&
+           same(a.max_acceleration, b.max_acceleration) && same(a.max_jerk, b.max_jerk) &&
+           same(a.min_velocity, b.min_velocity) && same(a.min_acceleration, b.min_acceleration) &&
+           same(a.min_position, b.min_position) && same(a.max_position, b.max_position) &&
+           a.enabled == b.enabled && a.synchronization == b.synchronization;
   }
 
   // One line per axis: "axis 0: p 1 v 0 a 0 -> p 2 v 0 a 0; v [-1, 1] a [-2, 2] j 10; travel [-inf, inf]".
@@ -89,11 +90,11 @@ struct Input {
       const double vmin = in.min_velocity[i] == in.min_velocity[i] ? in.min_velocity[i] : -in.max_velocity[i];
       const double amin =
           in.min_acceleration[i] == in.min_acceleration[i] ? in.min_acceleration[i] : -in.max_acceleration[i];
-      os << "p " << in.current_position[i] << " v " << in.current_velocity[i] << " a " << in.current_acceleration[i]
-         << " -> p " << in.target_position[i] << " v " << in.target_velocity[i] << " a "
-         << in.target_acceleration[i] << "; v [" << vmin << ", " << in.max_velocity[i] << "] a [" << amin << ", "
-         << in.max_acceleration[i] << "] j " << in.max_jerk[i] << "; travel [" << in.min_position[i] << ", "
-         << in.max_position[i] << "]";
+      os << "p " << in.current_position[i] << " v " << in.current_velocity[i] << " a "
+         << in.current_acceleration[i] << " -> p " << in.target_position[i] << " v " << in.target_velocity[i]
+         << " a " << in.target_acceleration[i] << "; v [" << vmin << ", " << in.max_velocity[i] << "] a ["
+         << amin << ", " << in.max_acceleration[i] << "] j " << in.max_jerk[i] << "; travel ["
+         << in.min_position[i] << ", " << in.max_position[i] << "]";
     }
     return os;
   }
@@ -120,9 +121,9 @@ struct Output {
   Vector<N> new_velocity = Vector<N>::Zero();
   Vector<N> new_acceleration = Vector<N>::Zero();
   Vector<N> new_jerk = Vector<N>::Zero();
-  double time = 0.0;      // of the new state, since the current trajectory was planned [s]
-  double duration = 0.0;  // of the whole current trajectory, a brake before it included [s]
-  bool done = false;      // the new state is the target
+  double time = 0.0;             // of the new state, since the current trajectory was planned [s]
+  double duration = 0.0;         // of the whole current trajectory, a brake before it included [s]
+  bool done = false;             // the new state is the target
   bool new_calculation = false;  // this cycle planned a new trajectory
   int error_axis = -1;           // the axis named by an error Result, -1 otherwise
   // Set when phase synchronisation was asked for but the states are not on one line: the

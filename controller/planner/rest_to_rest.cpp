@@ -23,7 +23,9 @@ double rest_to_rest_time(double distance, const AxisLimits& limits) noexcept {
   const double a_up = forward ? limits.max_acceleration : -limits.min_acceleration;
   const double a_down = forward ? -limits.min_acceleration : limits.max_acceleration;
   const double j = limits.jerk;
-  const auto covered = [&](double v) { return v * (change_time(v, a_up, j) + change_time(v, a_down, j)) / 2.0; };
+  const auto covered = [&](double v) {
+    return v * (change_time(v, a_up, j) + change_time(v, a_down, j)) / 2.0;
+  };
   const double at_vmax = covered(vmax);
   if (at_vmax <= d) return change_time(vmax, a_up, j) + change_time(vmax, a_down, j) + (d - at_vmax) / vmax;
   // The peak velocity v < vmax with covered(v) = d. covered grows with v and its form changes where

@@ -53,11 +53,15 @@ class Trajectory {
       j[i] = profiles_[idx(i)].jerk_at(t);
     }
   }
-  [[nodiscard]] PositionExtrema position_extrema(int axis) const noexcept { return profiles_[idx(axis)].extrema(); }
+  [[nodiscard]] PositionExtrema position_extrema(int axis) const noexcept {
+    return profiles_[idx(axis)].extrema();
+  }
   // Each axis on its own: its shortest duration and the durations it cannot do (brake included).
   [[nodiscard]] double axis_min_duration(int axis) const noexcept { return min_duration_[idx(axis)]; }
   [[nodiscard]] std::size_t blocked_count(int axis) const noexcept { return blocked_count_[idx(axis)]; }
-  [[nodiscard]] const Interval& blocked(int axis, std::size_t i) const noexcept { return blocked_[idx(axis)][i]; }
+  [[nodiscard]] const Interval& blocked(int axis, std::size_t i) const noexcept {
+    return blocked_[idx(axis)][i];
+  }
 
   // Plans `in`; on an error the trajectory is unchanged and `error_axis` names the axis.
   [[nodiscard]] static Result calculate(const Input<N>& in, Trajectory& out, int& error_axis) noexcept;
@@ -100,8 +104,9 @@ Result Trajectory<N>::validate(const Input<N>& in, int& axis) noexcept {
     if (!in.enabled[idx(i)]) continue;
     axis = i;
     const auto finite = [](double x) { return std::isfinite(x); };
-    if (!finite(in.current_position[i]) || !finite(in.current_velocity[i]) || !finite(in.current_acceleration[i]) ||
-        !finite(in.target_position[i]) || !finite(in.target_velocity[i]) || !finite(in.target_acceleration[i])) {
+    if (!finite(in.current_position[i]) || !finite(in.current_velocity[i]) ||
+        !finite(in.current_acceleration[i]) || !finite(in.target_position[i]) ||
+        !finite(in.target_velocity[i]) || !finite(in.target_acceleration[i])) {
       return Result::invalid_state;
     }
     const AxisLimits l = limits_of(in, i);
@@ -140,8 +145,10 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
     const auto on_line = [&](double axis_value, double scalar) {
       return std::abs(axis_value - d[i] * scalar) <= 1e-9 * (1.0 + std::abs(axis_value));
     };
-    if (!on_line(in.current_velocity[i], s0.velocity) || !on_line(in.current_acceleration[i], s0.acceleration) ||
-        !on_line(in.target_velocity[i], sf.velocity) || !on_line(in.target_acceleration[i], sf.acceleration)) {
+    if (!on_line(in.current_velocity[i], s0.velocity) ||
+        !on_line(in.current_acceleration[i], s0.acceleration) ||
+        !on_line(in.target_velocity[i], sf.velocity) ||
+        !on_line(in.target_acceleration[i], sf.acceleration)) {
       return false;
     }
     if (d[i] == 0.0) continue;
@@ -150,8 +157,10 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
     const bool forward = d[i] > 0.0;
     sl.max_velocity = std::min(sl.max_velocity, (forward ? l.max_velocity : -l.min_velocity) / m);
     sl.min_velocity = std::max(sl.min_velocity, (forward ? l.min_velocity : -l.max_velocity) / m);
-    sl.max_acceleration = std::min(sl.max_acceleration, (forward ? l.max_acceleration : -l.min_acceleration) / m);
-    sl.min_acceleration = std::max(sl.min_acceleration, (forward ? l.min_acceleration : -l.max_acceleration) / m);
+    sl.max_acceleration =
+        std::min(sl.max_acceleration, (forward ? l.max_acceleration : -l.min_acceleration) / m);
+    sl.min_acceleration =
+        std::max(sl.min_acceleration, (forward ? l.min_acceleration : -l.max_acceleration) / m);
     sl.jerk = std::min(sl.jerk, l.jerk / m);
   }
   AxisProfile scalar;
@@ -216,7 +225,8 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
       }
       t.min_duration_[idx(i)] = axes[idx(i)].min_duration();
       t.blocked_count_[idx(i)] = axes[idx(i)].blocked_count();
-      for (std::size_t b = 0; b < axes[idx(i)].blocked_count(); ++b) t.blocked_[idx(i)][b] = axes[idx(i)].blocked(b);
+      for (std::size_t b = 0; b < axes[idx(i)].blocked_count(); ++b)
+        t.blocked_[idx(i)][b] = axes[idx(i)].blocked(b);
       common = std::max(common, axes[idx(i)].min_duration());
     }
     if (t.synchronization_ == Synchronization::time) {

@@ -16,8 +16,13 @@ namespace cellctl::planner {
 namespace {
 
 oracle::Problem problem(const MotionState& s, const MotionState& target, const AxisLimits& l) {
-  return {s.position,      s.velocity,         s.acceleration,     target.position, target.velocity,
-          target.acceleration, {l.max_velocity, l.min_velocity, l.max_acceleration, l.min_acceleration, l.jerk}};
+  return {s.position,
+          s.velocity,
+          s.acceleration,
+          target.position,
+          target.velocity,
+          target.acceleration,
+          {l.max_velocity, l.min_velocity, l.max_acceleration, l.min_acceleration, l.jerk}};
 }
 
 // Plans, checks the optimum against the oracle (from the end of the brake), the exact arrival and
@@ -96,13 +101,15 @@ TEST(Brake, FromBelowMinVelocityIsTheMirror) {
   plan_checked(start, {-3.0, 0.0, 0.0}, kLimits, "below min velocity");
 }
 
-TEST(Brake, SafeStartHasNone) { EXPECT_EQ(brake_profile({0.0, 0.9, 0.3}, kLimits).duration(), 0.0); }
+TEST(Brake, SafeStartHasNone) {
+  EXPECT_EQ(brake_profile({0.0, 0.9, 0.3}, kLimits).duration(), 0.0);
+}
 
 TEST(LimitsAtExtremes, StatesExactlyOnTheLimits) {
   const double ramp = 2.0 * 2.0 / (2.0 * 10.0);  // velocity change of a full acceleration ramp
   const MotionState starts[] = {
-      {0.0, 1.0, 0.0},          {0.0, -1.0, 0.0},          {0.0, 1.0 - ramp, 2.0},
-      {0.0, -1.0 + ramp, -2.0}, {0.0, 0.0, 2.0},           {0.0, 0.0, -2.0},
+      {0.0, 1.0, 0.0},          {0.0, -1.0, 0.0}, {0.0, 1.0 - ramp, 2.0},
+      {0.0, -1.0 + ramp, -2.0}, {0.0, 0.0, 2.0},  {0.0, 0.0, -2.0},
   };
   for (const MotionState& s : starts) {
     for (const double pf : {-2.0, -0.01, 0.0, 0.01, 0.3, 2.0}) {
@@ -123,7 +130,8 @@ TEST(LimitsAtExtremes, AsymmetricAndExtremeScalesMatchTheOptimum) {
     const double scale = std::pow(10.0, -3.0 + 6.0 * u(rng));  // 1e-3 .. 1e3
     const double vmax = scale * (0.1 + 5 * u(rng));
     const double amax = scale * (0.1 + 50 * u(rng));
-    const AxisLimits l{vmax, -vmax * (0.05 + u(rng)), amax, -amax * (0.05 + u(rng)), scale * (1 + 1000 * u(rng))};
+    const AxisLimits l{vmax, -vmax * (0.05 + u(rng)), amax, -amax * (0.05 + u(rng)),
+                       scale * (1 + 1000 * u(rng))};
     MotionState s{scale * (u(rng) - 0.5), 0.0, 0.0};
     do {
       s.velocity = l.min_velocity + (l.max_velocity - l.min_velocity) * u(rng);

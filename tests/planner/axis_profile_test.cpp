@@ -65,7 +65,8 @@ bool check_problem(const oracle::Problem& p, std::mt19937_64& rng, const std::st
   if (status != AxisStatus::ok) return true;
   const double T = axis.min_duration();
   EXPECT_TRUE(oracle::confirms_min_duration(p, T, 1e-9))
-      << what << ": planned " << T << " s, the independent optimum is " << oracle::min_duration(p, 1.01 * T + 1e-9);
+      << what << ": planned " << T << " s, the independent optimum is "
+      << oracle::min_duration(p, 1.01 * T + 1e-9);
   JerkProfile profile;
   EXPECT_TRUE(axis.build(T, profile)) << what;
   EXPECT_NEAR(profile.duration(), T, 1e-9 * T + 1e-12) << what;
@@ -95,11 +96,12 @@ bool check_problem(const oracle::Problem& p, std::mt19937_64& rng, const std::st
 
 std::string describe(const oracle::Problem& p, long i, std::uint64_t seed) {
   char buf[400];
-  std::snprintf(buf, sizeof buf,
-                "problem %ld (seed %llu): p0 %.17g v0 %.17g a0 %.17g -> pf %.17g vf %.17g af %.17g; vmax %.17g "
-                "amax %.17g jerk %.17g",
-                i, static_cast<unsigned long long>(seed), p.p0, p.v0, p.a0, p.pf, p.vf, p.af, p.limits.vmax,
-                p.limits.amax, p.limits.jerk);
+  std::snprintf(
+      buf, sizeof buf,
+      "problem %ld (seed %llu): p0 %.17g v0 %.17g a0 %.17g -> pf %.17g vf %.17g af %.17g; vmax %.17g "
+      "amax %.17g jerk %.17g",
+      i, static_cast<unsigned long long>(seed), p.p0, p.v0, p.a0, p.pf, p.vf, p.af, p.limits.vmax,
+      p.limits.amax, p.limits.jerk);
   return buf;
 }
 
@@ -113,9 +115,14 @@ long run_random(Start start, Target target, long fallback_count, std::uint64_t f
     const oracle::Problem p = testing::random_problem(rng, start, target);
     if (!check_problem(p, rng, describe(p, i, seed))) ++refused;
     if (::testing::Test::HasFailure()) break;
+    // Progress for long runs (CELLCTL_PLANNER_PROBLEMS in the millions).
+    if ((i + 1) % 250000 == 0) {
+      std::printf("  %ld problems passed so far\n", i + 1);
+      std::fflush(stdout);
+    }
   }
-  std::printf("%ld problems (seed %llu), %ld refused as unsupported\n", count, static_cast<unsigned long long>(seed),
-              refused);
+  std::printf("%ld problems (seed %llu), %ld refused as unsupported\n", count,
+              static_cast<unsigned long long>(seed), refused);
   return refused;
 }
 

@@ -23,8 +23,8 @@ State run(State s, const std::array<Piece, 7>& pieces, double* peak_v = nullptr)
       const double tz = -s.a / pc.jerk;  // where the acceleration crosses zero: a velocity peak
       *peak_v = std::max(*peak_v, s.v + s.a * tz + pc.jerk * tz * tz / 2.0);
     }
-    s = State{s.p + s.v * t + s.a * t * t / 2.0 + pc.jerk * t * t * t / 6.0, s.v + s.a * t + pc.jerk * t * t / 2.0,
-              s.a + pc.jerk * t};
+    s = State{s.p + s.v * t + s.a * t * t / 2.0 + pc.jerk * t * t * t / 6.0,
+              s.v + s.a * t + pc.jerk * t * t / 2.0, s.a + pc.jerk * t};
     if (peak_v != nullptr) *peak_v = std::max(*peak_v, s.v);
   }
   return s;
@@ -59,8 +59,13 @@ bool sequence(const Problem& pr, double T, double u, std::array<Piece, 7>& out) 
     hold3 = rest - (a1 + pr.af - 2.0 * l.amin) / j;
   }
   if (a3 > pr.af || a3 > a1) return false;
-  out = {Piece{j, (a1 - pr.a0) / j}, Piece{0.0, hold1}, Piece{-j, (a1 - a3) / j}, Piece{0.0, 0.0},
-         Piece{0.0, 0.0}, Piece{0.0, hold3}, Piece{j, (pr.af - a3) / j}};
+  out = {Piece{j, (a1 - pr.a0) / j},
+         Piece{0.0, hold1},
+         Piece{-j, (a1 - a3) / j},
+         Piece{0.0, 0.0},
+         Piece{0.0, 0.0},
+         Piece{0.0, hold3},
+         Piece{j, (pr.af - a3) / j}};
   return true;
 }
 
@@ -77,7 +82,8 @@ double farthest(const Problem& pr, double T) {
   const auto end_v = [&](double u) { return sequence(pr, T, u, seq) ? run(s0, seq).v - pr.vf : 1e300; };
   if (end_v(0.0) > 0.0) return std::numeric_limits<double>::quiet_NaN();
   const double u = end_v(0.0) == 0.0 ? 0.0 : solve_increasing(end_v, 0.0, u_top);
-  if (!sequence(pr, T, u, seq) || std::abs(run(s0, seq).v - pr.vf) > 1e-9 * (1.0 + std::abs(pr.vf) + l.vmax)) {
+  if (!sequence(pr, T, u, seq) ||
+      std::abs(run(s0, seq).v - pr.vf) > 1e-9 * (1.0 + std::abs(pr.vf) + l.vmax)) {
     return std::numeric_limits<double>::quiet_NaN();  // even the most effort cannot reach vf at T
   }
   double peak = -1e300;
@@ -87,21 +93,26 @@ double farthest(const Problem& pr, double T) {
   const auto rise = [&](double w) {  // +J to level w (held at amax), -J to zero
     const double lvl = std::min(w, l.amax);
     const double hold = std::max(0.0, w - l.amax) / j;
-    return std::array<Piece, 7>{Piece{j, (lvl - pr.a0) / j}, Piece{0.0, hold}, Piece{-j, lvl / j},
-                                Piece{0.0, 0.0}, Piece{0.0, 0.0}, Piece{0.0, 0.0}, Piece{0.0, 0.0}};
+    return std::array<Piece, 7>{Piece{j, (lvl - pr.a0) / j},
+                                Piece{0.0, hold},
+                                Piece{-j, lvl / j},
+                                Piece{0.0, 0.0},
+                                Piece{0.0, 0.0},
+                                Piece{0.0, 0.0},
+                                Piece{0.0, 0.0}};
   };
-  const double w = solve_increasing([&](double x) { return run(s0, rise(x)).v - l.vmax; }, std::max(pr.a0, 0.0),
-                                    l.amax + j * T);
+  const double w = solve_increasing([&](double x) { return run(s0, rise(x)).v - l.vmax; },
+                                    std::max(pr.a0, 0.0), l.amax + j * T);
   const auto fall = [&](double x) {  // -J to level -x (held at amin beyond it), +J to af
     const double lvl = std::max(-x, l.amin);
     const double hold = std::max(0.0, x + l.amin) / j;
-    return std::array<Piece, 7>{Piece{-j, -lvl / j}, Piece{0.0, hold},    Piece{j, (pr.af - lvl) / j},
-                                Piece{0.0, 0.0},     Piece{0.0, 0.0},     Piece{0.0, 0.0},
+    return std::array<Piece, 7>{Piece{-j, -lvl / j}, Piece{0.0, hold}, Piece{j, (pr.af - lvl) / j},
+                                Piece{0.0, 0.0},     Piece{0.0, 0.0},  Piece{0.0, 0.0},
                                 Piece{0.0, 0.0}};
   };
   const State top{0.0, l.vmax, 0.0};
-  const double x = solve_increasing([&](double y) { return pr.vf - run(top, fall(y)).v; }, std::max(-pr.af, 0.0),
-                                    -l.amin + j * T);
+  const double x = solve_increasing([&](double y) { return pr.vf - run(top, fall(y)).v; },
+                                    std::max(-pr.af, 0.0), -l.amin + j * T);
   const auto up = rise(w);
   const auto down = fall(x);
   double t_up = 0.0;
@@ -116,7 +127,12 @@ double farthest(const Problem& pr, double T) {
 }
 
 Problem mirrored(const Problem& p) {
-  return Problem{-p.p0, -p.v0, -p.a0, -p.pf, -p.vf, -p.af,
+  return Problem{-p.p0,
+                 -p.v0,
+                 -p.a0,
+                 -p.pf,
+                 -p.vf,
+                 -p.af,
                  Limits{-p.limits.vmin, -p.limits.vmax, -p.limits.amin, -p.limits.amax, p.limits.jerk}};
 }
 
@@ -181,7 +197,8 @@ double min_duration(const Problem& p, double upper) {
 double min_common_duration(const std::vector<Problem>& problems, double upper) {
   return first_feasible(
       [&](double T) {
-        return std::all_of(problems.begin(), problems.end(), [T](const Problem& p) { return feasible(p, T); });
+        return std::all_of(problems.begin(), problems.end(),
+                           [T](const Problem& p) { return feasible(p, T); });
       },
       upper);
 }

@@ -32,7 +32,8 @@ struct Problem {
 // the bisection: fast enough for the test suite's hundred thousand problems.)
 [[nodiscard]] bool confirms_min_duration(const Problem& p, double T, double relative);
 // The same for the shortest duration feasible for every problem at once.
-[[nodiscard]] bool confirms_min_common_duration(const std::vector<Problem>& problems, double T, double relative);
+[[nodiscard]] bool confirms_min_common_duration(const std::vector<Problem>& problems, double T,
+                                                double relative);
 
 // The shortest duration feasible for every problem at once (time synchronisation).
 [[nodiscard]] double min_common_duration(const std::vector<Problem>& problems, double upper);

@@ -209,7 +209,8 @@ TEST(Planner, RetargetWhileCruisingReversesWithoutStoppingFirst) {
   const double stop_and_replan = 0.7 + ((x + 0.35) / 1.0 + 0.5 + 0.2);
   EXPECT_LE(out.duration, stop_and_replan + 1e-9);
   const double best = oracle::min_duration(
-      oracle::Problem{x, 1.0, 0.0, 0.0, 0.0, 0.0, oracle::Limits{1.0, -1.0, 2.0, -2.0, 10.0}}, 2 * stop_and_replan);
+      oracle::Problem{x, 1.0, 0.0, 0.0, 0.0, 0.0, oracle::Limits{1.0, -1.0, 2.0, -2.0, 10.0}},
+      2 * stop_and_replan);
   EXPECT_NEAR(out.duration, best, 1e-9 * best);
   EXPECT_LT(out.duration, stop_and_replan - 0.1);  // 6.2 s against 6.4 s
   const PositionExtrema e = planner.trajectory().position_extrema(0);

@@ -9,7 +9,9 @@
 #include <cstdlib>
 #include <random>
 #include <string>
+#include <vector>
 
+#include "planner/input.hpp"
 #include "planner/optimum_oracle.hpp"
 
 namespace cellctl::planner::testing {
@@ -54,10 +56,30 @@ inline long problem_count(long fallback) {
   return env != nullptr ? std::strtol(env, nullptr, 10) : fallback;
 }
 
-// The seed: CELLCTL_PLANNER_SEED if set, else `fallback` (printed by the tests, so a failure can be replayed).
+// The seed: CELLCTL_PLANNER_SEED if set, else `fallback` (printed by the tests, so a failure can be
+// replayed).
 inline std::uint64_t problem_seed(std::uint64_t fallback) {
   const char* env = std::getenv("CELLCTL_PLANNER_SEED");
   return env != nullptr ? std::strtoull(env, nullptr, 10) : fallback;
+}
+
+// The planner's input for one problem per axis (symmetric limits, as drawn).
+template <int N>
+Input<N> input_of(const std::vector<oracle::Problem>& axes) {
+  Input<N> in;
+  for (int i = 0; i < N; ++i) {
+    const oracle::Problem& p = axes[static_cast<std::size_t>(i)];
+    in.current_position[i] = p.p0;
+    in.current_velocity[i] = p.v0;
+    in.current_acceleration[i] = p.a0;
+    in.target_position[i] = p.pf;
+    in.target_velocity[i] = p.vf;
+    in.target_acceleration[i] = p.af;
+    in.max_velocity[i] = p.limits.vmax;
+    in.max_acceleration[i] = p.limits.amax;
+    in.max_jerk[i] = p.limits.jerk;
+  }
+  return in;
 }
 
 }  // namespace cellctl::planner::testing

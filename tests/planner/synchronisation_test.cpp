@@ -18,23 +18,6 @@
 namespace cellctl::planner {
 namespace {
 
-template <int N>
-Input<N> input_of(const std::vector<oracle::Problem>& axes) {
-  Input<N> in;
-  for (int i = 0; i < N; ++i) {
-    const oracle::Problem& p = axes[static_cast<std::size_t>(i)];
-    in.current_position[i] = p.p0;
-    in.current_velocity[i] = p.v0;
-    in.current_acceleration[i] = p.a0;
-    in.target_position[i] = p.pf;
-    in.target_velocity[i] = p.vf;
-    in.max_velocity[i] = p.limits.vmax;
-    in.max_acceleration[i] = p.limits.amax;
-    in.max_jerk[i] = p.limits.jerk;
-  }
-  return in;
-}
-
 // Every axis ends in its target exactly at the common duration, within its limits throughout.
 template <int N>
 void expect_arrives_together(const Trajectory<N>& t, const Input<N>& in, const std::string& what) {
@@ -60,10 +43,11 @@ void random_time_sync(testing::Start start, long fallback, std::uint64_t fallbac
   for (long c = 0; c < count && !::testing::Test::HasFailure(); ++c) {
     std::vector<oracle::Problem> axes;
     for (int i = 0; i < N; ++i) axes.push_back(testing::random_problem(rng, start));
-    const Input<N> in = input_of<N>(axes);
+    const Input<N> in = testing::input_of<N>(axes);
     Trajectory<N> t;
     int axis = -1;
-    const std::string what = "case " + std::to_string(c) + " seed " + std::to_string(seed) + "\n" + to_string(in);
+    const std::string what =
+        "case " + std::to_string(c) + " seed " + std::to_string(seed) + "\n" + to_string(in);
     ASSERT_EQ(Trajectory<N>::calculate(in, t, axis), Result::working) << what;
     EXPECT_TRUE(oracle::confirms_min_common_duration(axes, t.duration(), 1e-9))
         << what << "\nplanned " << t.duration() << " s, optimum "
@@ -72,7 +56,9 @@ void random_time_sync(testing::Start start, long fallback, std::uint64_t fallbac
   }
 }
 
-TEST(TimeSync, ThreeAxesFromRestAtTheIndependentOptimum) { random_time_sync<3>(testing::Start::at_rest, 10000, 5); }
+TEST(TimeSync, ThreeAxesFromRestAtTheIndependentOptimum) {
+  random_time_sync<3>(testing::Start::at_rest, 10000, 5);
+}
 TEST(TimeSync, SixAxesFromMovingStatesAtTheIndependentOptimum) {
   random_time_sync<6>(testing::Start::moving, 10000, 6);
 }
@@ -85,7 +71,7 @@ TEST(TimeSync, SkipsAnAxisBlockedInterval) {
       {0.0, -2.0, 0.0, -2.0, -2.0, 0.0, {2.0, -2.0, 2.0, -2.0, 10.0}},
       {0.0, 0.0, 0.0, 3.0, 0.0, 0.0, {2.0, -2.0, 2.0, -2.0, 10.0}},
   };
-  const Input<2> in = input_of<2>(axes);
+  const Input<2> in = testing::input_of<2>(axes);
   Trajectory<2> t;
   int axis = -1;
   ASSERT_EQ(Trajectory<2>::calculate(in, t, axis), Result::working);
@@ -115,7 +101,7 @@ TEST(TimeSync, AnAxisAlreadyThereButMovingBlocksUntilItCanComeBack) {
       {0.0, -2.0, 0.0, 0.0, -2.0, 0.0, {2.0, -2.0, 2.0, -2.0, 10.0}},
       {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, {2.0, -2.0, 2.0, -2.0, 10.0}},
   };
-  const Input<2> in = input_of<2>(axes);
+  const Input<2> in = testing::input_of<2>(axes);
   Trajectory<2> t;
   int axis = -1;
   ASSERT_EQ(Trajectory<2>::calculate(in, t, axis), Result::working);
