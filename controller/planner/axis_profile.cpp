@@ -44,7 +44,7 @@ double find_root(const G& g, double lo, double hi, bool lo_reaches) noexcept {
   return lo_reaches ? lo : hi;
 }
 
-// The minimum of a convex g on [lo, hi] by golden-section search: its argument.
+// The minimum of g on [lo, hi] (unimodal there) by golden-section search: its argument.
 template <typename G>
 double golden_minimum(const G& g, double lo, double hi) noexcept {
   constexpr double kInvPhi = 0.6180339887498949;

@@ -6,11 +6,13 @@
 //
 // The method (see farthest_profile.hpp): after the brake pre-profile (if the start is beyond the
 // limits), a duration T is feasible when nearest(T) <= target <= farthest(T). Both functions are
-// defined from the reach time on, are linear once the extreme profile cruises, and farthest is
-// convex (nearest concave): each side's infeasible set is one interval, either starting at the
-// reach time (the shortest duration is its end) or a blocked interval (a dip in between). Roots
-// are found by regula falsi on T to the last bit; the optimum itself is an extreme profile, any
-// other feasible duration a blend of the two.
+// defined from the reach time on and linear once the extreme profile cruises. Each side's
+// infeasible set is taken as one interval, either starting at the reach time (the shortest
+// duration is its end) or a blocked interval (a dip in between; the 10^5-problem tests against an
+// independent optimum found no second one). A target at rest has no dips (it can be reached at the
+// reach time and held); otherwise dips are searched by sampling and a golden-section refinement
+// (the extremes are not convex near the reach time). Roots are found by regula falsi on T to the
+// last bit; the optimum itself is an extreme profile, any other feasible duration a blend of the two.
 //
 // Known limit: with a non-zero target acceleration the end velocity and acceleration alone can be
 // unreachable for some durations above the reach time (abnormal extremals, not covered by the

@@ -2,7 +2,7 @@
 // For one axis from a state inside its limits: the profile of a given duration T that ends in a
 // given velocity and acceleration and gets as far as possible in the positive direction.
 //
-// Why this is the building block (our reading of the maths, see docs in planner.hpp):
+// Why this is the building block (our reading of the maths; how it is used: axis_profile.hpp):
 // - The states reachable at time T form a convex set (linear dynamics, convex bounds on jerk,
 //   acceleration and velocity), so for a fixed end velocity and acceleration the reachable end
 //   positions are an interval [nearest(T), farthest(T)]. A duration T is feasible for a target
