@@ -11,7 +11,17 @@ std::string_view to_string(Result r) noexcept {
     case Result::invalid_state:
       return "invalid state: a current position, velocity, acceleration or target is not finite";
     case Result::invalid_limits:
-      return "invalid limits: max velocity, acceleration and jerk must be finite and > 0";
+      return "invalid limits: max velocity, acceleration and jerk must be finite and > 0, min velocity and "
+             "acceleration finite and < 0 (or unset), min position <= max position";
+    case Result::target_outside_limits:
+      return "target outside the limits: its velocity or acceleration is beyond them or bound to cross them";
+    case Result::limits_too_narrow:
+      return "limits too narrow: the velocity range is smaller than one acceleration ramp changes it by";
+    case Result::unsupported_target:
+      return "unsupported target: no profile to this non-zero target acceleration from this state at the "
+             "needed duration (plan to zero acceleration instead)";
+    case Result::outside_travel:
+      return "outside the travel: the target, or the motion to it, leaves the axis's position limits";
   }
   return "unknown result";
 }

@@ -7,14 +7,18 @@
 namespace cellctl::planner {
 
 enum class Result {
-  working,         // the new state is on the way to the target
-  finished,        // the new state is the target, at rest
-  invalid_state,   // a current position/velocity/acceleration or target is not finite
-  invalid_limits,  // a max velocity/acceleration/jerk of an enabled axis is not finite and > 0
+  working,                // the new state is on the way to the target
+  finished,               // the new state is the target
+  invalid_state,          // a current position/velocity/acceleration or target is not finite
+  invalid_limits,         // a limit of an enabled axis is not finite, not of the right sign, or min > max
+  target_outside_limits,  // a target velocity/acceleration is beyond the limits or bound to cross them
+  limits_too_narrow,      // the velocity range is narrower than one acceleration ramp: no safe state
+  outside_travel,         // the target, or the motion to it (overshoot included), leaves the travel
+  unsupported_target,     // a non-zero target acceleration without a profile of this method (rare)
 };
 
 [[nodiscard]] constexpr bool is_error(Result r) noexcept {
-  return r == Result::invalid_state || r == Result::invalid_limits;
+  return r != Result::working && r != Result::finished;
 }
 
 [[nodiscard]] std::string_view to_string(Result r) noexcept;

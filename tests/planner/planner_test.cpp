@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "planner/optimum_oracle.hpp"
 #include "support/allocation_counter.hpp"
 
 namespace cellctl::planner {
@@ -51,7 +52,7 @@ int run_checked(Planner<N>& planner, Input<N>& in, Output<N>& out, int max_steps
   const LimitChecker<N> checker;
   for (int step = 1; step <= max_steps; ++step) {
     const Result r = planner.update(in, out);
-    EXPECT_FALSE(is_error(r)) << to_string(r);
+    EXPECT_FALSE(is_error(r)) << to_string(r) << " for\n" << to_string(in);
     checker.check_step(in, in, out);
     if (::testing::Test::HasFatalFailure()) return -1;
     out.pass_to_input(in);
@@ -91,11 +92,12 @@ TEST(Planner, ZeroDistanceFinishesAtOnce) {
   EXPECT_EQ(out.new_position, in.target_position);
 }
 
-TEST(Planner, SlowestAxisSetsTheDurationAndAllProgressTogether) {
+TEST(Planner, PhaseSyncSlowestAxisSetsTheDurationAndAllProgressTogether) {
   Planner<3> planner(kDt);
   const Vector<3> start{1.0, -2.0, 0.5};
   const Vector<3> target{11.0, 0.0, -4.5};  // distances 10, 2, -5 with equal limits: axis 0 is slowest
   Input<3> in = at_rest<3>(start, target, 1.0, 2.0, 10.0);
+  in.synchronization = Synchronization::phase;
   Output<3> out;
   const LimitChecker<3> checker;
   Result r = Result::working;
@@ -114,7 +116,7 @@ TEST(Planner, SlowestAxisSetsTheDurationAndAllProgressTogether) {
   EXPECT_EQ(out.new_position, target);
 }
 
-TEST(Planner, EachPathLimitIsTheTightestOverTheAxes) {
+TEST(Planner, PhaseSyncPathLimitIsTheTightestOverTheAxes) {
   // Axis 1 moves 1 at 0.05 max, axis 0 moves 10 at 1. On the straight line (path s: 0 -> 1) the
   // velocity limit comes from axis 1 (0.05/1 < 1/10), acceleration and jerk from axis 0 (2/10 and
   // 10/10): V = 0.05, A = 0.2, J = 1, and V > A^2/J so T = 1/V + V/A + A/J = 20 + 0.25 + 0.2.
@@ -122,9 +124,18 @@ TEST(Planner, EachPathLimitIsTheTightestOverTheAxes) {
   Planner<2> planner(kDt);
   Input<2> in = at_rest<2>(Vector<2>{0.0, 0.0}, Vector<2>{10.0, 1.0}, 1.0, 2.0, 10.0);
   in.max_velocity[1] = 0.05;
+  in.synchronization = Synchronization::phase;
   Output<2> out;
   ASSERT_GT(run_checked(planner, in, out, 60000), 0);
   EXPECT_NEAR(out.duration, 20.45, 1e-9);
+  EXPECT_TRUE(out.note.empty());
+  // Time synchronisation does not keep the line and is faster: axis 1 alone sets 20.14 s and
+  // axis 0 (10.7 s alone) is stretched to it.
+  Planner<2> timed(kDt);
+  in = at_rest<2>(Vector<2>{0.0, 0.0}, Vector<2>{10.0, 1.0}, 1.0, 2.0, 10.0);
+  in.max_velocity[1] = 0.05;
+  ASSERT_GT(run_checked(timed, in, out, 60000), 0);
+  EXPECT_NEAR(out.duration, 1.0 / 0.05 + 2.0 * std::sqrt(0.05 / 10.0), 1e-9);  // no acceleration plateau
 }
 
 TEST(Planner, RandomisedMovesStayWithinLimitsAndArrive) {
@@ -178,7 +189,7 @@ TEST(Planner, NewTargetMidMotionStopsSmoothlyThenGoes) {
   }
 }
 
-TEST(Planner, RetargetWhileCruisingBrakesBeforeReversing) {
+TEST(Planner, RetargetWhileCruisingReversesWithoutStoppingFirst) {
   Planner<1> planner(kDt);
   Input<1> in = at_rest<1>(Vector<1>{0.0}, Vector<1>{10.0}, 1.0, 2.0, 10.0);
   Output<1> out;
@@ -187,16 +198,32 @@ TEST(Planner, RetargetWhileCruisingBrakesBeforeReversing) {
     out.pass_to_input(in);
   }
   ASSERT_NEAR(in.current_velocity[0], 1.0, 1e-12);
-  const double reversal_position = in.current_position[0] + 0.35;  // the 0.7 s brake covers 0.35
+  // Back to 0 from (x, 1, 0): the reversal is one profile, no stop-and-replan; with V = 1, A = 2,
+  // J = 10 it takes the brake's 0.7 s only once (the old stop-first plan: 0.7 s + a move from rest).
+  const double x = in.current_position[0];
+  // Stopping alone (to a = 0) covers 0.35 in 0.7 s; reversing keeps a = -2 through the apex:
+  // 0.2 s ramping to -2 (0.2 - 10 * 0.2^3 / 6), then 0.4 s at -2 from 0.8 to 0 (0.16).
+  const double reversal_position = x + 0.2 - 10.0 * 0.008 / 6.0 + 0.16;
   in.target_position[0] = 0.0;
   ASSERT_EQ(planner.update(in, out), Result::working);
-  EXPECT_NEAR(out.duration, 0.7 + (reversal_position / 1.0 + 0.5 + 0.2), 1e-9);
+  const double stop_and_replan = 0.7 + ((x + 0.35) / 1.0 + 0.5 + 0.2);
+  EXPECT_LE(out.duration, stop_and_replan + 1e-9);
+  const double best = oracle::min_duration(
+      oracle::Problem{x, 1.0, 0.0, 0.0, 0.0, 0.0, oracle::Limits{1.0, -1.0, 2.0, -2.0, 10.0}},
+      2 * stop_and_replan);
+  EXPECT_NEAR(out.duration, best, 1e-9 * best);
+  EXPECT_LT(out.duration, stop_and_replan - 0.1);  // 6.2 s against 6.4 s
+  const PositionExtrema e = planner.trajectory().position_extrema(0);
+  EXPECT_NEAR(e.max.position, reversal_position, 1e-9);
+  EXPECT_NEAR(e.max.time, 0.6, 1e-9);
   double furthest = 0.0;
+  const LimitChecker<1> checker;
   do {
+    checker.check_step(in, in, out);
     furthest = std::max(furthest, out.new_position[0]);
     out.pass_to_input(in);
   } while (planner.update(in, out) == Result::working);
-  EXPECT_NEAR(furthest, reversal_position, 1e-9);
+  EXPECT_NEAR(furthest, reversal_position, 1e-6);  // sampled at 1 ms around the apex
   EXPECT_EQ(out.new_position[0], 0.0);
 }
 

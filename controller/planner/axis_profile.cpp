@@ -1,0 +1,256 @@
+#include "planner/axis_profile.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "planner/brake.hpp"
+#include "planner/rest_to_rest.hpp"
+
+namespace cellctl::planner {
+namespace {
+
+// g(lo) and g(hi) lie on different sides of "g >= 0"; narrows the bracket to the last bit and
+// returns its end on the side where g >= 0 (so the returned duration is feasible for this side).
+// Regula falsi with the Illinois fix (superlinear on these smooth pieces), falling back to a
+// bisection step whenever the bracket stops halving.
+template <typename G>
+double find_root(const G& g, double lo, double hi, bool lo_reaches) noexcept {
+  double g_lo = g(lo);
+  double g_hi = g(hi);
+  int side = 0;  // which end stayed last time (for the Illinois halving)
+  double width = hi - lo;
+  for (int i = 0; i < 200; ++i) {
+    double mid = lo - g_lo * (hi - lo) / (g_hi - g_lo);
+    if (!(mid > lo && mid < hi) || i % 4 == 3) {
+      if (hi - lo > 0.5 * width) mid = lo + (hi - lo) / 2.0;
+      width = hi - lo;
+    }
+    if (!(mid > lo && mid < hi)) mid = lo + (hi - lo) / 2.0;
+    if (mid <= lo || mid >= hi) break;
+    const double g_mid = g(mid);
+    if ((g_mid >= 0.0) == lo_reaches) {
+      lo = mid;
+      g_lo = g_mid;
+      if (side == -1) g_hi /= 2.0;
+      side = -1;
+    } else {
+      hi = mid;
+      g_hi = g_mid;
+      if (side == 1) g_lo /= 2.0;
+      side = 1;
+    }
+    if (g_mid == 0.0) return mid;
+  }
+  return lo_reaches ? lo : hi;
+}
+
+// The minimum of g on [lo, hi] (unimodal there) by golden-section search: its argument.
+template <typename G>
+double golden_minimum(const G& g, double lo, double hi) noexcept {
+  constexpr double kInvPhi = 0.6180339887498949;
+  double x1 = hi - kInvPhi * (hi - lo);
+  double x2 = lo + kInvPhi * (hi - lo);
+  double g1 = g(x1);
+  double g2 = g(x2);
+  // To the tenth digit of the range is enough to tell whether the minimum is below zero (the
+  // function is flat there); a negative value ends the search at once.
+  const double width = 1e-10 * (hi - lo);
+  for (int i = 0; i < 200 && hi - lo > width && g1 >= 0.0 && g2 >= 0.0; ++i) {
+    if (g1 <= g2) {
+      hi = x2;
+      x2 = x1;
+      g2 = g1;
+      x1 = hi - kInvPhi * (hi - lo);
+      g1 = g(x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      g1 = g2;
+      x2 = lo + kInvPhi * (hi - lo);
+      g2 = g(x2);
+    }
+  }
+  return g1 <= g2 ? x1 : x2;
+}
+
+bool target_within(const MotionState& target, const AxisLimits& l) noexcept {
+  const double v = target.velocity;
+  const double a = target.acceleration;
+  const double ramp = a * a / (2.0 * l.jerk);  // velocity change while the acceleration ramps from 0
+  return std::isfinite(v) && std::isfinite(a) && v <= l.max_velocity && v >= l.min_velocity &&
+         a <= l.max_acceleration && a >= l.min_acceleration && (a <= 0.0 || v - ramp >= l.min_velocity) &&
+         (a >= 0.0 || v + ramp <= l.max_velocity);
+}
+
+}  // namespace
+
+AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target,
+                             const AxisLimits& limits) noexcept {
+  limits_ = limits;
+  blocked_count_ = 0;
+  if (!target_within(target, limits)) return AxisStatus::target_outside_limits;
+  brake_ = brake_profile(start, limits);
+  const MotionState s = brake_.end();
+  if (!is_safe(s.velocity, s.acceleration, limits)) return AxisStatus::limits_too_narrow;
+  main_start_ = {s.position, std::clamp(s.velocity, limits.min_velocity, limits.max_velocity),
+                 std::clamp(s.acceleration, limits.min_acceleration, limits.max_acceleration)};
+  target_offset_ = target.position - s.position;
+  target_ = target;
+  const double v = main_start_.velocity;
+  const double a = main_start_.acceleration;
+  extremes_[0] = FarthestProfile(v, a, target.velocity, target.acceleration, limits);
+  extremes_[1] = FarthestProfile(-v, -a, -target.velocity, -target.acceleration, limits.mirrored());
+  reach_ = reach_time(v, a, target.velocity, target.acceleration, limits);
+  if (v == 0.0 && a == 0.0 && target.velocity == 0.0 && target.acceleration == 0.0) {
+    // From rest to rest: closed form, and never a blocked interval.
+    min_duration_ = brake_.duration() + rest_to_rest_time(target_offset_, limits);
+    return AxisStatus::ok;
+  }
+
+  const ShortSet up = short_set(extremes_[0], target_offset_, limits.max_velocity);
+  const ShortSet down = short_set(extremes_[1], -target_offset_, -limits.min_velocity);
+  double t = reach_;
+  for (const ShortSet* s2 : {&up, &down}) {
+    if (s2->gap) return AxisStatus::unsupported_target;
+    if (s2->from_reach) t = std::max(t, s2->end);
+  }
+  // The shortest duration may land in the other side's dip: it then starts after the dip.
+  for (int pass = 0; pass < 2; ++pass) {
+    for (const ShortSet* s2 : {&up, &down}) {
+      if (s2->dip && t > s2->dip_lo && t < s2->dip_hi) t = s2->dip_hi;
+    }
+  }
+  const double brake = brake_.duration();
+  min_duration_ = brake + t;
+  for (const ShortSet* s2 : {&up, &down}) {
+    if (s2->dip && s2->dip_lo >= t) blocked_[blocked_count_++] = {brake + s2->dip_lo, brake + s2->dip_hi};
+  }
+  if (blocked_count_ == 2 && blocked_[1].lo < blocked_[0].lo) std::swap(blocked_[0], blocked_[1]);
+  if (!std::isfinite(min_duration_)) return AxisStatus::unsupported_target;
+  if (target.acceleration != 0.0) {
+    JerkProfile check;
+    if (!build(min_duration_, check)) return AxisStatus::unsupported_target;
+  }
+  return AxisStatus::ok;
+}
+
+AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double target,
+                                             double slope) const noexcept {
+  ShortSet set;
+  // A duration with no extreme profile (possible only with a target acceleration) makes the
+  // search unreliable: the plan is then refused rather than trusted.
+  const auto g = [&](double T) {
+    const double p = f.position(T);
+    if (std::isnan(p)) set.gap = true;
+    return p - target;
+  };
+  const double t0 = reach_;
+  const double tc = std::max(f.cruise_from(), t0);
+  const double g0 = g(t0);
+  if (set.gap) return set;
+  if (g0 < 0.0) {
+    set.from_reach = true;
+    const double gc = g(tc);
+    if (gc < 0.0) {
+      // Linear from tc on; step up an ulp at a time if rounding left the root just short.
+      double end = tc - gc / slope;
+      for (int i = 0; i < 8 && g(end) < 0.0; ++i) end = std::nextafter(end, 2.0 * end + 1.0);
+      set.end = end;
+    } else {
+      set.end = find_root(g, t0, tc, false);
+    }
+    return set;
+  }
+  if (tc - t0 <= 1e-15 * tc) return set;
+  // A target at rest can be reached at the reach time and then held, so for every longer duration
+  // the stop position stays within [nearest, farthest]: this side (not short at the reach time,
+  // so the target lies beyond the stop position from it) can never fall short later: no dip.
+  if (target_.velocity == 0.0 && target_.acceleration == 0.0) return set;
+  // An extreme profile that never moves backwards only gains from more time: no dip.
+  {
+    SevenDurations d{};
+    if (f.durations(t0, d) && f.lowest_velocity_of(d) >= 0.0) return set;
+  }
+  // Otherwise g need not be convex near the reach time: sample, then refine the lowest sample's
+  // neighbourhood (a golden-section search, unimodal there).
+  constexpr int kSamples = 8;
+  int lowest = 0;
+  double g_lowest = g0;
+  for (int k = 1; k <= kSamples; ++k) {
+    const double gk = g(t0 + (tc - t0) * k / kSamples);
+    if (gk < g_lowest) {
+      g_lowest = gk;
+      lowest = k;
+    }
+  }
+  const double left = t0 + (tc - t0) * std::max(lowest - 1, 0) / kSamples;
+  const double right = t0 + (tc - t0) * std::min(lowest + 1, kSamples) / kSamples;
+  const double t_min = g_lowest < 0.0 ? t0 + (tc - t0) * lowest / kSamples : golden_minimum(g, left, right);
+  if (set.gap || g(t_min) >= 0.0) return set;
+  set.dip = true;
+  set.dip_lo = find_root(g, t0, t_min, true);
+  set.dip_hi = find_root(g, t_min, tc, false);
+  return set;
+}
+
+bool AxisProfile::feasible(double T) const noexcept {
+  if (T < min_duration_) return false;
+  for (std::size_t i = 0; i < blocked_count_; ++i) {
+    if (blocked_[i].contains(T)) return false;
+  }
+  return true;
+}
+
+bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
+  out = brake_;
+  const double main = std::max(T - brake_.duration(), reach_);
+  SevenDurations up{};
+  SevenDurations down{};
+  const bool has_up = extremes_[0].durations(main, up);
+  const bool has_down = extremes_[1].durations(main, down);
+  if (!has_up && !has_down) return false;
+  const double far = has_up ? extremes_[0].position_of(up) : 0.0;
+  const double near = has_down ? -extremes_[1].position_of(down) : 0.0;
+  // The share of the farthest profile's jerk in the blend that ends exactly at the target.
+  double share = 1.0;
+  if (!has_up) {
+    share = 0.0;
+  } else if (has_down && far - near > 0.0) {
+    share = std::clamp((target_offset_ - near) / (far - near), 0.0, 1.0);
+  }
+  const double j = limits_.jerk;
+  if (share == 1.0 || share == 0.0) {
+    const bool use_up = share == 1.0;
+    const SevenDurations& d = use_up ? up : down;
+    const double sign = use_up ? 1.0 : -1.0;
+    for (std::size_t i = 0; i < d.size(); ++i) out.append({sign * kFarthestJerkSigns[i] * j, d[i]});
+    return arrives(out);
+  }
+  // Merge the two switching sequences; in each piece the jerk is the blend of both.
+  std::size_t iu = 0;
+  std::size_t id = 0;
+  double left_u = up[0];
+  double left_d = down[0];
+  while (iu < up.size() && id < down.size()) {
+    const double piece = std::min(left_u, left_d);
+    const double jerk = j * (share * kFarthestJerkSigns[iu] - (1.0 - share) * kFarthestJerkSigns[id]);
+    out.append({jerk, piece});
+    left_u -= piece;
+    left_d -= piece;
+    if (left_u <= 0.0 && ++iu < up.size()) left_u = up[iu];
+    if (left_d <= 0.0 && ++id < down.size()) left_d = down[id];
+  }
+  return arrives(out);
+}
+
+bool AxisProfile::arrives(const JerkProfile& p) const noexcept {
+  const MotionState& e = p.end();
+  const double scale = 1.0 + std::abs(target_offset_);
+  return std::abs(e.position - target_.position) <= 1e-9 * scale &&
+         std::abs(e.velocity - target_.velocity) <=
+             1e-9 * (1.0 + limits_.max_velocity - limits_.min_velocity) &&
+         std::abs(e.acceleration - target_.acceleration) <=
+             1e-9 * (1.0 + limits_.max_acceleration - limits_.min_acceleration);
+}
+
+}  // namespace cellctl::planner

@@ -1,0 +1,89 @@
+#pragma once
+// One axis's planning problem: from any start state to a target state (position, velocity,
+// acceleration) within its limits. Answers what synchronisation needs — the shortest duration and
+// the blocked intervals (durations in between for which no profile exists) — and builds the profile
+// for any feasible duration. Fixed-size, no allocation.
+//
+// The method (see farthest_profile.hpp): after the brake pre-profile (if the start is beyond the
+// limits), a duration T is feasible when nearest(T) <= target <= farthest(T). Both functions are
+// defined from the reach time on and linear once the extreme profile cruises. Each side's
+// infeasible set is taken as one interval, either starting at the reach time (the shortest
+// duration is its end) or a blocked interval (a dip in between; the 10^5-problem tests against an
+// independent optimum found no second one). A target at rest has no dips (it can be reached at the
+// reach time and held); otherwise dips are searched by sampling and a golden-section refinement
+// (the extremes are not convex near the reach time). Roots are found by regula falsi on T to the
+// last bit; the optimum itself is an extreme profile, any other feasible duration a blend of the two.
+//
+// Known limit: with a non-zero target acceleration the end velocity and acceleration alone can be
+// unreachable for some durations above the reach time (abnormal extremals, not covered by the
+// seven-segment family). Such plans are detected (the built profile misses the target) and refused
+// as unsupported_target, never followed; targets with zero acceleration are always covered.
+
+#include <array>
+#include <cstdint>
+
+#include "planner/axis_limits.hpp"
+#include "planner/farthest_profile.hpp"
+#include "planner/jerk_profile.hpp"
+
+namespace cellctl::planner {
+
+// An open interval of durations [s].
+struct Interval {
+  double lo = 0.0;
+  double hi = 0.0;
+  [[nodiscard]] bool contains(double t) const noexcept { return t > lo && t < hi; }
+};
+
+enum class AxisStatus : std::uint8_t {
+  ok,
+  target_outside_limits,  // target velocity/acceleration beyond the limits or bound to cross them
+  limits_too_narrow,      // no state in which the velocity limits can be kept (brake cannot end)
+  unsupported_target,     // a non-zero target acceleration this method has no profile for (see below)
+};
+
+class AxisProfile {
+ public:
+  static constexpr std::size_t kMaxBlocked = 2;
+
+  // Plans; on a status other than ok nothing else is meaningful.
+  AxisStatus plan(const MotionState& start, const MotionState& target, const AxisLimits& limits) noexcept;
+
+  // The shortest duration, brake included [s].
+  [[nodiscard]] double min_duration() const noexcept { return min_duration_; }
+  [[nodiscard]] std::size_t blocked_count() const noexcept { return blocked_count_; }
+  [[nodiscard]] const Interval& blocked(std::size_t i) const noexcept { return blocked_[i]; }
+  // Whether a profile of total duration T exists (T >= min_duration, outside every blocked interval).
+  [[nodiscard]] bool feasible(double T) const noexcept;
+  // The brake then the profile ending in the target exactly at T (a feasible duration). False
+  // (and `out` unusable) when the profile misses the target: an unsupported_target case.
+  [[nodiscard]] bool build(double T, JerkProfile& out) const noexcept;
+  [[nodiscard]] const JerkProfile& brake() const noexcept { return brake_; }
+
+ private:
+  // The set of durations (from the reach time on) for which one extreme falls short of the target.
+  struct ShortSet {
+    bool from_reach = false;  // [reach, end)
+    double end = 0.0;
+    bool dip = false;  // (dip_lo, dip_hi)
+    double dip_lo = 0.0;
+    double dip_hi = 0.0;
+    bool gap = false;  // some duration searched had no extreme profile
+  };
+  [[nodiscard]] bool arrives(const JerkProfile& p) const noexcept;
+  [[nodiscard]] ShortSet short_set(const FarthestProfile& f, double target, double slope) const noexcept;
+
+  JerkProfile brake_;
+  MotionState main_start_;
+  MotionState target_;
+  double target_offset_ = 0.0;  // target position - main start position
+  AxisLimits limits_;
+  // Farthest in the positive direction, and in the mirrored frame (the nearest profile).
+  std::array<FarthestProfile, 2> extremes_{};
+  double reach_ = 0.0;
+  double min_duration_ = 0.0;                    // brake included
+  std::array<Interval, kMaxBlocked> blocked_{};  // brake included
+  std::size_t blocked_count_ = 0;
+};
+
+}  // namespace cellctl::planner

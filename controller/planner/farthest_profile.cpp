@@ -1,0 +1,194 @@
+#include "planner/farthest_profile.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace cellctl::planner {
+namespace {
+
+// The shortest velocity change (a0 -> peak >= max(a0, af) -> af) raising the velocity by dv,
+// with the peak held at a_cap if it would exceed it; infinity when this shape cannot do it.
+double rise_time(double a0, double af, double dv, double a_cap, double j) noexcept {
+  const double floor_peak = std::max(a0, af);
+  const double x = (2.0 * j * dv + a0 * a0 + af * af) / 2.0;
+  const double tol = 1e-12 * (std::abs(a0) + std::abs(af) + a_cap);
+  if (x < -tol * tol * 1e12) return std::numeric_limits<double>::infinity();
+  const double r = std::sqrt(std::max(x, 0.0));
+  double peak = 0.0;
+  if (-r >= floor_peak - tol) {
+    peak = std::max(-r, floor_peak);  // both ends below zero and the change small: peak below zero
+  } else if (r >= floor_peak - tol) {
+    peak = std::max(r, floor_peak);
+  } else {
+    return std::numeric_limits<double>::infinity();
+  }
+  if (peak <= a_cap) return (2.0 * peak - a0 - af) / j;
+  const double hold = (dv - (2.0 * a_cap * a_cap - a0 * a0 - af * af) / (2.0 * j)) / a_cap;
+  return (2.0 * a_cap - a0 - af) / j + std::max(0.0, hold);
+}
+
+}  // namespace
+
+double reach_time(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept {
+  const double j = limits.jerk;
+  const double up = rise_time(a0, af, vf - v0, limits.max_acceleration, j);
+  const double down = rise_time(-a0, -af, v0 - vf, -limits.min_acceleration, j);
+  return std::min(up, down);
+}
+
+FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
+                                 const AxisLimits& limits) noexcept
+    : v0_(v0), a0_(a0), vf_(vf), af_(af), lim_(limits) {
+  const double j = lim_.jerk;
+  const double amax = lim_.max_acceleration;
+  const double amin = lim_.min_acceleration;
+  const double vmax = lim_.max_velocity;
+  SevenDurations& t = cruise_shape_;
+  // Up to (max_velocity, 0): +J to a1, hold, -J to 0.
+  const double rise = vmax - v0;
+  double a1 = std::max(std::sqrt(std::max(0.0, (2.0 * j * rise + a0 * a0) / 2.0)), std::max(a0, 0.0));
+  if (a1 <= amax) {
+    t[0] = (a1 - a0) / j;
+    t[2] = a1 / j;
+  } else {
+    t[0] = (amax - a0) / j;
+    t[1] = std::max(0.0, (rise - (2.0 * amax * amax - a0 * a0) / (2.0 * j)) / amax);
+    t[2] = amax / j;
+  }
+  // Down from (max_velocity, 0) to (vf, af): -J to a3, hold, +J to af.
+  const double fall = vmax - vf;
+  double a3 = std::min(-std::sqrt(std::max(0.0, (2.0 * j * fall + af * af) / 2.0)), std::min(af, 0.0));
+  if (a3 >= amin) {
+    t[4] = -a3 / j;
+    t[6] = (af - a3) / j;
+  } else {
+    t[4] = -amin / j;
+    t[5] = std::max(0.0, (fall - (2.0 * amin * amin - af * af) / (2.0 * j)) / -amin);
+    t[6] = (af - amin) / j;
+  }
+  for (const double d : t) cruise_from_ += d;
+}
+
+bool FarthestProfile::durations(double T, SevenDurations& t) const noexcept {
+  if (T >= cruise_from_) {
+    t = cruise_shape_;
+    t[3] = T - cruise_from_;
+    return true;
+  }
+  return no_cruise(T, t);
+}
+
+bool FarthestProfile::peak_within_velocity(double a1, double t2) const noexcept {
+  const double j = lim_.jerk;
+  const double v1 = v0_ + (a1 * a1 - a0_ * a0_) / (2.0 * j) + a1 * t2;
+  const double peak = v1 + a1 * a1 / (2.0 * j);
+  return peak <= lim_.max_velocity * (1.0 + 1e-12) + 1e-12;
+}
+
+bool FarthestProfile::no_cruise(double T, SevenDurations& t) const noexcept {
+  const double j = lim_.jerk;
+  const double amax = lim_.max_acceleration;
+  const double amin = lim_.min_acceleration;
+  const double a0 = a0_;
+  const double af = af_;
+  const double dv = vf_ - v0_;
+  // Near the reach time the levels are ill-conditioned (a tiny S divides): generous, then clamped.
+  const double tol_a = 1e-8 * (amax - amin);
+  const double tol_t = 1e-12 * (T + (amax - amin) / j);
+  // A double root (the held level equals the start or end level) comes out a rounding below zero.
+  const double tol_disc = 1e-12 * (amax - amin) * (amax - amin);
+
+  // One set of active bounds: peak level a1 (held t2), low level a3 (held t6); checks and fills t.
+  const auto accept = [&](double a1, double t2, double a3, double t6) {
+    if (!(a1 >= a0 - tol_a && a1 <= amax + tol_a && a3 <= af + tol_a && a3 >= amin - tol_a &&
+          a3 <= a1 + tol_a && t2 >= -tol_t && t6 >= -tol_t)) {
+      return false;
+    }
+    a1 = std::clamp(a1, a0, amax);
+    a3 = std::clamp(a3, amin, std::min(af, a1));
+    t2 = std::max(t2, 0.0);
+    t6 = std::max(t6, 0.0);
+    const double t1 = (a1 - a0) / j;
+    const double t7 = (af - a3) / j;
+    const double middle = T - t1 - t2 - t6 - t7;
+    if (middle < -tol_t) return false;
+    if (a1 > 0.0 && a3 < 0.0 && !peak_within_velocity(a1, t2)) return false;
+    t = SevenDurations{t1, t2, std::max(middle, 0.0), 0.0, 0.0, t6, t7};
+    return true;
+  };
+
+  // No bound active: T = (2 (a1 - a3) + af - a0) / J and 2 J dv = 2 a1^2 - 2 a3^2 + af^2 - a0^2.
+  const double s = (j * T + a0 - af) / 2.0;
+  if (s <= tol_a) {
+    if (accept(a0, 0.0, a0, 0.0)) return true;
+  } else {
+    const double a1 = (2.0 * j * dv - af * af + a0 * a0 + 2.0 * s * s) / (4.0 * s);
+    if (accept(a1, 0.0, a1 - s, 0.0)) return true;
+  }
+  // max_acceleration held: a quadratic in a3.
+  {
+    const double k = (2.0 * amax - a0 + af) / j;
+    const double c = 2.0 * amax * amax - a0 * a0 + af * af + 2.0 * j * amax * (T - k) - 2.0 * j * dv;
+    const double disc = amax * amax + c / 2.0;
+    if (disc >= -tol_disc) {
+      const double a3 = amax - std::sqrt(std::max(disc, 0.0));
+      if (accept(amax, T - k + 2.0 * a3 / j, a3, 0.0)) return true;
+    }
+  }
+  // min_acceleration held: a quadratic in a1.
+  {
+    const double d = -a0 * a0 + 2.0 * amin * amin + af * af + 2.0 * amin * (j * T + a0 - af) - 2.0 * j * dv;
+    const double disc = amin * amin - d / 2.0;
+    if (disc >= -tol_disc) {
+      const double a1 = amin + std::sqrt(std::max(disc, 0.0));
+      if (accept(a1, 0.0, amin, T - (2.0 * a1 - a0 - 2.0 * amin + af) / j)) return true;
+    }
+  }
+  // Both held: linear in the two hold times.
+  {
+    const double rest = T - (2.0 * amax - a0 - 2.0 * amin + af) / j;
+    const double base = (2.0 * amax * amax - a0 * a0 + af * af - 2.0 * amin * amin) / (2.0 * j);
+    const double t2 = (dv - base - amin * rest) / (amax - amin);
+    if (accept(amax, t2, amin, rest - t2)) return true;
+  }
+  return false;
+}
+
+double FarthestProfile::position_of(const SevenDurations& t) const noexcept {
+  const double j = lim_.jerk;
+  double p = 0.0;
+  double v = v0_;
+  double a = a0_;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double d = t[i];
+    const double jk = kFarthestJerkSigns[i] * j;
+    p += d * (v + d * (a / 2.0 + d * jk / 6.0));
+    v += d * (a + d * jk / 2.0);
+    a += d * jk;
+  }
+  return p;
+}
+
+double FarthestProfile::lowest_velocity_of(const SevenDurations& t) const noexcept {
+  const double j = lim_.jerk;
+  double v = v0_;
+  double a = a0_;
+  double lowest = v;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double jk = kFarthestJerkSigns[i] * j;
+    if (jk > 0.0 && a < 0.0 && a + jk * t[i] > 0.0) lowest = std::min(lowest, v - a * a / (2.0 * jk));
+    v += t[i] * (a + t[i] * jk / 2.0);
+    a += t[i] * jk;
+    lowest = std::min(lowest, v);
+  }
+  return lowest;
+}
+
+double FarthestProfile::position(double T) const noexcept {
+  SevenDurations t{};
+  if (!durations(T, t)) return std::numeric_limits<double>::quiet_NaN();
+  return position_of(t);
+}
+
+}  // namespace cellctl::planner

@@ -1,0 +1,66 @@
+#pragma once
+// For one axis from a state inside its limits: the profile of a given duration T that ends in a
+// given velocity and acceleration and gets as far as possible in the positive direction.
+//
+// Why this is the building block (our reading of the maths; how it is used: axis_profile.hpp):
+// - The states reachable at time T form a convex set (linear dynamics, convex bounds on jerk,
+//   acceleration and velocity), so for a fixed end velocity and acceleration the reachable end
+//   positions are an interval [nearest(T), farthest(T)]. A duration T is feasible for a target
+//   position exactly when the target lies in that interval, and any target inside it is reached by
+//   blending the two extreme profiles' jerks (linear in the jerk, convex in the bounds).
+// - By the maximum principle the farthest profile drives the jerk +J, -J, +J, with arcs where a
+//   bound is active: +J, hold max_acceleration, -J, cruise at max_velocity, -J, hold
+//   min_acceleration, +J. Given T, the (at most two) free acceleration levels follow from the end
+//   velocity and T in closed form (a linear or quadratic equation per set of active bounds).
+// - The nearest profile is the farthest one of the mirrored problem.
+
+#include <array>
+
+#include "planner/axis_limits.hpp"
+
+namespace cellctl::planner {
+
+// Jerk signs of the seven segments of a farthest profile (in units of the jerk limit).
+inline constexpr std::array<double, 7> kFarthestJerkSigns{1.0, 0.0, -1.0, 0.0, -1.0, 0.0, 1.0};
+
+using SevenDurations = std::array<double, 7>;
+
+// The shortest time in which (v0, a0) can become (vf, af) within the limits, the position ignored.
+// Both states must be inside the limits (see is_safe in axis_profile.hpp).
+[[nodiscard]] double reach_time(double v0, double a0, double vf, double af,
+                                const AxisLimits& limits) noexcept;
+
+class FarthestProfile {
+ public:
+  FarthestProfile() = default;
+  // Start (v0, a0) at position 0; end (vf, af); both inside `limits`.
+  FarthestProfile(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept;
+
+  // From this duration on, the farthest profile cruises at max_velocity, so the farthest position
+  // grows linearly with slope max_velocity.
+  [[nodiscard]] double cruise_from() const noexcept { return cruise_from_; }
+
+  // The seven durations for duration T (>= reach_time). False only if no case fits, which means
+  // T is below the reach time (by more than rounding).
+  [[nodiscard]] bool durations(double T, SevenDurations& t) const noexcept;
+  // The end position of the farthest profile of duration T (NaN when durations() fails).
+  [[nodiscard]] double position(double T) const noexcept;
+  // The lowest velocity along the profile with these durations.
+  [[nodiscard]] double lowest_velocity_of(const SevenDurations& t) const noexcept;
+  // The end position of the profile with these durations.
+  [[nodiscard]] double position_of(const SevenDurations& t) const noexcept;
+
+ private:
+  bool no_cruise(double T, SevenDurations& t) const noexcept;
+  [[nodiscard]] bool peak_within_velocity(double a1, double t2) const noexcept;
+
+  double v0_ = 0.0;
+  double a0_ = 0.0;
+  double vf_ = 0.0;
+  double af_ = 0.0;
+  AxisLimits lim_;
+  SevenDurations cruise_shape_{};  // with zero cruise
+  double cruise_from_ = 0.0;
+};
+
+}  // namespace cellctl::planner

@@ -1,0 +1,63 @@
+#include "planner/rest_to_rest.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cellctl::planner {
+namespace {
+
+// Time to change the velocity by v (> 0) from and to zero acceleration, peak acceleration `a`:
+// a trapezoid when v reaches a^2 / J, a triangle otherwise. The distance covered while changing
+// from 0 to v is v times half this time (the shape is point-symmetric about its middle).
+double change_time(double v, double a, double j) noexcept {
+  return v >= a * a / j ? v / a + a / j : 2.0 * std::sqrt(v / j);
+}
+
+}  // namespace
+
+double rest_to_rest_time(double distance, const AxisLimits& limits) noexcept {
+  if (distance == 0.0) return 0.0;
+  const bool forward = distance > 0.0;
+  const double d = std::abs(distance);
+  const double vmax = forward ? limits.max_velocity : -limits.min_velocity;
+  const double a_up = forward ? limits.max_acceleration : -limits.min_acceleration;
+  const double a_down = forward ? -limits.min_acceleration : limits.max_acceleration;
+  const double j = limits.jerk;
+  const auto covered = [&](double v) {
+    return v * (change_time(v, a_up, j) + change_time(v, a_down, j)) / 2.0;
+  };
+  const double at_vmax = covered(vmax);
+  if (at_vmax <= d) return change_time(vmax, a_up, j) + change_time(vmax, a_down, j) + (d - at_vmax) / vmax;
+  // The peak velocity v < vmax with covered(v) = d. covered grows with v and its form changes where
+  // each ramp gets its plateau: solve in the piece that contains d.
+  const double a_lo = std::min(a_up, a_down);
+  const double a_hi = std::max(a_up, a_down);
+  const double v1 = a_lo * a_lo / j;  // below: no plateau at all
+  const double v2 = a_hi * a_hi / j;  // above: both plateaus
+  double v = 0.0;
+  if (d <= covered(v1)) {
+    v = std::cbrt(d * d * j / 4.0);  // d = 2 v sqrt(v / J)
+  } else if (d >= covered(v2)) {
+    // d = v/2 (v (1/a_up + 1/a_down) + (a_up + a_down)/J): a quadratic, in its non-cancelling form.
+    const double qa = (1.0 / a_up + 1.0 / a_down) / 2.0;
+    const double qb = (a_up + a_down) / (2.0 * j);
+    v = 2.0 * d / (qb + std::sqrt(qb * qb + 4.0 * qa * d));
+  } else {
+    // One plateau (on the ramp with the smaller bound): d = v/2 (v/a_lo + a_lo/J + 2 sqrt(v/J)).
+    // Newton on w = sqrt(v), from the right end of the piece (convex and increasing: no overshoot).
+    double w = std::sqrt(v2);
+    const double sj = std::sqrt(j);
+    for (int i = 0; i < 50; ++i) {
+      const double w2 = w * w;
+      const double f = w2 / 2.0 * (w2 / a_lo + a_lo / j + 2.0 * w / sj) - d;
+      const double df = 2.0 * w2 * w / a_lo + w * a_lo / j + 3.0 * w2 / sj;
+      const double next = w - f / df;
+      if (!(next < w)) break;
+      w = next;
+    }
+    v = w * w;
+  }
+  return change_time(v, a_up, j) + change_time(v, a_down, j);
+}
+
+}  // namespace cellctl::planner

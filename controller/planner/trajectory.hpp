@@ -1,0 +1,272 @@
+#pragma once
+// A planned multi-axis motion: per axis a jerk profile (brake included), all starting now.
+// calculate() builds it from an Input with the synchronisation asked for:
+// - time: the smallest duration feasible for every axis (at least each axis's shortest, outside
+//   every axis's blocked intervals); each axis then re-profiled to end exactly then;
+// - phase: one scalar profile s: 0 -> 1 along the straight line from the current to the target
+//   positions, with the tightest scaled limits of all axes — possible only when the current and
+//   target velocities and accelerations are all on that line; otherwise time synchronisation and
+//   a note;
+// - none: every axis on its own shortest profile.
+// Every axis's motion (overshoot included) must stay in its travel, or the plan is refused.
+// Fixed-size storage: calculating and evaluating never allocate.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string_view>
+
+#include "planner/axis_profile.hpp"
+#include "planner/input.hpp"
+#include "planner/jerk_profile.hpp"
+#include "planner/result.hpp"
+
+namespace cellctl::planner {
+
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+
+inline constexpr std::string_view kPhaseFallbackNote =
+    "phase synchronisation impossible (the current or target velocities and accelerations are not on the "
+    "line between the positions): time-synchronised instead";
+
+template <int N>
+class Trajectory {
+  static constexpr auto kN = static_cast<std::size_t>(N);
+
+ public:
+  [[nodiscard]] double duration() const noexcept { return duration_; }
+  [[nodiscard]] bool enabled(int axis) const noexcept { return enabled_[idx(axis)]; }
+  [[nodiscard]] Synchronization synchronization() const noexcept { return synchronization_; }
+  [[nodiscard]] std::string_view note() const noexcept { return note_; }
+  [[nodiscard]] const JerkProfile& profile(int axis) const noexcept { return profiles_[idx(axis)]; }
+
+  // The state of every enabled axis at time t since the start (before 0 the start, after an axis's
+  // end its target). Disabled axes are left as they are in the vectors.
+  void at_time(double t, Vector<N>& p, Vector<N>& v, Vector<N>& a, Vector<N>& j) const noexcept {
+    for (int i = 0; i < N; ++i) {
+      if (!enabled_[idx(i)]) continue;
+      const MotionState s = profiles_[idx(i)].at(t);
+      p[i] = s.position;
+      v[i] = s.velocity;
+      a[i] = s.acceleration;
+      j[i] = profiles_[idx(i)].jerk_at(t);
+    }
+  }
+  [[nodiscard]] PositionExtrema position_extrema(int axis) const noexcept {
+    return profiles_[idx(axis)].extrema();
+  }
+  // Each axis on its own: its shortest duration and the durations it cannot do (brake included).
+  [[nodiscard]] double axis_min_duration(int axis) const noexcept { return min_duration_[idx(axis)]; }
+  [[nodiscard]] std::size_t blocked_count(int axis) const noexcept { return blocked_count_[idx(axis)]; }
+  [[nodiscard]] const Interval& blocked(int axis, std::size_t i) const noexcept {
+    return blocked_[idx(axis)][i];
+  }
+
+  // Plans `in`; on an error the trajectory is unchanged and `error_axis` names the axis.
+  [[nodiscard]] static Result calculate(const Input<N>& in, Trajectory& out, int& error_axis) noexcept;
+
+ private:
+  static constexpr std::size_t idx(int axis) noexcept { return static_cast<std::size_t>(axis); }
+
+  static AxisLimits limits_of(const Input<N>& in, int i) noexcept {
+    const double vmin = in.min_velocity[i] == in.min_velocity[i] ? in.min_velocity[i] : -in.max_velocity[i];
+    const double amin =
+        in.min_acceleration[i] == in.min_acceleration[i] ? in.min_acceleration[i] : -in.max_acceleration[i];
+    return AxisLimits{in.max_velocity[i], vmin, in.max_acceleration[i], amin, in.max_jerk[i]};
+  }
+  static Result validate(const Input<N>& in, int& axis) noexcept;
+  static Result status_result(AxisStatus s) noexcept {
+    switch (s) {
+      case AxisStatus::target_outside_limits:
+        return Result::target_outside_limits;
+      case AxisStatus::limits_too_narrow:
+        return Result::limits_too_narrow;
+      default:
+        return Result::unsupported_target;
+    }
+  }
+  [[nodiscard]] bool plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept;
+
+  std::array<JerkProfile, kN> profiles_{};
+  std::array<double, kN> min_duration_{};
+  std::array<std::array<Interval, AxisProfile::kMaxBlocked>, kN> blocked_{};
+  std::array<std::size_t, kN> blocked_count_{};
+  AxisArray<N> enabled_{};
+  double duration_ = 0.0;
+  Synchronization synchronization_ = Synchronization::time;
+  std::string_view note_;
+};
+
+template <int N>
+Result Trajectory<N>::validate(const Input<N>& in, int& axis) noexcept {
+  for (int i = 0; i < N; ++i) {
+    if (!in.enabled[idx(i)]) continue;
+    axis = i;
+    const auto finite = [](double x) { return std::isfinite(x); };
+    if (!finite(in.current_position[i]) || !finite(in.current_velocity[i]) ||
+        !finite(in.current_acceleration[i]) || !finite(in.target_position[i]) ||
+        !finite(in.target_velocity[i]) || !finite(in.target_acceleration[i])) {
+      return Result::invalid_state;
+    }
+    const AxisLimits l = limits_of(in, i);
+    const auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
+    if (!positive(l.max_velocity) || !positive(-l.min_velocity) || !positive(l.max_acceleration) ||
+        !positive(-l.min_acceleration) || !positive(l.jerk) || std::isnan(in.min_position[i]) ||
+        std::isnan(in.max_position[i]) || in.min_position[i] > in.max_position[i]) {
+      return Result::invalid_limits;
+    }
+  }
+  axis = -1;
+  return Result::working;
+}
+
+// Phase synchronisation: true when planned (r says how), false when the states are not on a line.
+template <int N>
+bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept {
+  // The line's direction and the scalar start/target state (progress s, its velocity and acceleration).
+  Vector<N> d = Vector<N>::Zero();
+  int lead = -1;
+  for (int i = 0; i < N; ++i) {
+    if (!in.enabled[idx(i)]) continue;
+    d[i] = in.target_position[i] - in.current_position[i];
+    if (lead < 0 || std::abs(d[i]) > std::abs(d[lead])) lead = i;
+  }
+  if (lead < 0 || d[lead] == 0.0) return false;  // nothing to move along: time sync handles it
+  const double ds = d[lead];
+  const MotionState s0{0.0, in.current_velocity[lead] / ds, in.current_acceleration[lead] / ds};
+  const MotionState sf{1.0, in.target_velocity[lead] / ds, in.target_acceleration[lead] / ds};
+  AxisLimits sl{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                std::numeric_limits<double>::infinity()};
+  for (int i = 0; i < N; ++i) {
+    if (!in.enabled[idx(i)]) continue;
+    // On the line: every axis's state is its displacement times the scalar one.
+    const auto on_line = [&](double axis_value, double scalar) {
+      return std::abs(axis_value - d[i] * scalar) <= 1e-9 * (1.0 + std::abs(axis_value));
+    };
+    if (!on_line(in.current_velocity[i], s0.velocity) ||
+        !on_line(in.current_acceleration[i], s0.acceleration) ||
+        !on_line(in.target_velocity[i], sf.velocity) ||
+        !on_line(in.target_acceleration[i], sf.acceleration)) {
+      return false;
+    }
+    if (d[i] == 0.0) continue;
+    const AxisLimits l = limits_of(in, i);
+    const double m = std::abs(d[i]);
+    const bool forward = d[i] > 0.0;
+    sl.max_velocity = std::min(sl.max_velocity, (forward ? l.max_velocity : -l.min_velocity) / m);
+    sl.min_velocity = std::max(sl.min_velocity, (forward ? l.min_velocity : -l.max_velocity) / m);
+    sl.max_acceleration =
+        std::min(sl.max_acceleration, (forward ? l.max_acceleration : -l.min_acceleration) / m);
+    sl.min_acceleration =
+        std::max(sl.min_acceleration, (forward ? l.min_acceleration : -l.max_acceleration) / m);
+    sl.jerk = std::min(sl.jerk, l.jerk / m);
+  }
+  AxisProfile scalar;
+  const AxisStatus st = scalar.plan(s0, sf, sl);
+  if (st != AxisStatus::ok) {
+    error_axis = lead;
+    r = status_result(st);
+    return true;
+  }
+  JerkProfile s;
+  if (!scalar.build(scalar.min_duration(), s)) {
+    error_axis = lead;
+    r = Result::unsupported_target;
+    return true;
+  }
+  for (int i = 0; i < N; ++i) {
+    if (!in.enabled[idx(i)]) continue;
+    JerkProfile& p = profiles_[idx(i)];
+    p = JerkProfile(MotionState{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]});
+    for (std::size_t k = 0; k < s.size(); ++k) p.append({d[i] * s.segment(k).jerk, s.segment(k).duration});
+    min_duration_[idx(i)] = scalar.min_duration();
+    blocked_count_[idx(i)] = 0;
+  }
+  duration_ = scalar.min_duration();
+  r = Result::working;
+  return true;
+}
+
+template <int N>
+Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_axis) noexcept {
+  error_axis = -1;
+  if (const Result r = validate(in, error_axis); is_error(r)) return r;
+  // Plan into a scratch copy: a refused plan leaves `out` as it was.
+  Trajectory t;
+  t.enabled_ = in.enabled;
+  t.synchronization_ = in.synchronization;
+  bool planned = false;
+  if (in.synchronization == Synchronization::phase) {
+    Result r = Result::working;
+    planned = t.plan_phase(in, error_axis, r);
+    if (is_error(r)) return r;
+    if (!planned) {
+      t.synchronization_ = Synchronization::time;
+      bool any_motion = false;
+      for (int i = 0; i < N; ++i) {
+        any_motion = any_motion || (in.enabled[idx(i)] && in.target_position[i] != in.current_position[i]);
+      }
+      if (any_motion) t.note_ = kPhaseFallbackNote;
+    }
+  }
+  if (!planned) {
+    std::array<AxisProfile, kN> axes{};
+    double common = 0.0;
+    for (int i = 0; i < N; ++i) {
+      if (!in.enabled[idx(i)]) continue;
+      const MotionState start{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]};
+      const MotionState target{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]};
+      const AxisStatus st = axes[idx(i)].plan(start, target, limits_of(in, i));
+      if (st != AxisStatus::ok) {
+        error_axis = i;
+        return status_result(st);
+      }
+      t.min_duration_[idx(i)] = axes[idx(i)].min_duration();
+      t.blocked_count_[idx(i)] = axes[idx(i)].blocked_count();
+      for (std::size_t b = 0; b < axes[idx(i)].blocked_count(); ++b)
+        t.blocked_[idx(i)][b] = axes[idx(i)].blocked(b);
+      common = std::max(common, axes[idx(i)].min_duration());
+    }
+    if (t.synchronization_ == Synchronization::time) {
+      // Out of every blocked interval; each move to an interval's end can only land in a later one.
+      for (int pass = 0; pass <= 2 * N * static_cast<int>(AxisProfile::kMaxBlocked); ++pass) {
+        bool moved = false;
+        for (int i = 0; i < N; ++i) {
+          if (!in.enabled[idx(i)]) continue;
+          for (std::size_t b = 0; b < t.blocked_count_[idx(i)]; ++b) {
+            if (t.blocked_[idx(i)][b].contains(common)) {
+              common = t.blocked_[idx(i)][b].hi;
+              moved = true;
+            }
+          }
+        }
+        if (!moved) break;
+      }
+    }
+    for (int i = 0; i < N; ++i) {
+      if (!in.enabled[idx(i)]) continue;
+      const bool own = t.synchronization_ == Synchronization::none;
+      if (!axes[idx(i)].build(own ? axes[idx(i)].min_duration() : common, t.profiles_[idx(i)])) {
+        error_axis = i;  // only with a non-zero target acceleration (see axis_profile.hpp)
+        return Result::unsupported_target;
+      }
+    }
+    t.duration_ = common;
+  }
+  // The travel: the target and the whole motion inside it.
+  for (int i = 0; i < N; ++i) {
+    if (!in.enabled[idx(i)] || (in.min_position[i] == -kInf && in.max_position[i] == kInf)) continue;
+    const PositionExtrema e = t.profiles_[idx(i)].extrema();
+    const double slack = 1e-9 * (1.0 + std::abs(in.target_position[i]));
+    if (e.min.position < in.min_position[i] - slack || e.max.position > in.max_position[i] + slack) {
+      error_axis = i;
+      return Result::outside_travel;
+    }
+  }
+  out = t;
+  return Result::working;
+}
+
+}  // namespace cellctl::planner

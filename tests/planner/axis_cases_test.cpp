@@ -1,0 +1,146 @@
+// One axis, explicit cases: brake pre-profiles from beyond the limits, states exactly on the
+// limits, asymmetric and extreme limits (each checked against the independent optimum).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "planner/axis_profile.hpp"
+#include "planner/brake.hpp"
+#include "planner/optimum_oracle.hpp"
+#include "planner/random_problems.hpp"
+
+namespace cellctl::planner {
+namespace {
+
+oracle::Problem problem(const MotionState& s, const MotionState& target, const AxisLimits& l) {
+  return {s.position,
+          s.velocity,
+          s.acceleration,
+          target.position,
+          target.velocity,
+          target.acceleration,
+          {l.max_velocity, l.min_velocity, l.max_acceleration, l.min_acceleration, l.jerk}};
+}
+
+// Plans, checks the optimum against the oracle (from the end of the brake), the exact arrival and
+// the limits after the brake. Returns the profile.
+JerkProfile plan_checked(const MotionState& start, const MotionState& target, const AxisLimits& l,
+                         const std::string& what) {
+  AxisProfile axis;
+  EXPECT_EQ(axis.plan(start, target, l), AxisStatus::ok) << what;
+  JerkProfile profile;
+  EXPECT_TRUE(axis.build(axis.min_duration(), profile)) << what;
+  const double brake = axis.brake().duration();
+  const oracle::Problem after_brake = problem(axis.brake().end(), target, l);
+  EXPECT_TRUE(oracle::confirms_min_duration(after_brake, axis.min_duration() - brake, 1e-9))
+      << what << ": planned " << axis.min_duration() - brake << " s after the brake, the optimum is "
+      << oracle::min_duration(after_brake, 1.01 * (axis.min_duration() - brake) + 1e-9);
+  EXPECT_NEAR(profile.end().position, target.position, 1e-8 * (1 + std::abs(target.position))) << what;
+  EXPECT_NEAR(profile.end().velocity, target.velocity, 1e-8) << what;
+  EXPECT_NEAR(profile.end().acceleration, target.acceleration, 1e-8) << what;
+  const double tol_v = 1e-9 * (1 + l.max_velocity);
+  const double tol_a = 1e-9 * (1 + l.max_acceleration);
+  for (int k = 0; k <= 1000; ++k) {
+    const double t = brake + (profile.duration() - brake) * k / 1000.0;
+    const MotionState s = profile.at(t);
+    EXPECT_LE(s.velocity, l.max_velocity + tol_v) << what << " t " << t;
+    EXPECT_GE(s.velocity, l.min_velocity - tol_v) << what << " t " << t;
+    EXPECT_LE(s.acceleration, l.max_acceleration + tol_a) << what << " t " << t;
+    EXPECT_GE(s.acceleration, l.min_acceleration - tol_a) << what << " t " << t;
+  }
+  return profile;
+}
+
+const AxisLimits kLimits = AxisLimits::symmetric(1.0, 2.0, 10.0);
+
+TEST(Brake, FromAboveMaxVelocityBrakesAtFullDecelerationFirst) {
+  const MotionState start{0.0, 1.5, 0.0};
+  const JerkProfile brake = brake_profile(start, kLimits);
+  // -J to -2 (0.2 s, the velocity falls by 0.2), held until the velocity is back at 1 (0.15 s).
+  ASSERT_EQ(brake.size(), 2u);
+  EXPECT_EQ(brake.segment(0).jerk, -10.0);
+  EXPECT_NEAR(brake.segment(0).duration, 0.2, 1e-12);
+  EXPECT_EQ(brake.segment(1).jerk, 0.0);
+  EXPECT_NEAR(brake.segment(1).duration, 0.15, 1e-12);
+  EXPECT_NEAR(brake.end().velocity, 1.0, 1e-12);
+  EXPECT_TRUE(is_safe(brake.end().velocity, brake.end().acceleration, kLimits));
+  const JerkProfile p = plan_checked(start, {3.0, 0.0, 0.0}, kLimits, "above max velocity");
+  EXPECT_EQ(p.segment(0).jerk, -10.0);
+}
+
+TEST(Brake, FromBeyondMaxAccelerationRampsBackAtFullJerk) {
+  const MotionState start{0.0, -0.5, 3.0};
+  const JerkProfile p = plan_checked(start, {1.0, 0.0, 0.0}, kLimits, "beyond max acceleration");
+  EXPECT_EQ(p.segment(0).jerk, -10.0);
+  EXPECT_GE(p.segment(0).duration, 0.1 - 1e-12);  // (3 - 2) / 10 at least
+}
+
+TEST(Brake, UnavoidableOvershootIsOnlyThePeakOfTheRamp) {
+  // At max velocity still accelerating: the velocity must rise by a^2 / 2J = 0.05 before it falls.
+  const MotionState start{0.0, 1.0, 1.0};
+  AxisProfile axis;
+  ASSERT_EQ(axis.plan(start, {2.0, 0.0, 0.0}, kLimits), AxisStatus::ok);
+  JerkProfile p;
+  ASSERT_TRUE(axis.build(axis.min_duration(), p));
+  double peak = 0.0;
+  for (int k = 0; k <= 10000; ++k) peak = std::max(peak, p.at(p.duration() * k / 10000.0).velocity);
+  EXPECT_NEAR(peak, 1.05, 1e-6);
+  EXPECT_LE(peak, 1.05 + 1e-9);
+  plan_checked(start, {2.0, 0.0, 0.0}, kLimits, "overshoot");
+}
+
+TEST(Brake, FromBelowMinVelocityIsTheMirror) {
+  const MotionState start{0.0, -1.5, 0.0};
+  const JerkProfile brake = brake_profile(start, kLimits);
+  ASSERT_EQ(brake.size(), 2u);
+  EXPECT_EQ(brake.segment(0).jerk, 10.0);
+  EXPECT_NEAR(brake.end().velocity, -1.0, 1e-12);
+  plan_checked(start, {-3.0, 0.0, 0.0}, kLimits, "below min velocity");
+}
+
+TEST(Brake, SafeStartHasNone) {
+  EXPECT_EQ(brake_profile({0.0, 0.9, 0.3}, kLimits).duration(), 0.0);
+}
+
+TEST(LimitsAtExtremes, StatesExactlyOnTheLimits) {
+  const double ramp = 2.0 * 2.0 / (2.0 * 10.0);  // velocity change of a full acceleration ramp
+  const MotionState starts[] = {
+      {0.0, 1.0, 0.0},          {0.0, -1.0, 0.0}, {0.0, 1.0 - ramp, 2.0},
+      {0.0, -1.0 + ramp, -2.0}, {0.0, 0.0, 2.0},  {0.0, 0.0, -2.0},
+  };
+  for (const MotionState& s : starts) {
+    for (const double pf : {-2.0, -0.01, 0.0, 0.01, 0.3, 2.0}) {
+      for (const double vf : {0.0, 1.0, -1.0}) {
+        plan_checked(s, {pf, vf, 0.0}, kLimits,
+                     "v0 " + std::to_string(s.velocity) + " a0 " + std::to_string(s.acceleration) + " pf " +
+                         std::to_string(pf) + " vf " + std::to_string(vf));
+      }
+    }
+  }
+}
+
+TEST(LimitsAtExtremes, AsymmetricAndExtremeScalesMatchTheOptimum) {
+  std::mt19937_64 rng(testing::problem_seed(12));
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const long count = testing::problem_count(35000) / 10;
+  for (long c = 0; c < count && !HasFailure(); ++c) {
+    const double scale = std::pow(10.0, -3.0 + 6.0 * u(rng));  // 1e-3 .. 1e3
+    const double vmax = scale * (0.1 + 5 * u(rng));
+    const double amax = scale * (0.1 + 50 * u(rng));
+    const AxisLimits l{vmax, -vmax * (0.05 + u(rng)), amax, -amax * (0.05 + u(rng)),
+                       scale * (1 + 1000 * u(rng))};
+    MotionState s{scale * (u(rng) - 0.5), 0.0, 0.0};
+    do {
+      s.velocity = l.min_velocity + (l.max_velocity - l.min_velocity) * u(rng);
+      s.acceleration = l.min_acceleration + (l.max_acceleration - l.min_acceleration) * u(rng);
+    } while (!is_safe(s.velocity, s.acceleration, l));
+    const MotionState target{scale * 10 * (u(rng) - 0.5), 0.0, 0.0};
+    plan_checked(s, target, l, "case " + std::to_string(c));
+  }
+}
+
+}  // namespace
+}  // namespace cellctl::planner
