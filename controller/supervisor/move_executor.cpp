@@ -59,6 +59,9 @@ void MoveExecutor::start(const recipe::Move& move, const cell::CellState& s, dou
 
 void MoveExecutor::restart_profile(const cell::CellState& s) {
   input_ = {};
+  // A straight line in joint space: the pacing of the SCU's axes by their least progress assumes one
+  // (the planner falls back to time synchronisation, with a note, where the states allow no line).
+  input_.synchronization = planner::Synchronization::phase;
   for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
     const auto& a = axes_[i];
     const auto k = static_cast<Eigen::Index>(i);
