@@ -32,13 +32,6 @@ StopReactions parse_stop_reactions(const YamlNode& n) {
   return s;
 }
 
-PlantConfig parse_plant(const YamlNode& n) {
-  n.only_keys({"encoder_slip"});
-  PlantConfig p;
-  p.encoder_slip = n.double_in_or("encoder_slip", -0.5, 0.5, p.encoder_slip);
-  return p;
-}
-
 LoopConfig parse_loop(const YamlNode& n) {
   n.only_keys({"period_ms", "realtime", "priority", "cpu", "sample_ms"});
   LoopConfig l;

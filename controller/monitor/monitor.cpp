@@ -19,7 +19,7 @@ constexpr double kPositionMarginMm = 0.5;
 
 }  // namespace
 
-Monitor::Monitor(const config::CellConfig& cell) : cell_(cell) {}
+Monitor::Monitor(const config::CellCore& cell) : cell_(cell) {}
 
 StopCategory Monitor::category_of(Rule r) const noexcept {
   switch (r) {

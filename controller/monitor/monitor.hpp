@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "cell/cell_state.hpp"
-#include "config/cell_config.hpp"
+#include "config/cell_core.hpp"
 #include "journal/event.hpp"
 #include "monitor/rule.hpp"
 
@@ -32,7 +32,7 @@ struct OperatorInputs {
 
 class Monitor {
  public:
-  explicit Monitor(const config::CellConfig& cell);
+  explicit Monitor(const config::CellCore& cell);
 
   // Device rules apply once the cell is up (the supervisor arms the monitor when every session is
   // active and the encoder is ready); operator and emergency stops apply always.
@@ -63,7 +63,7 @@ class Monitor {
              std::array<std::optional<journal::Text>, kRuleCount>& causes) const noexcept;
   [[nodiscard]] StopCategory category_of(Rule r) const noexcept;
 
-  const config::CellConfig& cell_;
+  const config::CellCore& cell_;
   std::array<Latch, kRuleCount> latches_{};
   bool armed_ = false;
   bool spindle_running_ = false;

@@ -51,7 +51,10 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
   try {
     links_ = std::make_unique<CellLinks>(cell, options_.mode, clock_, options_.trace,
                                          rehearsal_ ? rehearsal_->lines() : std::bitset<cell::kDevices>{});
-    if (links_->any_emulated()) emulated_ = std::make_unique<EmulatedCell>(cell, links_->device());
+    if (links_->any_emulated()) {
+      if (!options_.emulators) options_.emulators = load_emulator_setup(cell);
+      emulated_ = std::make_unique<EmulatedCell>(cell, *options_.emulators, links_->device());
+    }
     devices_ = std::make_unique<CellDevices>(cell, links_->master());
   } catch (const std::exception& e) {
     // A port that did not open (or a device set-up refused): the record says why nothing ran.

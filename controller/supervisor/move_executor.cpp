@@ -5,7 +5,7 @@
 
 namespace cellctl::supervisor {
 
-MoveExecutor::MoveExecutor(const config::CellConfig& cell, const recipe::Limits& limits, double dt,
+MoveExecutor::MoveExecutor(const config::CellCore& cell, const recipe::Limits& limits, double dt,
                            MoveSettings settings)
     : cell_(cell), limits_(limits), settings_(settings), planner_(dt) {}
 

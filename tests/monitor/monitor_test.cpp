@@ -10,12 +10,12 @@ namespace {
 
 using namespace std::chrono_literals;
 
-config::CellConfig cell_config() {
-  return config::parse_cell_config(config::YamlNode::load_string(R"(cell: t
+// The monitor reads the cell's core only (axes, limits, stops).
+config::CellCore cell_config() {
+  return config::parse_cell_core(config::YamlNode::load_string(R"(cell: t
 axes:
   - {name: x, actuator: 1, function: 1, edges_per_mm: 10, min_mm: 0, max_mm: 100, max_speed_mm_s: 20, encoder: true}
   - {name: z, actuator: 2, function: 2, edges_per_mm: 10, min_mm: 0, max_mm: 50, max_speed_mm_s: 10}
-encoder: {mm_per_revolution: 4, time_base: steps_per_10ms}
 limits: {overspeed_mm_s: 25, disagreement_mm: 2, link_silence_ms: 300, spindle_min_hz: 100, spindle_max_hz: 800,
          spindle_tolerance_hz: 5}
 stops: {fault: 1, link: 0, operator: 2}
@@ -36,7 +36,7 @@ cell::CellState healthy() {
 
 class MonitorTest : public ::testing::Test {
  protected:
-  config::CellConfig cfg = cell_config();
+  config::CellCore cfg = cell_config();
   Monitor m{cfg};
   void SetUp() override { m.arm(); }
 

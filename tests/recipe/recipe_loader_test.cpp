@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "config/cell_config.hpp"
+
 namespace cellctl::recipe {
 namespace {
 
