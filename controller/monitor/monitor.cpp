@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "link/clock.hpp"
-#include "scu/status_flags.hpp"
 
 namespace cellctl::monitor {
 namespace {
@@ -99,15 +98,9 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
     causes[idx(Rule::spindle_frequency)] =
         Text::format("spindle at {:.0f} Hz while set to {:.0f} Hz", f, spindle_set_hz_);
 
-  if (s.scu_error_word != 0) {
-    const scu::ErrorWord word(s.scu_error_word);
-    int first = 0;
-    word.for_each_cause([&](int bit, std::string_view) {
-      if (first == 0) first = bit;
-    });
-    causes[idx(Rule::scu_error)] = Text::format("SCU error bit {}: {} (word 0x{:08x})", first,
-                                                scu::ErrorWord::cause(first), s.scu_error_word);
-  }
+  if (s.scu_errors.any())
+    causes[idx(Rule::scu_error)] = Text::format("SCU error bit {}: {} (word 0x{:08x})", s.scu_errors.first_bit,
+                                                s.scu_errors.first_cause, s.scu_errors.word);
 }
 
 std::bitset<kRuleCount> Monitor::evaluate(const cell::CellState& state, const OperatorInputs& inputs,

@@ -148,16 +148,15 @@ void CellRun::report_devices(double t, RunResult& r) {
     journal_.post(t, journal::Note{journal::Text::format("{}", text)});
     r.device_notes.push_back(std::move(text));
   };
-  if (auto* scu = devices_->scu(); scu && scu->state() == link::Lifecycle::fault)
-    note("SCU: " + scu->fault_reason());
-  if (auto* sp = devices_->spindle()) {
-    if (sp->lifecycle() == link::Lifecycle::fault) note("spindle: " + sp->fault_reason());
-    if (sp->snapshot().start_refused) note("spindle: " + sp->snapshot().start_refused_reason);
+  static constexpr const char* kNames[cell::kDevices] = {"SCU", "spindle", "encoder"};
+  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+    const auto* s = devices_->sessions()[d];
+    if (s && s->lifecycle() == link::Lifecycle::fault) note(std::string(kNames[d]) + ": " + s->fault_reason());
   }
-  if (auto* enc = devices_->encoder()) {
-    if (enc->snapshot().lifecycle == link::Lifecycle::fault) note("encoder: " + enc->fault_reason());
-    if (!enc->restart_reason().empty()) note("encoder: DP start-up begun again: " + enc->restart_reason());
-  }
+  if (auto* sp = devices_->spindle(); sp && sp->snapshot().start_refused)
+    note("spindle: " + sp->snapshot().start_refused_reason);
+  if (auto* enc = devices_->encoder(); enc && !enc->restart_reason().empty())
+    note("encoder: DP start-up begun again: " + enc->restart_reason());
   if (!devices_->all_inactive())
     note(fmt::format("the devices were not all closed within {:g} s of the end (remote mode, spindle stop)",
                      options_.shutdown_timeout_s));
@@ -198,7 +197,7 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
       if (rehearsal_) rehearsal_->drive_emulators(now, *emulated_);
       emulated_->poll(now);
     }
-    devices_->poll(now);
+    devices_->receive(now);
 
     stages.begin(index(ControlStage::state));
     devices_->read(now, state_);
@@ -222,12 +221,13 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
     if (!supervisor_->cell_up() && monitor_.armed()) monitor_.disarm();
 
     stages.begin(index(ControlStage::write_sessions));
-    if (!shutdown_since_) devices_->apply(supervisor_->intents(), now);
-  }
-  if (supervisor::is_final(supervisor_->state()) && !shutdown_since_) {
-    devices_->deactivate(now);  // axes stopped, remote mode closed, spindle stopped
-    monitor_.disarm();          // the devices go down on purpose now
-    shutdown_since_ = now;
+    if (supervisor::is_final(supervisor_->state()) && !shutdown_since_) {
+      devices_->deactivate(now);  // axes stopped, remote mode closed, spindle stopped
+      monitor_.disarm();          // the devices go down on purpose now
+      shutdown_since_ = now;
+    }
+    if (!shutdown_since_) devices_->apply(supervisor_->intents());
+    devices_->transmit(now);  // what this cycle decided goes out in this cycle
   }
   if (shutdown_since_ &&
       (devices_->all_inactive() || link::to_seconds(now - *shutdown_since_) > options_.shutdown_timeout_s))

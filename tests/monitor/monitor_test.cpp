@@ -128,7 +128,8 @@ TEST_F(MonitorTest, SpindleOffItsSetPointAtSpeed) {
 
 TEST_F(MonitorTest, ScuErrorBitsAreNamed) {
   auto s = healthy();
-  s.scu_error_word = 1u << 21;  // bit 22: remote communication time-out
+  // As the SCU session types bit 22 (remote communication time-out).
+  s.scu_errors = {.word = 1u << 21, .first_bit = 22, .first_cause = "remote communication time-out (watchdog)"};
   expect_only(s, Rule::scu_error, StopCategory::controlled_off);
   const auto detail = std::string(m.latch(Rule::scu_error).detail.view());
   EXPECT_NE(detail.find("SCU error bit 22"), std::string::npos) << detail;
