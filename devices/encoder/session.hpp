@@ -89,6 +89,7 @@ class Session final : public link::DeviceSession {
   void receive(link::TimePoint now) override;
   void transmit(link::TimePoint now) override;
   [[nodiscard]] const link::LinkHealth& health() const noexcept override { return master_.health(); }
+  [[nodiscard]] bool awaiting_reply() const noexcept override { return false; }
   [[nodiscard]] std::optional<link::TimePoint> next_deadline() const noexcept {
     return master_.next_deadline();
   }

@@ -39,6 +39,10 @@ class DeviceSession {
   // Why the session is in Lifecycle::fault (empty otherwise).
   [[nodiscard]] const std::string& fault_reason() const noexcept { return fault_reason_; }
   [[nodiscard]] virtual const LinkHealth& health() const noexcept = 0;
+  // A request is on the line or waiting for its reply: a command decided now goes out once it is
+  // answered or timed out (the half-duplex line permitting). Always false for a bus master that
+  // exchanges on its own schedule.
+  [[nodiscard]] virtual bool awaiting_reply() const noexcept = 0;
   // Since the last good reply, or since activation while there was none.
   [[nodiscard]] Duration silent_for(TimePoint now) const noexcept {
     return health().silent_for(now, activated_at_);

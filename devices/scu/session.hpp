@@ -53,6 +53,7 @@ class Session final : public link::DeviceSession {
   void receive(link::TimePoint now) override;
   void transmit(link::TimePoint now) override;
   [[nodiscard]] const link::LinkHealth& health() const noexcept override { return health_; }
+  [[nodiscard]] bool awaiting_reply() const noexcept override { return in_flight_.has_value(); }
 
   // Move function f (1..10) to remote positions: RT 0x3021.. per actuator, RT 0x3011.. speed, RE(f, 9).
   // Every actuator of the function needs a target. The speed is a percentage of the fastest of the

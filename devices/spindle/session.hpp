@@ -86,6 +86,7 @@ class Session final : public link::DeviceSession {
   void receive(link::TimePoint now) override;
   void transmit(link::TimePoint now) override;
   [[nodiscard]] const link::LinkHealth& health() const noexcept override { return health_; }
+  [[nodiscard]] bool awaiting_reply() const noexcept override { return in_flight_.has_value(); }
 
   // Commands; false when not active, out of range, or the command queue is full.
   [[nodiscard]] bool start(double frequency_hz, Direction direction = Direction::clockwise);

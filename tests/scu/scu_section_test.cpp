@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/expect_config_error.hpp"
+
 #include "config/cell_config.hpp"
 #include "runtime/emulator_setup.hpp"
 
@@ -18,12 +20,7 @@ ScuSection parse(const std::string& text) {
 }
 
 void expect_error(const std::string& text, const std::string& message) {
-  try {
-    (void)parse(text);
-    ADD_FAILURE() << "expected: " << message;
-  } catch (const ConfigError& e) {
-    EXPECT_EQ(std::string(e.what()), message);
-  }
+  cellctl::testing::expect_config_error([&] { (void)parse(text); }, message);
 }
 
 TEST(ScuSection, ParsesAValidSection) {

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/expect_config_error.hpp"
+
 #include "runtime/emulator_setup.hpp"
 
 namespace cellctl::config {
@@ -22,15 +24,7 @@ spindle::EmulatorConfig emulator_of(const std::string& text) {
   return runtime::parse_spindle_emulator(section);
 }
 
-template <class Fn>
-void expect_error(Fn&& fn, const std::string& message) {
-  try {
-    fn();
-    ADD_FAILURE() << "expected: " << message;
-  } catch (const ConfigError& e) {
-    EXPECT_EQ(std::string(e.what()), message);
-  }
-}
+using cellctl::testing::expect_config_error;
 
 TEST(SpindleSection, DefaultsAreTheConvertersLineAndTheSessionDefaults) {
   const auto s = parse("spindle: {}\n");
@@ -91,22 +85,22 @@ TEST(SpindleSection, ReadsEveryKey) {
 }
 
 TEST(SpindleSection, RejectsMalformedInputWithItsPosition) {
-  expect_error([] { (void)parse("spindle:\n  retrys: 3\n"); },
+  expect_config_error([] { (void)parse("spindle:\n  retrys: 3\n"); },
                "cell.yaml:2:3: spindle.retrys: unknown field (did you mean 'retries'?)");
-  expect_error([] { (void)parse("spindle:\n  status_poll_ms: 1\n"); },
+  expect_config_error([] { (void)parse("spindle:\n  status_poll_ms: 1\n"); },
                "cell.yaml:2:19: spindle.status_poll_ms: 1 is out of range [5, 5000]");
-  expect_error([] { (void)parse("spindle:\n  reply_timeout_ms: soon\n"); },
+  expect_config_error([] { (void)parse("spindle:\n  reply_timeout_ms: soon\n"); },
                "cell.yaml:2:21: spindle.reply_timeout_ms: expected a whole number, got 'soon'");
-  expect_error([] { (void)parse("spindle:\n  reply_timeout_ms: 500\n  link_fault_after_ms: 400\n"); },
+  expect_config_error([] { (void)parse("spindle:\n  reply_timeout_ms: 500\n  link_fault_after_ms: 400\n"); },
                "cell.yaml:3:24: spindle.link_fault_after_ms: link_fault_after_ms must be longer than "
                "reply_timeout_ms");
-  expect_error([] { (void)emulator_of("spindle:\n  emulator:\n    min_hz: 500\n    max_hz: 400\n"); },
+  expect_config_error([] { (void)emulator_of("spindle:\n  emulator:\n    min_hz: 500\n    max_hz: 400\n"); },
                "cell.yaml:4:13: spindle.emulator.max_hz: max_hz must be above min_hz");
-  expect_error([] { (void)emulator_of("spindle:\n  emulator:\n    motor_code: 17\n"); },
+  expect_config_error([] { (void)emulator_of("spindle:\n  emulator:\n    motor_code: 17\n"); },
                "cell.yaml:3:17: spindle.emulator.motor_code: 17 is out of range [0, 16]");
-  expect_error([] { (void)emulator_of("spindle:\n  emulator:\n    ramp_up_hz: 400\n"); },
+  expect_config_error([] { (void)emulator_of("spindle:\n  emulator:\n    ramp_up_hz: 400\n"); },
                "cell.yaml:3:5: spindle.emulator.ramp_up_hz: unknown field (did you mean 'ramp_up_hz_s'?)");
-  expect_error([] { (void)parse("spindle:\n  parity: mark\n"); },
+  expect_config_error([] { (void)parse("spindle:\n  parity: mark\n"); },
                "cell.yaml:2:11: spindle.parity: 'mark' is not one of: none, even, odd");
 }
 
