@@ -24,6 +24,7 @@ struct StopReactions {
   StopCategory fault = StopCategory::controlled_off;  // a limit or device fault
   StopCategory link = StopCategory::immediate;        // a device that stopped answering
   StopCategory operator_stop = StopCategory::controlled_hold;
+  StopCategory following_error = StopCategory::controlled_off;  // an axis off its planned profile
 };
 
 struct LoopConfig {

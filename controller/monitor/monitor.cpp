@@ -28,6 +28,8 @@ StopCategory Monitor::category_of(Rule r) const noexcept {
       return cell_.stops.operator_stop;
     case Rule::link_silent:
       return cell_.stops.link;
+    case Rule::following_error:
+      return cell_.stops.following_error;
     default:
       return cell_.stops.fault;
   }
@@ -71,6 +73,19 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
         causes[idx(Rule::disagreement)] =
             Text::format("axis {}: SCU {:.2f} mm, encoder {:.2f} mm (tolerance {:g} mm)", c.name, a.scu_mm,
                          a.encoder_mm, cell_.limits.disagreement_mm);
+    }
+    const auto& plan = planned_[i];
+    if (following_ && plan.move) {
+      // An axis the encoder does not measure is known by the SCU's position, as old as its last RC
+      // reply: what the plan moved on meanwhile is no error.
+      const double stale = a.measured ? 0.0 : std::abs(plan.planned_mm_s) * link::to_seconds(s.scu_position_age);
+      const double allowed = config::allowed_following_error(c, plan.planned_mm_s);
+      const double error = std::abs(plan.planned_mm - p);
+      if (error > allowed + stale)
+        causes[idx(Rule::following_error)] =
+            Text::format("axis {} at {:.2f} mm, planned {:.2f} mm: following error {:.2f} mm > {:.2f} mm allowed at "
+                         "{:.1f} mm/s",
+                         c.name, p, plan.planned_mm, error, allowed, std::abs(plan.planned_mm_s));
     }
   }
 

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "cell/cell_state.hpp"
+#include "cell/intents.hpp"
 #include "config/cell_core.hpp"
 #include "journal/event.hpp"
 #include "monitor/rule.hpp"
@@ -44,6 +45,12 @@ class Monitor {
     spindle_running_ = running;
     spindle_set_hz_ = set_hz;
   }
+  // The following-error rule needs the supervisor's plan: while no halt is asked for, the axes with
+  // `move` set are held to their planned position.
+  void expect_axes(const cell::Intents& intents) noexcept {
+    planned_ = intents.axes;
+    following_ = intents.halt == cell::Halt::none;
+  }
 
   // Evaluates every rule at `t` (seconds since start); returns the rules that latched in this call.
   std::bitset<kRuleCount> evaluate(const cell::CellState& state, const OperatorInputs& inputs,
@@ -68,6 +75,8 @@ class Monitor {
   bool armed_ = false;
   bool spindle_running_ = false;
   double spindle_set_hz_ = 0.0;
+  std::array<cell::AxisIntent, cell::kMaxAxes> planned_{};
+  bool following_ = false;
 };
 
 }  // namespace cellctl::monitor

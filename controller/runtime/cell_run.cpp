@@ -217,6 +217,7 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
     supervisor_->step(state_, monitor_.demanded_stop(), t);
     const auto& sp = supervisor_->intents().spindle;
     monitor_.expect_spindle(sp.run, sp.frequency_hz);
+    monitor_.expect_axes(supervisor_->intents());
     if (supervisor_->cell_up() && !monitor_.armed() && !shutdown_since_) monitor_.arm();
     if (!supervisor_->cell_up() && monitor_.armed()) monitor_.disarm();
 

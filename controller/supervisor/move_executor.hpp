@@ -73,6 +73,7 @@ class MoveExecutor {
   planner::Output<6> output_;
   std::array<Axis, cell::kMaxAxes> axes_{};
   std::array<double, cell::kMaxAxes> planned_{};
+  std::array<double, cell::kMaxAxes> planned_speed_{};
   std::array<double, cell::kMaxAxes> speed_sent_{};
   double speed_ = 0.0;
   double started_t_ = 0.0;

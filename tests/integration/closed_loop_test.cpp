@@ -72,6 +72,9 @@ TEST_F(ClosedLoop, NoMotionIsFoundWellBeforeTheMoveTimeOut) {
   // configured 0.8 mm/s minimum allows: the actuator does not move at all.
   emulators().scu->actuators[0].physics.scale_error = 0.0;
   emulators().scu->actuators[0].physics.min_speed_mm_s = 5.0;
+  // The monitor's following-error rule would stop the cell first (following_error_test): loosened
+  // here, so that the supervisor's own no-motion check is what is tested.
+  cell_.axes[0].ferror_mm = cell_.axes[0].min_ferror_mm = 100.0;
   load_recipe_text(R"(
 recipe: {name: slow, version: "1", cell: demo-cell}
 limits:
