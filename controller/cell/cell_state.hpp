@@ -15,15 +15,15 @@ namespace cellctl::cell {
 inline constexpr std::size_t kMaxAxes = 6;
 
 struct AxisState {
-  bool present = false;       // the SCU reports the actuator
-  double scu_mm = 0.0;        // the SCU's own position
-  bool moving = false;        // SCU status 1: motion active (as of the last RC reply: it lags a command)
-  bool commanded = false;     // a move is queued for the SCU or its RE is still open
-  bool move_refused = false;  // the SCU answered an error to the last move's telegrams
-  bool homed = false;         // SCU status 2: initialised
+  bool present = false;         // the SCU reports the actuator
+  double scu_mm = 0.0;          // the SCU's own position
+  bool moving = false;          // SCU status 1: motion active (as of the last RC reply: it lags a command)
+  bool commanded = false;       // a move is queued for the SCU or its RE is still open
+  bool move_refused = false;    // the SCU answered an error to the last move's telegrams
+  bool homed = false;           // SCU status 2: initialised
   bool actuator_fault = false;  // the SCU's error word names this actuator
-  bool measured = false;    // the encoder measures this axis
-  double encoder_mm = 0.0;  // valid when measured and the encoder is in data exchange
+  bool measured = false;        // the encoder measures this axis
+  double encoder_mm = 0.0;      // valid when measured and the encoder is in data exchange
   double encoder_mm_s = 0.0;
 
   // The best position there is: the encoder's where it measures the axis, else the SCU's.

@@ -37,8 +37,9 @@ std::string bits_text(std::uint16_t bits,
 
 void print_status(const encoder::Session& session) {
   const auto& s = session.snapshot();
-  fmt::print("bus            {} ({}), {} exchanges, last input {:.1f} ms ago\n", link::to_string(session.lifecycle()),
-             profibus::to_string(s.dp_state), s.exchanges, link::to_seconds(s.input_age) * 1e3);
+  fmt::print("bus            {} ({}), {} exchanges, last input {:.1f} ms ago\n",
+             link::to_string(session.lifecycle()), profibus::to_string(s.dp_state), s.exchanges,
+             link::to_seconds(s.input_age) * 1e3);
   fmt::print("position       {} counts = {:.3f} mm\n", s.position_counts, s.position_mm);
   const auto f = session.config().parameters.functionality;
   if (f == encoder::Functionality::scancon22 || f == encoder::Functionality::scancon30)
@@ -114,7 +115,8 @@ class EncoderCommissioning {
  public:
   EncoderCommissioning(const GlobalOptions& global, const EncoderOptions& options,
                        const config::EncoderSection& section, Action action)
-      : options_(options), c_(global, options, section.port, "encoder", with_station(section.session, action)) {}
+      : options_(options),
+        c_(global, options, section.port, "encoder", with_station(section.session, action)) {}
 
   int run(Action action) {
     // A preset beyond this encoder's scaling is a bad argument (manual 4.3.2): refused before the bus.

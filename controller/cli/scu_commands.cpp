@@ -113,7 +113,8 @@ class ScuCommissioning {
   int close(int code) {
     bool closed = false;
     if (c_.shut_down(closed)) {
-      spdlog::warn("interrupted; SCU remote mode {}", closed ? "closed, motion stopped" : "NOT confirmed closed");
+      spdlog::warn("interrupted; SCU remote mode {}",
+                   closed ? "closed, motion stopped" : "NOT confirmed closed");
       return kExitInterrupted;
     }
     if (!closed && code == kExitOk) return c_.failed_to("leave remote mode");
@@ -148,8 +149,8 @@ void add_scu_commands(CLI::App& app, Commands& commands) {
     return sub;
   };
   add("status", "Print positions, actuator status and the error word", Action::status);
-  auto* move = add("move", "Move one actuator to a position in mm, wait for the end, close with RS",
-                   Action::move);
+  auto* move =
+      add("move", "Move one actuator to a position in mm, wait for the end, close with RS", Action::move);
   move->add_option("--function", options->function, "Function F1..F10 that moves the actuator")
       ->check(CLI::Range(1, 10))
       ->capture_default_str();

@@ -92,7 +92,8 @@ class SpindleCommissioning {
         break;
       case Action::reset:
         if (!session_.reset()) return refuse("reset");
-        if (!c_.drive([&] { return !session_.commands_pending(); })) return failed_to("acknowledge the reset");
+        if (!c_.drive([&] { return !session_.commands_pending(); }))
+          return failed_to("acknowledge the reset");
         break;
     }
     // The measured values are polled slower than the flags: wait for a set taken after the command.

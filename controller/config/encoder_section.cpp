@@ -74,7 +74,8 @@ profibus::DpMasterConfig parse_bus(const YamlNode& s, const link::LineFormat& li
 
 }  // namespace
 
-encoder::PhysicalResolution parse_physical_resolution(const YamlNode& s, encoder::PhysicalResolution fallback) {
+encoder::PhysicalResolution parse_physical_resolution(const YamlNode& s,
+                                                      encoder::PhysicalResolution fallback) {
   encoder::PhysicalResolution phys;
   phys.steps_per_revolution =
       s.int_in_or<std::uint32_t>("singleturn_steps", 2, 1u << 16, fallback.steps_per_revolution);

@@ -17,8 +17,8 @@ struct ScuSection {
 };
 
 // The keys of an actuator item and of the section that only the emulator reads.
-inline constexpr std::array<std::string_view, 4> kScuEmulatorActuatorKeys = {"ramp_mm_s2", "min_speed_mm_s",
-                                                                             "start_position_mm", "scale_error"};
+inline constexpr std::array<std::string_view, 4> kScuEmulatorActuatorKeys = {
+    "ramp_mm_s2", "min_speed_mm_s", "start_position_mm", "scale_error"};
 
 // Throws ConfigError (file:line:column: field: rule) on an unknown key, a value out of range, a
 // duplicate actuator, or a function that moves an actuator the section does not list.

@@ -78,14 +78,15 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
     if (following_ && plan.move) {
       // An axis the encoder does not measure is known by the SCU's position, as old as its last RC
       // reply: what the plan moved on meanwhile is no error.
-      const double stale = a.measured ? 0.0 : std::abs(plan.planned_mm_s) * link::to_seconds(s.scu_position_age);
+      const double stale =
+          a.measured ? 0.0 : std::abs(plan.planned_mm_s) * link::to_seconds(s.scu_position_age);
       const double allowed = config::allowed_following_error(c, plan.planned_mm_s);
       const double error = std::abs(plan.planned_mm - p);
       if (error > allowed + stale)
-        causes[idx(Rule::following_error)] =
-            Text::format("axis {} at {:.2f} mm, planned {:.2f} mm: following error {:.2f} mm > {:.2f} mm allowed at "
-                         "{:.1f} mm/s",
-                         c.name, p, plan.planned_mm, error, allowed, std::abs(plan.planned_mm_s));
+        causes[idx(Rule::following_error)] = Text::format(
+            "axis {} at {:.2f} mm, planned {:.2f} mm: following error {:.2f} mm > {:.2f} mm allowed at "
+            "{:.1f} mm/s",
+            c.name, p, plan.planned_mm, error, allowed, std::abs(plan.planned_mm_s));
     }
   }
 
@@ -114,8 +115,9 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
         Text::format("spindle at {:.0f} Hz while set to {:.0f} Hz", f, spindle_set_hz_);
 
   if (s.scu_errors.any())
-    causes[idx(Rule::scu_error)] = Text::format("SCU error bit {}: {} (word 0x{:08x})", s.scu_errors.first_bit,
-                                                s.scu_errors.first_cause, s.scu_errors.word);
+    causes[idx(Rule::scu_error)] =
+        Text::format("SCU error bit {}: {} (word 0x{:08x})", s.scu_errors.first_bit, s.scu_errors.first_cause,
+                     s.scu_errors.word);
 }
 
 std::bitset<kRuleCount> Monitor::evaluate(const cell::CellState& state, const OperatorInputs& inputs,

@@ -27,11 +27,10 @@ inline constexpr std::size_t kRuleCount = 15;
 
 [[nodiscard]] constexpr std::string_view to_string(Rule r) noexcept {
   constexpr std::string_view names[kRuleCount] = {
-      "position_limit",    "overspeed",     "disagreement",      "following_error",
-      "encoder_not_ready", "encoder_alarm", "encoder_limit_switch",
-      "encoder_diagnosis", "spindle_fault", "spindle_temperature",
-      "spindle_frequency", "scu_error",     "link_silent",
-      "operator_stop",     "emergency_stop"};
+      "position_limit",    "overspeed",           "disagreement",         "following_error",
+      "encoder_not_ready", "encoder_alarm",       "encoder_limit_switch", "encoder_diagnosis",
+      "spindle_fault",     "spindle_temperature", "spindle_frequency",    "scu_error",
+      "link_silent",       "operator_stop",       "emergency_stop"};
   return names[static_cast<std::size_t>(r)];
 }
 

@@ -55,7 +55,8 @@ bool CellDevices::all_inactive() const noexcept {
 void CellDevices::read(link::TimePoint now, cell::CellState& out) {
   out.now = now;
   out.axis_count = static_cast<std::uint8_t>(cell_.axes.size());
-  for (auto& l : out.links) l = {.active = true, .fault = false, .silent_for = {}};  // absent devices: no rule
+  for (auto& l : out.links)
+    l = {.active = true, .fault = false, .silent_for = {}};  // absent devices: no rule
   for (std::size_t d = 0; d < cell::kDevices; ++d)
     if (sessions_[d]) out.links[d] = link_state(*sessions_[d], now);
 

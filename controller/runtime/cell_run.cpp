@@ -151,7 +151,8 @@ void CellRun::report_devices(double t, RunResult& r) {
   static constexpr const char* kNames[cell::kDevices] = {"SCU", "spindle", "encoder"};
   for (std::size_t d = 0; d < cell::kDevices; ++d) {
     const auto* s = devices_->sessions()[d];
-    if (s && s->lifecycle() == link::Lifecycle::fault) note(std::string(kNames[d]) + ": " + s->fault_reason());
+    if (s && s->lifecycle() == link::Lifecycle::fault)
+      note(std::string(kNames[d]) + ": " + s->fault_reason());
   }
   if (auto* sp = devices_->spindle(); sp && sp->snapshot().start_refused)
     note("spindle: " + sp->snapshot().start_refused_reason);

@@ -69,7 +69,8 @@ spindle::EmulatorConfig parse_spindle_emulator(const YamlNode& section) {
 
 // The emulated encoder is the one the session expects unless the `emulator:` block says otherwise.
 // Its functionality is not set here: the emulator takes the one the master's Set_Prm/Chk_Cfg choose.
-encoder::EmulatorConfig parse_encoder_emulator(const YamlNode& section, const encoder::SessionConfig& session) {
+encoder::EmulatorConfig parse_encoder_emulator(const YamlNode& section,
+                                               const encoder::SessionConfig& session) {
   const auto block = section.maybe("emulator");
   encoder::EmulatorConfig c;
   c.address = session.station_address;

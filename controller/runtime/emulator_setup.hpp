@@ -35,7 +35,8 @@ struct EmulatorSetup {
 [[nodiscard]] spindle::EmulatorConfig parse_spindle_emulator(const config::YamlNode& spindle_section);
 [[nodiscard]] encoder::EmulatorConfig parse_encoder_emulator(const config::YamlNode& encoder_section,
                                                              const encoder::SessionConfig& session);
-[[nodiscard]] EmulatorSetup parse_emulator_setup(const config::YamlNode& root, const config::CellConfig& cell);
+[[nodiscard]] EmulatorSetup parse_emulator_setup(const config::YamlNode& root,
+                                                 const config::CellConfig& cell);
 // From the file the cell was loaded from (cell.source).
 [[nodiscard]] EmulatorSetup load_emulator_setup(const config::CellConfig& cell);
 

@@ -205,8 +205,10 @@ void Session::on_reply(link::TimePoint now, const Message& m) {
     on_statusout(*s);
     status_at_ = now;
     snapshot_.status_age = link::Duration::zero();
-    if (!s->at_speed()) at_speed_since_.reset();
-    else if (!at_speed_since_) at_speed_since_ = now;
+    if (!s->at_speed())
+      at_speed_since_.reset();
+    else if (!at_speed_since_)
+      at_speed_since_ = now;
     if (!at_speed_since_) snapshot_.settled = false;
   }
   if (const auto* v = std::get_if<StatusValues>(&m)) {

@@ -42,10 +42,10 @@ struct Snapshot {
   double requested_frequency_hz = 0.0;
   Direction direction = Direction::clockwise;
   // From statusout (0x60).
-  bool status_valid = false;  // at least one statusout since activation
+  bool status_valid = false;    // at least one statusout since activation
   link::Duration status_age{};  // since the last statusout (or activation), as of receive()
-  bool at_speed = false;      // N_Soll_OK
-  bool at_rest = true;        // STILLSTAND
+  bool at_speed = false;        // N_Soll_OK
+  bool at_rest = true;          // STILLSTAND
   DeviceState state = DeviceState::none;
   std::uint8_t error_number = 0;  // the warning's or fault's number, 0 with none
   bool current_limit = false;     // WARNSTROM

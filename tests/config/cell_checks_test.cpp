@@ -6,11 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "support/expect_config_error.hpp"
-
 #include <string>
 
 #include "config/cell_config.hpp"
+#include "support/expect_config_error.hpp"
 
 namespace cellctl::config {
 namespace {

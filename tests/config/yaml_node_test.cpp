@@ -22,11 +22,12 @@ TEST(YamlNode, ReadsTypedValues) {
 TEST(YamlNode, ErrorsNameFileLineColumnFieldAndRule) {
   auto root = YamlNode::load_string("scu:\n  baud: fast\n  actuators:\n    - stroke_mm: -5\n", "cell.yaml");
   expect_config_error([&] { (void)root.at("scu").at("baud").as_integer(); },
-               "cell.yaml:2:9: scu.baud: expected a whole number, got 'fast'");
-  expect_config_error([&] { (void)root.at("scu").at("actuators").items()[0].double_in("stroke_mm", 1, 1000); },
-               "cell.yaml:4:18: scu.actuators[0].stroke_mm: -5 is out of range [1, 1000]");
+                      "cell.yaml:2:9: scu.baud: expected a whole number, got 'fast'");
+  expect_config_error(
+      [&] { (void)root.at("scu").at("actuators").items()[0].double_in("stroke_mm", 1, 1000); },
+      "cell.yaml:4:18: scu.actuators[0].stroke_mm: -5 is out of range [1, 1000]");
   expect_config_error([&] { (void)root.at("scu").at("speed"); },
-               "cell.yaml:2:3: scu: missing required field 'speed'");
+                      "cell.yaml:2:3: scu: missing required field 'speed'");
 }
 
 TEST(YamlNode, MillisecondsAreWholeNumbersInRange) {
@@ -35,16 +36,16 @@ TEST(YamlNode, MillisecondsAreWholeNumbersInRange) {
   EXPECT_EQ(root.milliseconds_or("timeout_ms", 10, 2000, milliseconds(7)), milliseconds(250));
   EXPECT_EQ(root.milliseconds_or("missing_ms", 10, 2000, milliseconds(7)), milliseconds(7));
   expect_config_error([&] { (void)root.milliseconds_or("bad_ms", 10, 2000, milliseconds(7)); },
-               "t.yaml:2:9: bad_ms: 5000 is out of range [10, 2000]");
+                      "t.yaml:2:9: bad_ms: 5000 is out of range [10, 2000]");
   expect_config_error([&] { (void)root.milliseconds_or("frac_ms", 10, 2000, milliseconds(7)); },
-               "t.yaml:3:10: frac_ms: expected a whole number, got '1.5'");
+                      "t.yaml:3:10: frac_ms: expected a whole number, got '1.5'");
 }
 
 TEST(YamlNode, SmallIntegersAreNumbersNotCharacters) {
   auto root = YamlNode::load_string("id: 300\nok: 7\n", "t.yaml");
   EXPECT_EQ(root.at("ok").as_int<std::uint8_t>(), 7);
   expect_config_error([&] { (void)root.at("id").as_int<std::uint8_t>(); },
-               "t.yaml:1:5: id: 300 is out of range [0, 255]");
+                      "t.yaml:1:5: id: 300 is out of range [0, 255]");
 }
 
 TEST(YamlNode, UnknownKeysAreRejectedWithASuggestion) {
@@ -66,7 +67,7 @@ TEST(YamlNode, ChoicesAndParseErrors) {
       },
       "p.yaml:1:9: parity: 'mark' is not one of: none, even, odd");
   expect_config_error([] { (void)YamlNode::load_string("a: [1, 2\n", "bad.yaml"); },
-               "bad.yaml:2:1: invalid YAML: end of sequence flow not found");
+                      "bad.yaml:2:1: invalid YAML: end of sequence flow not found");
 }
 
 TEST(YamlNode, EmptyValueIsNamed) {

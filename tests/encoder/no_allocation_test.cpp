@@ -1,5 +1,5 @@
-// The session's receive() and transmit() allocate nothing after construction — data exchange, a lost slave with its
-// restart during a handshake, and the start-up refusals whose reasons are composed in the cycle.
+// The session's receive() and transmit() allocate nothing after construction — data exchange, a lost slave
+// with its restart during a handshake, and the start-up refusals whose reasons are composed in the cycle.
 
 #include <gtest/gtest.h>
 

@@ -99,9 +99,8 @@ TEST_F(Boundary, AnEmergencyStopDecidedInCycleKIsOnTheScuLineInCycleK) {
   ASSERT_TRUE(cycle_until([&] { return state_.axes[0].moving; }));
 
   scu::RequestBytes f20;
-  ASSERT_TRUE(scu::encode_request(scu::ExecuteRequest{scu::kEmergencyStopFnc, scu::kUnusedParam,
-                                                      scu::kUnusedParam},
-                                  f20));
+  ASSERT_TRUE(scu::encode_request(
+      scu::ExecuteRequest{scu::kEmergencyStopFnc, scu::kUnusedParam, scu::kUnusedParam}, f20));
   // The first cycle whose receive() left the line free decides the stop.
   auto* scu = devices_.scu();
   bool decided = false;

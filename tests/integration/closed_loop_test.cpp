@@ -75,15 +75,7 @@ TEST_F(ClosedLoop, NoMotionIsFoundWellBeforeTheMoveTimeOut) {
   // The monitor's following-error rule would stop the cell first (following_error_test): loosened
   // here, so that the supervisor's own no-motion check is what is tested.
   cell_.axes[0].ferror_mm = cell_.axes[0].min_ferror_mm = 100.0;
-  load_recipe_text(R"(
-recipe: {name: slow, version: "1", cell: demo-cell}
-limits:
-  axes:
-    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
-  timeouts: {move_s: 30}
-steps:
-  - {name: creep, move: {to: {x: 30}, speed_mm_s: 3}}
-)");
+  load_recipe_text(kCreepRecipe);
   const auto r = run_with([](double, runtime::CellRun&) { return true; });
   EXPECT_EQ(r.final_state, State::stopped) << r.summary_text;
   const auto started = events("step_started");

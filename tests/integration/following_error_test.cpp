@@ -44,15 +44,7 @@ TEST_F(FollowingError, TheDemoStaysWellInsideItsAllowance) {
 TEST_F(FollowingError, AStalledAxisLatchesFollowingErrorLongBeforeNoMotion) {
   // x's real threshold is 5 mm/s; moved at 3 mm/s it does not move at all.
   emulators().scu->actuators[0].physics.min_speed_mm_s = 5.0;
-  load_recipe_text(R"(
-recipe: {name: slow, version: "1", cell: demo-cell}
-limits:
-  axes:
-    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
-  timeouts: {move_s: 30}
-steps:
-  - {name: creep, move: {to: {x: 30}, speed_mm_s: 3}}
-)");
+  load_recipe_text(kCreepRecipe);
   const auto r = run_with([](double, runtime::CellRun&) { return true; });
   const auto f = fault("following_error");
   ASSERT_FALSE(f.is_null()) << r.summary_text;

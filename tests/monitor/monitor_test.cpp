@@ -21,8 +21,8 @@ limits: {overspeed_mm_s: 25, disagreement_mm: 2, link_silence_ms: 300, spindle_m
          spindle_tolerance_hz: 5}
 stops: {fault: 1, link: 0, operator: 2, following_error: 2}
 )",
-                                                                 "cell.yaml"),
-                                   "cell.yaml");
+                                                               "cell.yaml"),
+                                 "cell.yaml");
 }
 
 cell::CellState healthy() {
@@ -130,7 +130,8 @@ TEST_F(MonitorTest, SpindleOffItsSetPointAtSpeed) {
 TEST_F(MonitorTest, ScuErrorBitsAreNamed) {
   auto s = healthy();
   // As the SCU session types bit 22 (remote communication time-out).
-  s.scu_errors = {.word = 1u << 21, .first_bit = 22, .first_cause = "remote communication time-out (watchdog)"};
+  s.scu_errors = {
+      .word = 1u << 21, .first_bit = 22, .first_cause = "remote communication time-out (watchdog)"};
   expect_only(s, Rule::scu_error, StopCategory::controlled_off);
   const auto detail = std::string(m.latch(Rule::scu_error).detail.view());
   EXPECT_NE(detail.find("SCU error bit 22"), std::string::npos) << detail;
@@ -191,8 +192,13 @@ namespace {
 cell::Intents planned(std::size_t i, double planned_mm, double mm_s, cell::Halt halt = cell::Halt::none) {
   cell::Intents in;
   in.halt = halt;
-  in.axes[i] = {.move_id = 1, .move = true, .target_mm = 50.0, .speed_mm_s = mm_s, .soft = true,
-                .planned_mm = planned_mm, .planned_mm_s = mm_s};
+  in.axes[i] = {.move_id = 1,
+                .move = true,
+                .target_mm = 50.0,
+                .speed_mm_s = mm_s,
+                .soft = true,
+                .planned_mm = planned_mm,
+                .planned_mm_s = mm_s};
   return in;
 }
 
@@ -208,7 +214,8 @@ TEST_F(MonitorTest, FollowingErrorAllowanceGrowsWithThePlannedSpeed) {
   m.expect_axes(planned(0, 12.2, 10.0));
   expect_only(s, Rule::following_error, StopCategory::controlled_hold);  // stops.following_error: 2
   const auto detail = std::string(m.latch(Rule::following_error).detail.view());
-  EXPECT_NE(detail.find("following error 2.10 mm > 2.00 mm allowed at 10.0 mm/s"), std::string::npos) << detail;
+  EXPECT_NE(detail.find("following error 2.10 mm > 2.00 mm allowed at 10.0 mm/s"), std::string::npos)
+      << detail;
 }
 
 TEST_F(MonitorTest, FollowingErrorAtRestIsHeldToTheMinimum) {

@@ -1,5 +1,5 @@
-// receive() and transmit() allocate nothing after construction — cyclic refresh, a move, and the link fault with its
-// reason composed at the moment it happens — on session and emulator both.
+// receive() and transmit() allocate nothing after construction — cyclic refresh, a move, and the link fault
+// with its reason composed at the moment it happens — on session and emulator both.
 
 #include <gtest/gtest.h>
 

@@ -42,7 +42,8 @@ struct Rig {
   }
   bool activate() {
     session.activate(clock.now());
-    return run_until(std::chrono::seconds(1), [this] { return session.lifecycle() == link::Lifecycle::active; });
+    return run_until(std::chrono::seconds(1),
+                     [this] { return session.lifecycle() == link::Lifecycle::active; });
   }
 
   link::VirtualClock clock;

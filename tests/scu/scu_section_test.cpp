@@ -5,10 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "support/expect_config_error.hpp"
-
 #include "config/cell_config.hpp"
 #include "runtime/emulator_setup.hpp"
+#include "support/expect_config_error.hpp"
 
 namespace cellctl::config {
 namespace {

@@ -5,9 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "support/expect_config_error.hpp"
-
 #include "runtime/emulator_setup.hpp"
+#include "support/expect_config_error.hpp"
 
 namespace cellctl::config {
 namespace {
@@ -86,22 +85,23 @@ TEST(SpindleSection, ReadsEveryKey) {
 
 TEST(SpindleSection, RejectsMalformedInputWithItsPosition) {
   expect_config_error([] { (void)parse("spindle:\n  retrys: 3\n"); },
-               "cell.yaml:2:3: spindle.retrys: unknown field (did you mean 'retries'?)");
+                      "cell.yaml:2:3: spindle.retrys: unknown field (did you mean 'retries'?)");
   expect_config_error([] { (void)parse("spindle:\n  status_poll_ms: 1\n"); },
-               "cell.yaml:2:19: spindle.status_poll_ms: 1 is out of range [5, 5000]");
+                      "cell.yaml:2:19: spindle.status_poll_ms: 1 is out of range [5, 5000]");
   expect_config_error([] { (void)parse("spindle:\n  reply_timeout_ms: soon\n"); },
-               "cell.yaml:2:21: spindle.reply_timeout_ms: expected a whole number, got 'soon'");
+                      "cell.yaml:2:21: spindle.reply_timeout_ms: expected a whole number, got 'soon'");
   expect_config_error([] { (void)parse("spindle:\n  reply_timeout_ms: 500\n  link_fault_after_ms: 400\n"); },
-               "cell.yaml:3:24: spindle.link_fault_after_ms: link_fault_after_ms must be longer than "
-               "reply_timeout_ms");
+                      "cell.yaml:3:24: spindle.link_fault_after_ms: link_fault_after_ms must be longer than "
+                      "reply_timeout_ms");
   expect_config_error([] { (void)emulator_of("spindle:\n  emulator:\n    min_hz: 500\n    max_hz: 400\n"); },
-               "cell.yaml:4:13: spindle.emulator.max_hz: max_hz must be above min_hz");
+                      "cell.yaml:4:13: spindle.emulator.max_hz: max_hz must be above min_hz");
   expect_config_error([] { (void)emulator_of("spindle:\n  emulator:\n    motor_code: 17\n"); },
-               "cell.yaml:3:17: spindle.emulator.motor_code: 17 is out of range [0, 16]");
-  expect_config_error([] { (void)emulator_of("spindle:\n  emulator:\n    ramp_up_hz: 400\n"); },
-               "cell.yaml:3:5: spindle.emulator.ramp_up_hz: unknown field (did you mean 'ramp_up_hz_s'?)");
+                      "cell.yaml:3:17: spindle.emulator.motor_code: 17 is out of range [0, 16]");
+  expect_config_error(
+      [] { (void)emulator_of("spindle:\n  emulator:\n    ramp_up_hz: 400\n"); },
+      "cell.yaml:3:5: spindle.emulator.ramp_up_hz: unknown field (did you mean 'ramp_up_hz_s'?)");
   expect_config_error([] { (void)parse("spindle:\n  parity: mark\n"); },
-               "cell.yaml:2:11: spindle.parity: 'mark' is not one of: none, even, odd");
+                      "cell.yaml:2:11: spindle.parity: 'mark' is not one of: none, even, odd");
 }
 
 TEST(SpindleSection, TheDefaultCellsSectionParses) {
