@@ -114,13 +114,15 @@ class ScratchDir {
 
 struct Setup {
   config::CellConfig cell;
+  runtime::EmulatorSetup emulators;
   recipe::Recipe recipe;
 };
 
 Setup load(const ScratchDir& dir) {
   Setup s;
   s.cell = config::load_cell_config(g_options.cell);
-  if (s.cell.encoder) s.cell.encoder->emulator.state_file = dir.path() / "encoder.eeprom";
+  s.emulators = runtime::load_emulator_setup(s.cell);
+  if (s.emulators.encoder) s.emulators.encoder->state_file = dir.path() / "encoder.eeprom";
   s.cell.loop.realtime = g_options.fifo && s.cell.loop.realtime;
   s.recipe = recipe::load_recipe(g_options.recipe, s.cell);
   return s;
@@ -187,6 +189,7 @@ void BM_CellFaultReaction(benchmark::State& state) {
   const ScratchDir dir("fault");
   Setup setup = load(dir);
   runtime::RunOptions o;
+  o.emulators = setup.emulators;
   o.mode = runtime::RunMode::virtual_time;
   o.journal_dir = dir.path() / "journal";
   runtime::RunResult result;
@@ -266,6 +269,7 @@ void BM_CellVirtualTime(benchmark::State& state) {
   const ScratchDir dir("virtual");
   Setup setup = load(dir);
   runtime::RunOptions o;
+  o.emulators = setup.emulators;
   o.mode = runtime::RunMode::virtual_time;
   o.journal_dir = dir.path() / "journal";
   runtime::RunResult result;
@@ -311,6 +315,7 @@ void BM_CellRealTime(benchmark::State& state) {
   const ScratchDir dir("realtime");
   Setup setup = load(dir);
   runtime::RunOptions o;
+  o.emulators = setup.emulators;
   o.mode = runtime::RunMode::emulated;
   o.journal_dir = dir.path() / "journal";
   runtime::RunResult result;

@@ -61,7 +61,9 @@ void BM_EncoderDataExchangeOverSimLink(benchmark::State& state) {
   auto step = [&] {
     const auto t = clock.now();
     const auto c0 = std::chrono::steady_clock::now();
-    lifecycle = session.poll(t);
+    session.receive(t);
+    session.transmit(t);
+    lifecycle = session.lifecycle();
     master_cpu += std::chrono::steady_clock::now() - c0;
     emulator.poll(t);
     link::TimePoint next = t + std::chrono::milliseconds(1);

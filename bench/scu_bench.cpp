@@ -40,12 +40,13 @@ void BM_AllActuatorRefreshRate(benchmark::State& state) {
     scu::Session session(sim.master(), back_to_back(actuators));
     const auto step = [&] {
       emulator.poll(clock.now());
-      (void)session.poll(clock.now());
+      session.receive(clock.now());
+      session.transmit(clock.now());
       // Jump to the next byte on the wire; a small step when the line is idle.
       clock.advance_to(sim.next_delivery().value_or(clock.now() + 50us));
     };
     session.activate(clock.now());
-    while (session.state() != link::Lifecycle::active) step();
+    while (session.lifecycle() != link::Lifecycle::active) step();
     const auto start = clock.now();
     const auto first = session.snapshot().refreshes;
     while (clock.now() - start < 10s) step();

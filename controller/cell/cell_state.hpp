@@ -1,7 +1,8 @@
 #pragma once
 // CellState: the one snapshot of the whole cell that the monitor and the supervisor read each cycle,
-// in the program's units (mm, mm/s, Hz, s). Built from the three sessions' snapshots by CellDevices;
-// plain data, so the monitor and supervisor can be tested on states made by hand.
+// in the program's units (mm, mm/s, Hz, s) with typed flags. Composed by runtime::CellDevices from the
+// three sessions' snapshots, which did the decoding; plain data, so the monitor and supervisor can be
+// tested on states made by hand.
 
 #include <array>
 #include <cstdint>
@@ -14,15 +15,15 @@ namespace cellctl::cell {
 inline constexpr std::size_t kMaxAxes = 6;
 
 struct AxisState {
-  bool present = false;       // the SCU reports the actuator
-  double scu_mm = 0.0;        // the SCU's own position (its edges ÷ edges_per_mm)
-  bool moving = false;        // SCU status 1: motion active (as of the last RC reply: it lags a command)
-  bool commanded = false;     // a move is queued for the SCU or its RE is still open
-  bool move_refused = false;  // the SCU answered an error to the last move's telegrams
-  bool homed = false;         // SCU status 2: initialised
-  bool actuator_fault = false;
-  bool measured = false;    // the encoder measures this axis
-  double encoder_mm = 0.0;  // valid when measured and the encoder is in data exchange
+  bool present = false;         // the SCU reports the actuator
+  double scu_mm = 0.0;          // the SCU's own position
+  bool moving = false;          // SCU status 1: motion active (as of the last RC reply: it lags a command)
+  bool commanded = false;       // a move is queued for the SCU or its RE is still open
+  bool move_refused = false;    // the SCU answered an error to the last move's telegrams
+  bool homed = false;           // SCU status 2: initialised
+  bool actuator_fault = false;  // the SCU's error word names this actuator
+  bool measured = false;        // the encoder measures this axis
+  double encoder_mm = 0.0;      // valid when measured and the encoder is in data exchange
   double encoder_mm_s = 0.0;
 
   // The best position there is: the encoder's where it measures the axis, else the SCU's.
@@ -71,6 +72,14 @@ struct LinkState {
   link::Duration silent_for{};  // since the last good reply
 };
 
+// The SCU's error word as the session typed it: the raw word for the record, the first cause named.
+struct ScuErrors {
+  std::uint32_t word = 0;        // error code 1, bits numbered from 1 = LSB
+  int first_bit = 0;             // the lowest bit set, 0 with none
+  std::string_view first_cause;  // the manual's cause for it (static text)
+  [[nodiscard]] bool any() const noexcept { return word != 0; }
+};
+
 struct CellState {
   link::TimePoint now{};
   std::uint8_t axis_count = 0;
@@ -78,7 +87,7 @@ struct CellState {
   EncoderState encoder;
   SpindleState spindle;
   std::array<LinkState, kDevices> links{};
-  std::uint32_t scu_error_word = 0;   // error code 1, bits numbered from 1 = LSB
+  ScuErrors scu_errors;
   link::Duration scu_position_age{};  // since the SCU's positions arrived (its RC reply, every keep-alive)
   bool scu_remote = false;            // remote mode open (RO done, RC running)
   bool scu_status2_known = false;     // actuator status 2 (homed) has been read since activation

@@ -16,6 +16,10 @@ struct AxisIntent {
   double target_mm = 0.0;     // in the SCU's frame (corrections included)
   double speed_mm_s = 0.0;    // may change during the move (speed modulation)
   bool soft = true;           // ramps on start and stop
+  // Where the profile says the axis should be now, and how fast: the monitor's following-error rule
+  // holds the measured position to it while `move` is set.
+  double planned_mm = 0.0;
+  double planned_mm_s = 0.0;
 };
 
 struct SpindleIntent {

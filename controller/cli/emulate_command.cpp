@@ -42,7 +42,8 @@ int run_emulate(const GlobalOptions& global) {
   if (cell.scu) publish("scu", cell.scu->port, links.scu);
   if (cell.spindle) publish("spindle", cell.spindle->port, links.spindle);
   if (cell.encoder) publish("encoder", cell.encoder->port, links.encoder);
-  runtime::EmulatedCell emulated(cell, links);
+  const auto setup = runtime::load_emulator_setup(cell);
+  runtime::EmulatedCell emulated(cell, setup, links);
   fmt::print("Ctrl-C ends the emulation.\n");
   std::fflush(stdout);
 

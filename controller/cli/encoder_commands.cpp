@@ -9,9 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "cli/device_group.hpp"
-#include "cli/device_link.hpp"
-#include "cli/drive.hpp"
+#include "cli/commissioning.hpp"
 #include "cli/exit_codes.hpp"
 #include "config/cell_config.hpp"
 #include "encoder/session.hpp"
@@ -39,8 +37,9 @@ std::string bits_text(std::uint16_t bits,
 
 void print_status(const encoder::Session& session) {
   const auto& s = session.snapshot();
-  fmt::print("bus            {} ({}), {} exchanges, last input {:.1f} ms ago\n", to_string(s.lifecycle),
-             profibus::to_string(s.dp_state), s.exchanges, link::to_seconds(s.input_age) * 1e3);
+  fmt::print("bus            {} ({}), {} exchanges, last input {:.1f} ms ago\n",
+             link::to_string(session.lifecycle()), profibus::to_string(s.dp_state), s.exchanges,
+             link::to_seconds(s.input_age) * 1e3);
   fmt::print("position       {} counts = {:.3f} mm\n", s.position_counts, s.position_mm);
   const auto f = session.config().parameters.functionality;
   if (f == encoder::Functionality::scancon22 || f == encoder::Functionality::scancon30)
@@ -112,13 +111,12 @@ bool enter_pressed() {
   return ::read(STDIN_FILENO, buf, sizeof buf) >= 0;
 }
 
-class Commissioning {
+class EncoderCommissioning {
  public:
-  Commissioning(const GlobalOptions& global, const EncoderOptions& options,
-                const config::EncoderSection& section, Action action)
+  EncoderCommissioning(const GlobalOptions& global, const EncoderOptions& options,
+                       const config::EncoderSection& section, Action action)
       : options_(options),
-        device_(section.port, options.port, "encoder", clock_, global.trace),
-        session_(device_.link(), with_station(section.session, action)) {}
+        c_(global, options, section.port, "encoder", with_station(section.session, action)) {}
 
   int run(Action action) {
     // A preset beyond this encoder's scaling is a bad argument (manual 4.3.2): refused before the bus.
@@ -126,7 +124,7 @@ class Commissioning {
       spdlog::error("preset {}: must be 0 … {} (the total measuring range − 1)", options_.value, range - 1);
       return kExitUsage;
     }
-    session_.activate(clock_.now());
+    c_.activate();
     if (action == Action::set_address) return set_address();
     if (!drive([&] { return snapshot().data_exchange && snapshot().exchanges > 2; }))
       return failed_to("exchange data");
@@ -146,7 +144,7 @@ class Commissioning {
       default:
         break;
     }
-    (void)drive_for(20ms);
+    (void)c_.drive_for(20ms);
     print_status(session_);
     if (action == Action::diag) print_diag(snapshot());
     return kExitOk;
@@ -158,7 +156,11 @@ class Commissioning {
     if (action == Action::set_address) c.station_address = 126;
     return c;
   }
-  const encoder::Snapshot& snapshot() const { return session_.snapshot(); }
+  const encoder::Snapshot& snapshot() const { return c_.snapshot(); }
+  template <class Done>
+  bool drive(Done&& done, link::Duration timeout = link::Duration::zero()) {
+    return c_.drive(std::forward<Done>(done), timeout);
+  }
 
   int set_address() {
     if (!session_.set_slave_address(static_cast<std::uint8_t>(options_.value)))
@@ -200,43 +202,23 @@ class Commissioning {
     return true;
   }
 
-  template <class Done>
-  bool drive(Done&& done, link::Duration timeout = link::Duration::zero()) {
-    if (timeout == link::Duration::zero()) timeout = options_.timeout();
-    return drive_until(
-               clock_, timeout, [&](auto now) { state_ = session_.poll(now); },
-               [&] { return state_ == link::Lifecycle::fault || done(); }) &&
-           state_ != link::Lifecycle::fault;
-  }
-  bool drive_for(link::Duration span) {
-    const auto until = clock_.now() + span;
-    return drive([&] { return clock_.now() >= until; });
-  }
-
   // The session's state or the configured parameters stand in the way, not the command line.
-  int refuse(const char* what) {
-    spdlog::error("the encoder session would not {}", what);
-    return kExitFailed;
-  }
+  int refuse(const char* what) const { return c_.refuse(what); }
 
-  int failed_to(const char* what) {
-    if (g_interrupted.load()) return kExitInterrupted;
-    if (state_ == link::Lifecycle::fault) {
-      spdlog::error("encoder on {}: {}", device_.path(), session_.fault_reason());
-      return snapshot().startup_fault != profibus::StartupFault::Kind::none || snapshot().local_prm_violation
-                 ? kExitFailed
-                 : kExitLink;
-    }
-    spdlog::error("encoder on {} did not {} within {} s", device_.path(), what, options_.timeout_s);
-    if (snapshot().command.phase == encoder::Handshake::Phase::failed) return kExitFailed;
-    return snapshot().data_exchange ? kExitFailed : kExitLink;
+  int failed_to(const char* what) const {
+    // A start-up the encoder refused (or the parameters refused here) is a failure, not a lost link; a
+    // time-out without data exchange is one.
+    const bool refused =
+        snapshot().startup_fault != profibus::StartupFault::Kind::none || snapshot().local_prm_violation;
+    const bool timed_out_exchanging =
+        snapshot().data_exchange || snapshot().command.phase == encoder::Handshake::Phase::failed;
+    const int code = c_.failed_to(what, timed_out_exchanging ? kExitFailed : kExitLink);
+    return code == kExitLink && c_.faulted() && refused ? kExitFailed : code;
   }
 
   const EncoderOptions& options_;
-  link::MonotonicClock clock_;
-  DeviceLink device_;
-  encoder::Session session_;
-  link::Lifecycle state_ = link::Lifecycle::inactive;
+  Commissioning<encoder::Session> c_;
+  encoder::Session& session_ = c_.session();
 };
 
 int run_encoder(const GlobalOptions& global, const EncoderOptions& options, Action action) {
@@ -245,7 +227,7 @@ int run_encoder(const GlobalOptions& global, const EncoderOptions& options, Acti
     spdlog::error("{} has no encoder: section (the parameters and scaling come from there)", global.config);
     return kExitConfig;
   }
-  Commissioning commissioning(global, options, *cell.encoder, action);
+  EncoderCommissioning commissioning(global, options, *cell.encoder, action);
   return commissioning.run(action);
 }
 

@@ -7,9 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "cli/device_group.hpp"
-#include "cli/device_link.hpp"
-#include "cli/drive.hpp"
+#include "cli/commissioning.hpp"
 #include "cli/exit_codes.hpp"
 #include "config/cell_config.hpp"
 #include "scu/session.hpp"
@@ -23,8 +21,8 @@ struct ScuOptions : DeviceOptions {
   ScuOptions() { timeout_s = 60.0; }
   int function = 1;
   int actuator = 1;
-  std::int32_t position_edges = 0;
-  int speed = 50;
+  double position_mm = 0.0;
+  double speed_mm_s = 5.0;
   bool fast = false;
 };
 
@@ -33,12 +31,12 @@ void print_snapshot(const scu::Snapshot& s) {
     const auto& a = s.actuators[i];
     if (!a.configured) continue;
     const auto& st = a.status;
-    fmt::print("actuator {}     {} edges, {}{}{}{}\n", i + 1, a.position_edges,
+    fmt::print("actuator {}     {:.2f} mm ({} edges), {}{}{}{}{}\n", i + 1, a.position_mm, a.position_edges,
                !st.present        ? "NOT PRESENT"
                : st.motion_active ? "moving"
                                   : "at rest",
                st.in_position ? ", in position reached" : "", st.out_position ? ", out position reached" : "",
-               st.limit_signal ? ", limit signal" : "");
+               st.limit_signal ? ", limit signal" : "", a.initialised ? ", initialised" : "");
   }
   if (!s.errors.any()) {
     fmt::print("errors         none\n");
@@ -55,16 +53,15 @@ void print_snapshot(const scu::Snapshot& s) {
   }
 }
 
-class Commissioning {
+class ScuCommissioning {
  public:
-  Commissioning(const GlobalOptions& global, const ScuOptions& options, const config::ScuSection& section)
-      : options_(options),
-        device_(section.port, options.port, "scu", clock_, global.trace),
-        session_(device_.link(), section.session) {}
+  ScuCommissioning(const GlobalOptions& global, const ScuOptions& options, const config::ScuSection& section)
+      : options_(options), c_(global, options, section.port, "SCU", section.session) {}
 
   int run(Action action) {
-    session_.activate(clock_.now());
-    if (!drive([&] { return state_ == link::Lifecycle::active; })) return failed_to("open remote mode");
+    c_.activate();
+    if (!c_.drive([&] { return c_.session().lifecycle() == link::Lifecycle::active; }))
+      return c_.failed_to("open remote mode");
     int code = kExitOk;
     switch (action) {
       case Action::status:
@@ -73,86 +70,59 @@ class Commissioning {
         code = move();
         break;
       case Action::stop:
-        if (!session_.stop(options_.function, !options_.fast)) {
+        if (!c_.session().stop(options_.function, !options_.fast)) {
           spdlog::error("F{} is not a function of this SCU: check scu.functions in the cell config",
                         options_.function);
           code = kExitFailed;
         }
         break;
     }
-    if (code == kExitOk) print_snapshot(session_.snapshot());
+    if (code == kExitOk) print_snapshot(c_.snapshot());
     return close(code);
   }
 
  private:
   int move() {
-    const scu::ActuatorTarget target[] = {{options_.actuator, options_.position_edges}};
-    if (!session_.move_to(options_.function, target, static_cast<std::uint16_t>(options_.speed),
-                          !options_.fast)) {
+    const scu::ActuatorTarget target[] = {{options_.actuator, options_.position_mm}};
+    if (!c_.session().move_to(options_.function, target, options_.speed_mm_s, !options_.fast)) {
       spdlog::error(
           "move refused: F{} must be a configured function that moves exactly actuator {} "
-          "(see scu.functions in the cell config), speed 0..100 %",
+          "(see scu.functions in the cell config), speed above 0",
           options_.function, options_.actuator);
       return kExitFailed;
     }
-    const auto& f = session_.snapshot().functions[static_cast<std::size_t>(options_.function - 1)];
+    const auto& f = c_.snapshot().functions[static_cast<std::size_t>(options_.function - 1)];
     // Waits for the motion to end and its RS to be acknowledged.
-    const bool ended = drive([&] {
+    const bool ended = c_.drive([&] {
       return f.outcome != scu::MoveOutcome::queued && f.outcome != scu::MoveOutcome::running &&
              !f.execution_open;
     });
-    if (!ended) return failed_to("finish the move");
+    if (!ended) return c_.failed_to("finish the move (raise --timeout for long strokes)");
     if (f.outcome == scu::MoveOutcome::arrived) return kExitOk;
     spdlog::error(
-        "F{} {} (actuator {} at {} edges, target {}): check the error word below; a speed below the "
-        "actuator's minimum does not move it — try a higher --speed",
+        "F{} {} (actuator {} at {:.2f} mm, target {:.2f} mm): check the error word below; a speed below "
+        "the actuator's minimum does not move it — try a higher --speed-mm-s",
         options_.function, scu::to_string(f.outcome), options_.actuator,
-        session_.snapshot().actuators[static_cast<std::size_t>(options_.actuator - 1)].position_edges,
-        options_.position_edges);
-    print_snapshot(session_.snapshot());
+        c_.snapshot().actuators[static_cast<std::size_t>(options_.actuator - 1)].position_mm,
+        options_.position_mm);
+    print_snapshot(c_.snapshot());
     return kExitFailed;
   }
 
   // Leaves remote mode in order (RS for open REs, then RA), also after Ctrl-C.
   int close(int code) {
-    const bool interrupted = g_interrupted.load();
-    g_interrupted.store(false);  // the orderly shutdown must be driven even after Ctrl-C
-    session_.deactivate(clock_.now());
-    const bool closed = drive([&] { return state_ == link::Lifecycle::inactive; });
-    if (interrupted) {
+    bool closed = false;
+    if (c_.shut_down(closed)) {
       spdlog::warn("interrupted; SCU remote mode {}",
                    closed ? "closed, motion stopped" : "NOT confirmed closed");
       return kExitInterrupted;
     }
-    if (!closed && code == kExitOk) return failed_to("leave remote mode");
+    if (!closed && code == kExitOk) return c_.failed_to("leave remote mode");
     return code;
   }
 
-  template <class Done>
-  bool drive(Done&& done) {
-    const auto timeout = options_.timeout();
-    return drive_until(
-               clock_, timeout, [&](auto now) { state_ = session_.poll(now); },
-               [&] { return state_ == link::Lifecycle::fault || done(); }) &&
-           state_ != link::Lifecycle::fault;
-  }
-
-  int failed_to(const char* what) {
-    if (state_ == link::Lifecycle::fault) {
-      spdlog::error("SCU on {}: {}", device_.path(), session_.fault_reason());
-      return kExitLink;
-    }
-    if (g_interrupted.load()) return kExitInterrupted;
-    spdlog::error("SCU on {} did not {} within {} s: raise --timeout for long strokes, or check the SCU",
-                  device_.path(), what, options_.timeout_s);
-    return kExitFailed;
-  }
-
   const ScuOptions& options_;
-  link::MonotonicClock clock_;
-  DeviceLink device_;
-  scu::Session session_;
-  link::Lifecycle state_ = link::Lifecycle::inactive;
+  Commissioning<scu::Session> c_;
 };
 
 int run_scu(const GlobalOptions& global, const ScuOptions& options, Action action) {
@@ -161,7 +131,7 @@ int run_scu(const GlobalOptions& global, const ScuOptions& options, Action actio
     spdlog::error("{} has no scu: section; add one (port, actuators, functions)", global.config);
     return kExitConfig;
   }
-  Commissioning commissioning(global, options, *cell.scu);
+  ScuCommissioning commissioning(global, options, *cell.scu);
   return commissioning.run(action);
 }
 
@@ -179,17 +149,20 @@ void add_scu_commands(CLI::App& app, Commands& commands) {
     return sub;
   };
   add("status", "Print positions, actuator status and the error word", Action::status);
-  auto* move = add("move", "Move one actuator to a position (encoder edges), wait for the end, close with RS",
-                   Action::move);
+  auto* move =
+      add("move", "Move one actuator to a position in mm, wait for the end, close with RS", Action::move);
   move->add_option("--function", options->function, "Function F1..F10 that moves the actuator")
       ->check(CLI::Range(1, 10))
       ->capture_default_str();
   move->add_option("--actuator", options->actuator, "Actuator 1..6")
       ->check(CLI::Range(1, 6))
       ->capture_default_str();
-  move->add_option("--position-edges", options->position_edges, "Target in encoder edges")->required();
-  move->add_option("--speed", options->speed, "Speed in % of the actuator's maximum")
-      ->check(CLI::Range(0, 100))
+  move->add_option("--position-mm", options->position_mm,
+                   "Target in mm (the actuator's edges_per_mm in the config converts)")
+      ->required();
+  move->add_option("--speed-mm-s", options->speed_mm_s,
+                   "Speed in mm/s (sent as % of the actuator's full speed, at least 1 %)")
+      ->check(CLI::Range(0.001, 1000.0))
       ->capture_default_str();
   move->add_flag("--fast", options->fast, "Fast start/stop (no ramps)");
   auto* stop = add("stop", "Stop a function (soft unless --fast)", Action::stop);

@@ -8,9 +8,7 @@
 #include <string>
 #include <thread>
 
-#include "cli/device_group.hpp"
-#include "cli/device_link.hpp"
-#include "cli/drive.hpp"
+#include "cli/commissioning.hpp"
 #include "cli/exit_codes.hpp"
 #include "config/cell_config.hpp"
 #include "spindle/fault_numbers.hpp"
@@ -54,20 +52,17 @@ void print_snapshot(const spindle::Snapshot& s) {
   }
 }
 
-class Commissioning {
+class SpindleCommissioning {
  public:
-  Commissioning(const GlobalOptions& global, const SpindleOptions& options,
-                const config::SpindleSection& section)
-      : options_(options),
-        device_(section.port, options.port, "spindle", clock_, global.trace),
-        session_(device_.link(), section.session),
-        values_poll_(section.session.values_poll) {}
+  SpindleCommissioning(const GlobalOptions& global, const SpindleOptions& options,
+                       const config::SpindleSection& section)
+      : options_(options), c_(global, options, section.port, "spindle", section.session) {}
 
   int run(Action action) {
-    session_.activate(clock_.now());
-    const bool up = drive([&] {
-      const auto& s = session_.snapshot();
-      return state_ == link::Lifecycle::active && s.status_valid && s.values_valid;
+    c_.activate();
+    const bool up = c_.drive([&] {
+      const auto& s = snapshot();
+      return session_.lifecycle() == link::Lifecycle::active && s.status_valid && s.values_valid;
     });
     if (!up) return failed_to("reach the converter");
     switch (action) {
@@ -77,7 +72,7 @@ class Commissioning {
         const auto dir = options_.direction == "ccw" ? spindle::Direction::counter_clockwise
                                                      : spindle::Direction::clockwise;
         if (!session_.start(options_.frequency_hz, dir)) return refuse("start");
-        if (!drive([&] { return snapshot().at_speed || snapshot().start_refused; }))
+        if (!c_.drive([&] { return snapshot().at_speed || snapshot().start_refused; }))
           return failed_to("reach speed");
         if (snapshot().start_refused) {
           spdlog::error("start refused: {}", snapshot().start_refused_reason);
@@ -87,66 +82,50 @@ class Commissioning {
       }
       case Action::stop:
         if (!session_.stop()) return refuse("stop");
-        if (!drive([&] { return snapshot().at_rest && !session_.commands_pending(); }))
+        if (!c_.drive([&] { return snapshot().at_rest && !session_.commands_pending(); }))
           return failed_to("come to rest");
         break;
       case Action::set:
         if (!session_.set_frequency(options_.frequency_hz)) return refuse("set the frequency");
-        if (!drive([&] { return !session_.commands_pending(); }))
+        if (!c_.drive([&] { return !session_.commands_pending(); }))
           return failed_to("acknowledge the set-point");
         break;
       case Action::reset:
         if (!session_.reset()) return refuse("reset");
-        if (!drive([&] { return !session_.commands_pending(); })) return failed_to("acknowledge the reset");
+        if (!c_.drive([&] { return !session_.commands_pending(); }))
+          return failed_to("acknowledge the reset");
         break;
     }
     // The measured values are polled slower than the flags: wait for a set taken after the command.
-    if (action != Action::status && !drive_for(values_poll_ + 100ms)) return failed_to("keep answering");
+    if (action != Action::status && !c_.drive_for(session_.config().values_poll + 100ms))
+      return failed_to("keep answering");
     print_snapshot(snapshot());
     return snapshot().fault() ? kExitFailed : kExitOk;
   }
 
  private:
-  const spindle::Snapshot& snapshot() const { return session_.snapshot(); }
-
-  template <class Done>
-  bool drive(Done&& done) {
-    const auto timeout = options_.timeout();
-    return drive_until(
-               clock_, timeout, [&](auto now) { state_ = session_.poll(now); },
-               [&] { return state_ == link::Lifecycle::fault || done(); }) &&
-           state_ != link::Lifecycle::fault;
-  }
-  bool drive_for(link::Duration span) {
-    const auto until = clock_.now() + span;
-    return drive([&] { return clock_.now() >= until; });
-  }
+  const spindle::Snapshot& snapshot() const { return c_.snapshot(); }
 
   // The command line was checked by the parser: a refusal is the session's state (not active, its
   // command queue full), so the command failed — not a usage error.
-  int refuse(const char* what) {
-    spdlog::error("the spindle session would not {} now (not active, or its command queue is full)", what);
-    return kExitFailed;
+  int refuse(const char* what) const {
+    return c_.refuse(fmt::format("{} now (not active, or its command queue is full)", what).c_str());
   }
 
   int failed_to(const char* what) {
     if (g_interrupted.load()) return stop_after_interrupt();
-    if (state_ == link::Lifecycle::fault) {
-      spdlog::error("spindle on {}: {}", device_.path(), session_.fault_reason());
-      return kExitLink;
-    }
-    spdlog::error("spindle on {} did not {} within {} s", device_.path(), what, options_.timeout_s);
-    print_snapshot(snapshot());
-    return kExitFailed;
+    const int code = c_.failed_to(what);
+    if (code == kExitFailed) print_snapshot(snapshot());
+    return code;
   }
 
   // Ctrl-C: bring the spindle to rest before exiting (drive_until ends at once once interrupted).
   int stop_after_interrupt() {
     if (session_.stop()) {
-      const auto deadline = clock_.now() + 10s;
-      while (clock_.now() < deadline) {
-        state_ = session_.poll(clock_.now());
-        if (state_ == link::Lifecycle::fault || (snapshot().at_rest && !session_.commands_pending())) break;
+      const auto deadline = c_.clock().now() + 10s;
+      while (c_.clock().now() < deadline) {
+        c_.step(c_.clock().now());
+        if (c_.faulted() || (snapshot().at_rest && !session_.commands_pending())) break;
         std::this_thread::sleep_for(1ms);
       }
     }
@@ -155,11 +134,8 @@ class Commissioning {
   }
 
   const SpindleOptions& options_;
-  link::MonotonicClock clock_;
-  DeviceLink device_;
-  spindle::Session session_;
-  link::Duration values_poll_;
-  link::Lifecycle state_ = link::Lifecycle::inactive;
+  Commissioning<spindle::Session> c_;
+  spindle::Session& session_ = c_.session();
 };
 
 int run_spindle(const GlobalOptions& global, const SpindleOptions& options, Action action) {
@@ -168,7 +144,7 @@ int run_spindle(const GlobalOptions& global, const SpindleOptions& options, Acti
     spdlog::error("{} has no spindle: section; add one or give --port", global.config);
     return kExitConfig;
   }
-  Commissioning commissioning(global, options, cell.spindle.value_or(config::SpindleSection{}));
+  SpindleCommissioning commissioning(global, options, cell.spindle.value_or(config::SpindleSection{}));
   return commissioning.run(action);
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace cellctl::config {
 
@@ -13,7 +14,8 @@ std::vector<AxisConfig> parse_axes(const YamlNode& list) {
   if (items.size() > 6) list.fail("the SCU drives at most 6 actuators");
   for (const auto& n : items) {
     n.only_keys({"name", "actuator", "function", "edges_per_mm", "min_mm", "max_mm", "max_speed_mm_s",
-                 "min_speed_mm_s", "max_accel_mm_s2", "max_jerk_mm_s3", "encoder"});
+                 "min_speed_mm_s", "max_accel_mm_s2", "max_jerk_mm_s3", "encoder", "min_ferror_mm",
+                 "ferror_mm"});
     AxisConfig a;
     a.name = n.string_at("name");
     if (a.name.empty() ||
@@ -36,6 +38,12 @@ std::vector<AxisConfig> parse_axes(const YamlNode& list) {
     a.max_accel_mm_s2 = n.double_in_or("max_accel_mm_s2", 0.001, 1e5, a.max_accel_mm_s2);
     a.max_jerk_mm_s3 = n.double_in_or("max_jerk_mm_s3", 0.001, 1e7, a.max_jerk_mm_s3);
     a.encoder = n.bool_or("encoder", false);
+    a.min_ferror_mm = n.double_in_or("min_ferror_mm", 0.001, 1000.0, a.min_ferror_mm);
+    a.ferror_mm = n.double_in_or("ferror_mm", 0.001, 1000.0, a.ferror_mm);
+    if (a.ferror_mm < a.min_ferror_mm)
+      (n.has("ferror_mm") ? n.at("ferror_mm") : n.at("min_ferror_mm"))
+          .fail(fmt::format("ferror_mm ({:g}) must be at least min_ferror_mm ({:g})", a.ferror_mm,
+                            a.min_ferror_mm));
     if (a.encoder)
       for (const auto& other : axes)
         if (other.encoder)
@@ -43,6 +51,11 @@ std::vector<AxisConfig> parse_axes(const YamlNode& list) {
     axes.push_back(std::move(a));
   }
   return axes;
+}
+
+double allowed_following_error(const AxisConfig& axis, double planned_mm_s) noexcept {
+  const double scaled = axis.ferror_mm * std::abs(planned_mm_s) / axis.max_speed_mm_s;
+  return std::clamp(scaled, axis.min_ferror_mm, axis.ferror_mm);
 }
 
 }  // namespace cellctl::config

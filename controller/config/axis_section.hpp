@@ -23,8 +23,16 @@ struct AxisConfig {
   double max_accel_mm_s2 = 40.0;
   double max_jerk_mm_s3 = 400.0;
   bool encoder = false;  // measured by the cell's encoder
+  // Following error as LinuxCNC's MIN_FERROR / FERROR: the measured position may differ from the
+  // planned one by ferror_mm × |planned speed| / max_speed_mm_s, never less than min_ferror_mm.
+  double min_ferror_mm = 1.0;
+  double ferror_mm = 5.0;
 };
 
 [[nodiscard]] std::vector<AxisConfig> parse_axes(const YamlNode& list);
+
+// The following error allowed at `planned_mm_s` (LinuxCNC's rule: linear in the speed, at least
+// min_ferror_mm).
+[[nodiscard]] double allowed_following_error(const AxisConfig& axis, double planned_mm_s) noexcept;
 
 }  // namespace cellctl::config

@@ -132,7 +132,7 @@ void check_cell(const YamlNode& root, CellConfig& cell) {
       continue;
     }
     const auto& scu = *cell.scu;
-    const auto& act = scu.emulator.actuators[static_cast<std::size_t>(axis.actuator - 1)];
+    const auto& act = scu.session.specs[static_cast<std::size_t>(axis.actuator - 1)];
     if (!scu.session.actuators.test(static_cast<std::size_t>(axis.actuator - 1)))
       node.at("actuator").fail(fmt::format("the scu section has no actuator {}", axis.actuator));
     const auto& fn = scu.session.functions[static_cast<std::size_t>(axis.function - 1)];
@@ -150,10 +150,10 @@ void check_cell(const YamlNode& root, CellConfig& cell) {
               "{:g} disagrees with the SCU's actuator {} ({:g}); state it once, in the scu section",
               axis.edges_per_mm, axis.actuator, act.edges_per_mm));
     }
-    if (axis.max_mm > act.physics.stroke_mm)
+    if (axis.max_mm > act.stroke_mm)
       node.at("max_mm").fail(fmt::format("{:g} mm is beyond actuator {}'s stroke of {:g} mm", axis.max_mm,
-                                         axis.actuator, act.physics.stroke_mm));
-    axis.full_speed_mm_s = act.physics.max_speed_mm_s;
+                                         axis.actuator, act.stroke_mm));
+    axis.full_speed_mm_s = act.full_speed_mm_s;
     if (axis.max_speed_mm_s > axis.full_speed_mm_s)
       node.at("max_speed_mm_s")
           .fail(fmt::format("{:g} mm/s is beyond actuator {}'s full speed of {:g} mm/s", axis.max_speed_mm_s,

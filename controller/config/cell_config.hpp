@@ -1,12 +1,12 @@
 #pragma once
-// The cell: which devices, on which ports, with which session settings and — for the emulated
-// ones — which emulator set-up. Loaded and validated completely before anything is opened.
+// The cell as the program that drives it sees it: the core (axes, limits, stops, loop) and, per
+// device, its port and session settings. Loaded and validated completely before anything is opened.
+// The emulators' set-up is not here: runtime/emulator_setup reads it where emulators are built.
 
 #include <filesystem>
-#include <string>
+#include <optional>
 
-#include "config/axis_section.hpp"
-#include "config/cell_limits.hpp"
+#include "config/cell_core.hpp"
 #include "config/encoder_section.hpp"
 #include "config/scu_section.hpp"
 #include "config/spindle_section.hpp"
@@ -14,20 +14,10 @@
 
 namespace cellctl::config {
 
-struct CellConfig {
-  std::string name;
-  std::filesystem::path source;  // the file it came from, for messages
-  std::vector<AxisConfig> axes;
-  CellLimits limits;
-  StopReactions stops;
-  LoopConfig loop;
+struct CellConfig : CellCore {
   std::optional<SpindleSection> spindle;
   std::optional<EncoderSection> encoder;
   std::optional<ScuSection> scu;
-  PlantConfig plant;
-
-  // The axis with this name, or nullptr.
-  [[nodiscard]] const AxisConfig* axis(std::string_view axis_name) const noexcept;
 };
 
 // Throws ConfigError (file:line:column: field: rule) on the first problem.

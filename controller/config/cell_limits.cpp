@@ -24,19 +24,13 @@ CellLimits parse_cell_limits(const YamlNode& n) {
 }
 
 StopReactions parse_stop_reactions(const YamlNode& n) {
-  n.only_keys({"fault", "link", "operator"});
+  n.only_keys({"fault", "link", "operator", "following_error"});
   StopReactions s;
   if (auto f = n.maybe("fault")) s.fault = category(*f);
   if (auto f = n.maybe("link")) s.link = category(*f);
   if (auto f = n.maybe("operator")) s.operator_stop = category(*f);
+  if (auto f = n.maybe("following_error")) s.following_error = category(*f);
   return s;
-}
-
-PlantConfig parse_plant(const YamlNode& n) {
-  n.only_keys({"encoder_slip"});
-  PlantConfig p;
-  p.encoder_slip = n.double_in_or("encoder_slip", -0.5, 0.5, p.encoder_slip);
-  return p;
 }
 
 LoopConfig parse_loop(const YamlNode& n) {

@@ -24,6 +24,7 @@ struct StopReactions {
   StopCategory fault = StopCategory::controlled_off;  // a limit or device fault
   StopCategory link = StopCategory::immediate;        // a device that stopped answering
   StopCategory operator_stop = StopCategory::controlled_hold;
+  StopCategory following_error = StopCategory::controlled_off;  // an axis off its planned profile
 };
 
 struct LoopConfig {
@@ -34,13 +35,6 @@ struct LoopConfig {
   double sample_ms = 20.0;  // journal sample period
 };
 
-// The emulated cell's physics beyond each device's own (what couples them): the encoder's shaft
-// slips this fraction against the axis it measures.
-struct PlantConfig {
-  double encoder_slip = 0.0;
-};
-
-[[nodiscard]] PlantConfig parse_plant(const YamlNode& n);
 [[nodiscard]] CellLimits parse_cell_limits(const YamlNode& n);
 [[nodiscard]] StopReactions parse_stop_reactions(const YamlNode& n);
 [[nodiscard]] LoopConfig parse_loop(const YamlNode& n);

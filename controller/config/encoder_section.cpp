@@ -16,16 +16,6 @@ Functionality parse_functionality(const YamlNode& n) {
   return Functionality::scancon30;
 }
 
-encoder::PhysicalResolution parse_physical(const YamlNode& s, encoder::PhysicalResolution fallback) {
-  encoder::PhysicalResolution phys;
-  phys.steps_per_revolution =
-      s.int_in_or<std::uint32_t>("singleturn_steps", 2, 1u << 16, fallback.steps_per_revolution);
-  phys.revolutions = s.int_in_or<std::uint32_t>("revolutions", 1, 1u << 15, fallback.revolutions);
-  if (auto v = encoder::validate(phys))
-    (s.has("singleturn_steps") ? s.at("singleturn_steps") : s.at("revolutions")).fail(v->describe());
-  return phys;
-}
-
 encoder::EncoderParameters parse_parameters(const YamlNode& s) {
   encoder::EncoderParameters p;
   p.functionality = s.has("functionality") ? parse_functionality(s.at("functionality")) : p.functionality;
@@ -82,29 +72,18 @@ profibus::DpMasterConfig parse_bus(const YamlNode& s, const link::LineFormat& li
   return b;
 }
 
-// The emulated encoder is the one the session expects unless the `emulator:` block says otherwise.
-// Its functionality is not set here: the emulator takes the one the master's Set_Prm/Chk_Cfg choose.
-encoder::EmulatorConfig parse_emulator(const std::optional<YamlNode>& block,
-                                       const encoder::SessionConfig& session) {
-  encoder::EmulatorConfig c;
-  c.address = session.station_address;
-  c.line = session.bus.line;
-  c.identity.physical = session.physical;
-  if (!block) return c;
-  const YamlNode& e = *block;
-  e.only_keys({"address", "singleturn_steps", "revolutions", "serial", "state_file"});
-  c.address = e.int_in_or<std::uint8_t>("address", 1, 126, session.station_address);
-  c.identity.physical = parse_physical(e, session.physical);
-  if (const auto n = e.maybe("serial")) {
-    const std::string serial = n->as_string();
-    if (serial.size() != 10) n->fail("must be 10 ASCII characters (manual 4.2.18)");
-    std::copy(serial.begin(), serial.end(), c.identity.serial.begin());
-  }
-  c.state_file = e.string_or("state_file", "");
-  return c;
-}
-
 }  // namespace
+
+encoder::PhysicalResolution parse_physical_resolution(const YamlNode& s,
+                                                      encoder::PhysicalResolution fallback) {
+  encoder::PhysicalResolution phys;
+  phys.steps_per_revolution =
+      s.int_in_or<std::uint32_t>("singleturn_steps", 2, 1u << 16, fallback.steps_per_revolution);
+  phys.revolutions = s.int_in_or<std::uint32_t>("revolutions", 1, 1u << 15, fallback.revolutions);
+  if (auto v = encoder::validate(phys))
+    (s.has("singleturn_steps") ? s.at("singleturn_steps") : s.at("revolutions")).fail(v->describe());
+  return phys;
+}
 
 EncoderSection parse_encoder_section(const YamlNode& section) {
   section.only_keys({"station_address",
@@ -139,7 +118,7 @@ EncoderSection parse_encoder_section(const YamlNode& section) {
   auto& s = out.session;
   s.station_address = section.int_in_or<std::uint8_t>("station_address", 1, 126, 1);
   s.parameters = parse_parameters(section);
-  s.physical = parse_physical(section, s.physical);
+  s.physical = parse_physical_resolution(section, s.physical);
   if (auto v = encoder::validate(s.parameters, s.physical)) section.fail("parameters: " + v->describe());
   s.bus = parse_bus(section, out.port.line);
   const bool per_count = section.has("counts_per_mm");
@@ -149,7 +128,6 @@ EncoderSection parse_encoder_section(const YamlNode& section) {
     s.counts_per_mm = section.double_in("counts_per_mm", 1e-6, 1e9);
   else
     s.mm_per_revolution = section.double_in("mm_per_revolution", 1e-6, 1e6);
-  out.emulator = parse_emulator(section.maybe("emulator"), s);
   return out;
 }
 

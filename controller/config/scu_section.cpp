@@ -5,30 +5,23 @@
 namespace cellctl::config {
 namespace {
 
-// actuators: [{index, edges_per_mm, stroke_mm, max_speed_mm_s, ramp_mm_s2, min_speed_mm_s,
-//              start_position_mm, scale_error}]
+// actuators: [{index, edges_per_mm, stroke_mm, max_speed_mm_s, + the emulator's physics keys}]
 void parse_actuators(const YamlNode& list, ScuSection& out) {
   out.session.actuators.reset();
   for (const auto& item : list.items()) {
-    item.only_keys({"index", "edges_per_mm", "stroke_mm", "max_speed_mm_s", "ramp_mm_s2", "min_speed_mm_s",
-                    "start_position_mm", "scale_error"});
+    item.only_keys({"index", "edges_per_mm", "stroke_mm", "max_speed_mm_s"}, kScuEmulatorActuatorKeys);
     const int a = item.int_in<int>("index", 1, scu::kActuatorCount);
     const auto i = static_cast<std::size_t>(a - 1);
     if (out.session.actuators.test(i))
       item.at("index").fail("actuator " + std::to_string(a) + " is listed twice");
     out.session.actuators.set(i);
-    auto& act = out.emulator.actuators[i];
-    act.present = true;
-    act.edges_per_mm = item.double_in("edges_per_mm", 0.001, 1e6);
-    auto& p = act.physics;
-    p.stroke_mm = item.double_in_or("stroke_mm", 1.0, 10000.0, p.stroke_mm);
-    p.max_speed_mm_s = item.double_in_or("max_speed_mm_s", 0.1, 1000.0, p.max_speed_mm_s);
-    p.ramp_mm_s2 = item.double_in_or("ramp_mm_s2", 0.0, 100000.0, p.ramp_mm_s2);
-    p.min_speed_mm_s = item.double_in_or("min_speed_mm_s", 0.0, p.max_speed_mm_s, p.min_speed_mm_s);
-    p.start_position_mm = item.double_in_or("start_position_mm", 0.0, p.stroke_mm, p.start_position_mm);
-    p.scale_error = item.double_in_or("scale_error", -0.1, 0.1, p.scale_error);
+    auto& spec = out.session.specs[i];
+    spec = scu::ActuatorSpec{};
+    spec.edges_per_mm = item.double_in("edges_per_mm", 0.001, 1e6);
+    spec.stroke_mm = item.double_in_or("stroke_mm", 1.0, 10000.0, spec.stroke_mm);
+    spec.full_speed_mm_s = item.double_in_or("max_speed_mm_s", 0.1, 1000.0, spec.full_speed_mm_s);
     // SCU positions are INT32 edges: the whole stroke must fit.
-    if (p.stroke_mm * act.edges_per_mm > 2e9)
+    if (spec.stroke_mm * spec.edges_per_mm > 2e9)
       item.at("edges_per_mm").fail("stroke × edges_per_mm exceeds INT32");
   }
   if (out.session.actuators.none()) list.fail("lists no actuator");
@@ -56,7 +49,6 @@ void parse_functions(const YamlNode& list, ScuSection& out) {
       item.at("synchronized").fail("needs two actuators or more");
   }
   out.session.functions = table;
-  out.emulator.functions = table;
 }
 
 }  // namespace
@@ -79,15 +71,12 @@ ScuSection parse_scu_section(const YamlNode& section) {
         .fail("link_fault_after_ms must be longer than reply_timeout_ms");
   s.arrival_tolerance_edges =
       section.int_in_or<std::int32_t>("arrival_tolerance_edges", 0, 100000, s.arrival_tolerance_edges);
-  out.emulator.default_speed_percent =
-      section.int_in_or<std::uint16_t>("default_speed_percent", 0, 100, out.emulator.default_speed_percent);
 
   parse_actuators(section.at("actuators"), out);
   if (const auto f = section.maybe("functions")) {
     parse_functions(*f, out);
   } else {
     out.session.functions = scu::scp11(out.session.actuators);
-    out.emulator.functions = out.session.functions;
   }
   return out;
 }

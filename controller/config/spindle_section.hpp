@@ -1,10 +1,10 @@
 #pragma once
-// The `spindle:` section of the cell config: the converter's port, the session's timings and, for the
-// emulated converter, its set-up (motor limits, ramps, identification, initial run-times).
+// The `spindle:` section of the cell config: the converter's port and the session's timings. Its
+// `emulator:` block (the emulated converter's motor limits, ramps, identification) is allowed here and
+// read by runtime/emulator_setup, where emulators are built.
 
 #include "config/line_section.hpp"
 #include "config/yaml_node.hpp"
-#include "spindle/emulator.hpp"
 #include "spindle/session.hpp"
 
 namespace cellctl::config {
@@ -12,7 +12,6 @@ namespace cellctl::config {
 struct SpindleSection {
   PortConfig port;
   spindle::SessionConfig session;
-  spindle::EmulatorConfig emulator;
 };
 
 // Throws ConfigError (file:line:column: field: rule) on an unknown key or a value out of range.

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "link/clock.hpp"
-#include "scu/status_flags.hpp"
 
 namespace cellctl::monitor {
 namespace {
@@ -19,7 +18,7 @@ constexpr double kPositionMarginMm = 0.5;
 
 }  // namespace
 
-Monitor::Monitor(const config::CellConfig& cell) : cell_(cell) {}
+Monitor::Monitor(const config::CellCore& cell) : cell_(cell) {}
 
 StopCategory Monitor::category_of(Rule r) const noexcept {
   switch (r) {
@@ -29,6 +28,8 @@ StopCategory Monitor::category_of(Rule r) const noexcept {
       return cell_.stops.operator_stop;
     case Rule::link_silent:
       return cell_.stops.link;
+    case Rule::following_error:
+      return cell_.stops.following_error;
     default:
       return cell_.stops.fault;
   }
@@ -73,6 +74,20 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
             Text::format("axis {}: SCU {:.2f} mm, encoder {:.2f} mm (tolerance {:g} mm)", c.name, a.scu_mm,
                          a.encoder_mm, cell_.limits.disagreement_mm);
     }
+    const auto& plan = planned_[i];
+    if (following_ && plan.move) {
+      // An axis the encoder does not measure is known by the SCU's position, as old as its last RC
+      // reply: what the plan moved on meanwhile is no error.
+      const double stale =
+          a.measured ? 0.0 : std::abs(plan.planned_mm_s) * link::to_seconds(s.scu_position_age);
+      const double allowed = config::allowed_following_error(c, plan.planned_mm_s);
+      const double error = std::abs(plan.planned_mm - p);
+      if (error > allowed + stale)
+        causes[idx(Rule::following_error)] = Text::format(
+            "axis {} at {:.2f} mm, planned {:.2f} mm: following error {:.2f} mm > {:.2f} mm allowed at "
+            "{:.1f} mm/s",
+            c.name, p, plan.planned_mm, error, allowed, std::abs(plan.planned_mm_s));
+    }
   }
 
   const auto& e = s.encoder;
@@ -99,15 +114,10 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
     causes[idx(Rule::spindle_frequency)] =
         Text::format("spindle at {:.0f} Hz while set to {:.0f} Hz", f, spindle_set_hz_);
 
-  if (s.scu_error_word != 0) {
-    const scu::ErrorWord word(s.scu_error_word);
-    int first = 0;
-    word.for_each_cause([&](int bit, std::string_view) {
-      if (first == 0) first = bit;
-    });
-    causes[idx(Rule::scu_error)] = Text::format("SCU error bit {}: {} (word 0x{:08x})", first,
-                                                scu::ErrorWord::cause(first), s.scu_error_word);
-  }
+  if (s.scu_errors.any())
+    causes[idx(Rule::scu_error)] =
+        Text::format("SCU error bit {}: {} (word 0x{:08x})", s.scu_errors.first_bit, s.scu_errors.first_cause,
+                     s.scu_errors.word);
 }
 
 std::bitset<kRuleCount> Monitor::evaluate(const cell::CellState& state, const OperatorInputs& inputs,

@@ -9,7 +9,8 @@
 #include <optional>
 
 #include "cell/cell_state.hpp"
-#include "config/cell_config.hpp"
+#include "cell/intents.hpp"
+#include "config/cell_core.hpp"
 #include "journal/event.hpp"
 #include "monitor/rule.hpp"
 
@@ -32,7 +33,7 @@ struct OperatorInputs {
 
 class Monitor {
  public:
-  explicit Monitor(const config::CellConfig& cell);
+  explicit Monitor(const config::CellCore& cell);
 
   // Device rules apply once the cell is up (the supervisor arms the monitor when every session is
   // active and the encoder is ready); operator and emergency stops apply always.
@@ -43,6 +44,12 @@ class Monitor {
   void expect_spindle(bool running, double set_hz) noexcept {
     spindle_running_ = running;
     spindle_set_hz_ = set_hz;
+  }
+  // The following-error rule needs the supervisor's plan: while no halt is asked for, the axes with
+  // `move` set are held to their planned position.
+  void expect_axes(const cell::Intents& intents) noexcept {
+    planned_ = intents.axes;
+    following_ = intents.halt == cell::Halt::none;
   }
 
   // Evaluates every rule at `t` (seconds since start); returns the rules that latched in this call.
@@ -63,11 +70,13 @@ class Monitor {
              std::array<std::optional<journal::Text>, kRuleCount>& causes) const noexcept;
   [[nodiscard]] StopCategory category_of(Rule r) const noexcept;
 
-  const config::CellConfig& cell_;
+  const config::CellCore& cell_;
   std::array<Latch, kRuleCount> latches_{};
   bool armed_ = false;
   bool spindle_running_ = false;
   double spindle_set_hz_ = 0.0;
+  std::array<cell::AxisIntent, cell::kMaxAxes> planned_{};
+  bool following_ = false;
 };
 
 }  // namespace cellctl::monitor

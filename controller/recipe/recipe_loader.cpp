@@ -8,7 +8,7 @@
 namespace cellctl::recipe {
 namespace {
 
-using config::CellConfig;
+using config::CellCore;
 using config::ConfigError;
 using config::YamlNode;
 
@@ -24,7 +24,7 @@ std::string join_messages(const std::vector<ConfigError>& errors) {
 // Parses one recipe, collecting errors step by step so that one run of `cellctl check` shows them all.
 class Parser {
  public:
-  explicit Parser(const CellConfig& cell) : cell_(cell) {}
+  explicit Parser(const CellCore& cell) : cell_(cell) {}
 
   Recipe parse(const YamlNode& root) {
     Recipe r;
@@ -295,7 +295,7 @@ class Parser {
     return r;
   }
 
-  const CellConfig& cell_;
+  const CellCore& cell_;
   long checked_ = 0;     // step entries looked at, each alias use counted
   long unrolled_ = 0;    // instructions the recipe unrolls to so far
   long multiplier_ = 1;  // how often the enclosing repeats run the steps being parsed
@@ -309,11 +309,11 @@ class Parser {
 RecipeErrors::RecipeErrors(std::vector<config::ConfigError> errors)
     : std::runtime_error(join_messages(errors)), errors_(std::move(errors)) {}
 
-Recipe load_recipe(const std::filesystem::path& path, const config::CellConfig& cell) {
+Recipe load_recipe(const std::filesystem::path& path, const config::CellCore& cell) {
   return parse_recipe(YamlNode::load_file(path), cell);
 }
 
-Recipe parse_recipe(const config::YamlNode& root, const config::CellConfig& cell) {
+Recipe parse_recipe(const config::YamlNode& root, const config::CellCore& cell) {
   return Parser(cell).parse(root);
 }
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "config/cell_config.hpp"
+#include "config/cell_core.hpp"
 #include "config/yaml_node.hpp"
 #include "recipe/recipe.hpp"
 
@@ -25,8 +25,8 @@ class RecipeErrors : public std::runtime_error {
 };
 
 // Throws RecipeErrors (one or more problems) or config::ConfigError (unreadable YAML).
-[[nodiscard]] Recipe load_recipe(const std::filesystem::path& path, const config::CellConfig& cell);
-[[nodiscard]] Recipe parse_recipe(const config::YamlNode& root, const config::CellConfig& cell);
+[[nodiscard]] Recipe load_recipe(const std::filesystem::path& path, const config::CellCore& cell);
+[[nodiscard]] Recipe parse_recipe(const config::YamlNode& root, const config::CellCore& cell);
 
 // Upper bounds that keep a recipe's unrolled program small enough to build before the run: repeats
 // nest at most 4 deep and run at most 10000 times each, and the whole recipe unrolls to at most

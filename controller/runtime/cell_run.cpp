@@ -51,7 +51,10 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
   try {
     links_ = std::make_unique<CellLinks>(cell, options_.mode, clock_, options_.trace,
                                          rehearsal_ ? rehearsal_->lines() : std::bitset<cell::kDevices>{});
-    if (links_->any_emulated()) emulated_ = std::make_unique<EmulatedCell>(cell, links_->device());
+    if (links_->any_emulated()) {
+      if (!options_.emulators) options_.emulators = load_emulator_setup(cell);
+      emulated_ = std::make_unique<EmulatedCell>(cell, *options_.emulators, links_->device());
+    }
     devices_ = std::make_unique<CellDevices>(cell, links_->master());
   } catch (const std::exception& e) {
     // A port that did not open (or a device set-up refused): the record says why nothing ran.
@@ -145,16 +148,16 @@ void CellRun::report_devices(double t, RunResult& r) {
     journal_.post(t, journal::Note{journal::Text::format("{}", text)});
     r.device_notes.push_back(std::move(text));
   };
-  if (auto* scu = devices_->scu(); scu && scu->state() == link::Lifecycle::fault)
-    note("SCU: " + scu->fault_reason());
-  if (auto* sp = devices_->spindle()) {
-    if (sp->lifecycle() == link::Lifecycle::fault) note("spindle: " + sp->fault_reason());
-    if (sp->snapshot().start_refused) note("spindle: " + sp->snapshot().start_refused_reason);
+  static constexpr const char* kNames[cell::kDevices] = {"SCU", "spindle", "encoder"};
+  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+    const auto* s = devices_->sessions()[d];
+    if (s && s->lifecycle() == link::Lifecycle::fault)
+      note(std::string(kNames[d]) + ": " + s->fault_reason());
   }
-  if (auto* enc = devices_->encoder()) {
-    if (enc->snapshot().lifecycle == link::Lifecycle::fault) note("encoder: " + enc->fault_reason());
-    if (!enc->restart_reason().empty()) note("encoder: DP start-up begun again: " + enc->restart_reason());
-  }
+  if (auto* sp = devices_->spindle(); sp && sp->snapshot().start_refused)
+    note("spindle: " + sp->snapshot().start_refused_reason);
+  if (auto* enc = devices_->encoder(); enc && !enc->restart_reason().empty())
+    note("encoder: DP start-up begun again: " + enc->restart_reason());
   if (!devices_->all_inactive())
     note(fmt::format("the devices were not all closed within {:g} s of the end (remote mode, spindle stop)",
                      options_.shutdown_timeout_s));
@@ -195,7 +198,7 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
       if (rehearsal_) rehearsal_->drive_emulators(now, *emulated_);
       emulated_->poll(now);
     }
-    devices_->poll(now);
+    devices_->receive(now);
 
     stages.begin(index(ControlStage::state));
     devices_->read(now, state_);
@@ -215,16 +218,18 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
     supervisor_->step(state_, monitor_.demanded_stop(), t);
     const auto& sp = supervisor_->intents().spindle;
     monitor_.expect_spindle(sp.run, sp.frequency_hz);
+    monitor_.expect_axes(supervisor_->intents());
     if (supervisor_->cell_up() && !monitor_.armed() && !shutdown_since_) monitor_.arm();
     if (!supervisor_->cell_up() && monitor_.armed()) monitor_.disarm();
 
     stages.begin(index(ControlStage::write_sessions));
-    if (!shutdown_since_) devices_->apply(supervisor_->intents(), now);
-  }
-  if (supervisor::is_final(supervisor_->state()) && !shutdown_since_) {
-    devices_->deactivate(now);  // axes stopped, remote mode closed, spindle stopped
-    monitor_.disarm();          // the devices go down on purpose now
-    shutdown_since_ = now;
+    if (supervisor::is_final(supervisor_->state()) && !shutdown_since_) {
+      devices_->deactivate(now);  // axes stopped, remote mode closed, spindle stopped
+      monitor_.disarm();          // the devices go down on purpose now
+      shutdown_since_ = now;
+    }
+    if (!shutdown_since_) devices_->apply(supervisor_->intents());
+    devices_->transmit(now);  // what this cycle decided goes out in this cycle
   }
   if (shutdown_since_ &&
       (devices_->all_inactive() || link::to_seconds(now - *shutdown_since_) > options_.shutdown_timeout_s))

@@ -30,6 +30,7 @@
 #include "runtime/emulated_cell.hpp"
 #include "runtime/fault_rehearsal.hpp"
 #include "runtime/fault_spec.hpp"
+#include "runtime/emulator_setup.hpp"
 #include "runtime/status_view.hpp"
 #include "supervisor/supervisor.hpp"
 
@@ -43,6 +44,9 @@ struct RunOptions {
   supervisor::SupervisorSettings supervisor;  // mode and sample period are filled in from the config
   double shutdown_timeout_s = 5.0;            // for sessions to close (RA, spindle stop) at the end
   std::vector<FaultSpec> faults;              // to rehearse (emulated and virtual-time runs only)
+  // The emulated devices' set-up; read from the cell's file (cell.source) when emulators are needed
+  // and none is given here.
+  std::optional<EmulatorSetup> emulators;
 };
 
 struct RunResult {

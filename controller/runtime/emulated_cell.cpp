@@ -19,11 +19,11 @@ double mm_per_revolution(const config::EncoderSection& e) {
 
 }  // namespace
 
-EmulatedCell::EmulatedCell(const config::CellConfig& cell, DeviceLinks links) {
-  if (links.scu && cell.scu) scu_ = std::make_unique<scu::Emulator>(*links.scu, cell.scu->emulator);
-  if (links.spindle && cell.spindle)
-    spindle_ = std::make_unique<spindle::Emulator>(*links.spindle, cell.spindle->emulator);
-  if (links.encoder && cell.encoder) {
+EmulatedCell::EmulatedCell(const config::CellConfig& cell, const EmulatorSetup& setup, DeviceLinks links) {
+  if (links.scu && setup.scu) scu_ = std::make_unique<scu::Emulator>(*links.scu, *setup.scu);
+  if (links.spindle && setup.spindle)
+    spindle_ = std::make_unique<spindle::Emulator>(*links.spindle, *setup.spindle);
+  if (links.encoder && cell.encoder && setup.encoder) {
     const config::AxisConfig* measured = nullptr;
     for (const auto& a : cell.axes)
       if (a.encoder) measured = &a;
@@ -32,10 +32,10 @@ EmulatedCell::EmulatedCell(const config::CellConfig& cell, DeviceLinks links) {
           "an emulated encoder needs an emulated SCU axis to turn its shaft (axes[].encoder)");
     const plant::Actuator& actuator = scu_->actuator(measured->actuator);
     shaft_.emplace(plant::ShaftParams{.mm_per_revolution = mm_per_revolution(*cell.encoder),
-                                      .slip = cell.plant.encoder_slip,
+                                      .slip = setup.plant.encoder_slip,
                                       .offset_revolutions = 0.0},
                    [&actuator] { return actuator.true_position_mm(); });
-    encoder_ = std::make_unique<encoder::Emulator>(*links.encoder, cell.encoder->emulator, *shaft_);
+    encoder_ = std::make_unique<encoder::Emulator>(*links.encoder, *setup.encoder, *shaft_);
   }
 }
 

@@ -13,6 +13,7 @@
 #include "link/link.hpp"
 #include "plant/shaft.hpp"
 #include "runtime/device_links.hpp"
+#include "runtime/emulator_setup.hpp"
 #include "scu/emulator.hpp"
 #include "spindle/emulator.hpp"
 
@@ -21,7 +22,7 @@ namespace cellctl::runtime {
 class EmulatedCell {
  public:
   // Throws std::invalid_argument / std::runtime_error from an emulator's set-up (config time).
-  EmulatedCell(const config::CellConfig& cell, DeviceLinks links);
+  EmulatedCell(const config::CellConfig& cell, const EmulatorSetup& setup, DeviceLinks links);
 
   // Steps every emulator (and so the plant) to `now` and answers what has arrived.
   void poll(link::TimePoint now);

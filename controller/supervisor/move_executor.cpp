@@ -5,7 +5,7 @@
 
 namespace cellctl::supervisor {
 
-MoveExecutor::MoveExecutor(const config::CellConfig& cell, const recipe::Limits& limits, double dt,
+MoveExecutor::MoveExecutor(const config::CellCore& cell, const recipe::Limits& limits, double dt,
                            MoveSettings settings)
     : cell_(cell), limits_(limits), settings_(settings), planner_(dt) {}
 
@@ -85,6 +85,8 @@ void MoveExecutor::command(cell::Intents& out) const noexcept {
     intent.target_mm = axes_[i].scu_target_mm;
     intent.speed_mm_s = speed_sent_[i];
     intent.soft = true;
+    intent.planned_mm = planned_[i];
+    intent.planned_mm_s = planned_speed_[i];
   }
 }
 
@@ -100,6 +102,7 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
     const auto& a = axes_[i];
     if (!a.in_move) continue;
     planned_[i] = output_.new_position[static_cast<Eigen::Index>(i)];
+    planned_speed_[i] = output_.new_velocity[static_cast<Eigen::Index>(i)];
     const double span = a.target_mm - a.start_mm;
     if (std::abs(span) > 1e-9) plan_progress = std::min(plan_progress, (planned_[i] - a.start_mm) / span);
     const double remaining = std::abs(a.target_mm - best_position(s, i));

@@ -13,7 +13,7 @@
 
 #include "cell/cell_state.hpp"
 #include "cell/intents.hpp"
-#include "config/cell_config.hpp"
+#include "config/cell_core.hpp"
 #include "journal/event.hpp"
 #include "planner/planner.hpp"
 #include "recipe/recipe.hpp"
@@ -32,7 +32,7 @@ enum class MoveStatus : std::uint8_t { running, done, failed };
 
 class MoveExecutor {
  public:
-  MoveExecutor(const config::CellConfig& cell, const recipe::Limits& limits, double dt,
+  MoveExecutor(const config::CellCore& cell, const recipe::Limits& limits, double dt,
                MoveSettings settings = {});
 
   // Starts `move` from the state's current positions. `move_id` is the cell's move counter: every
@@ -65,7 +65,7 @@ class MoveExecutor {
   void command(cell::Intents& out) const noexcept;
   void restart_profile(const cell::CellState& s);
 
-  const config::CellConfig& cell_;
+  const config::CellCore& cell_;
   const recipe::Limits& limits_;
   MoveSettings settings_;
   planner::Planner<6> planner_;
@@ -73,6 +73,7 @@ class MoveExecutor {
   planner::Output<6> output_;
   std::array<Axis, cell::kMaxAxes> axes_{};
   std::array<double, cell::kMaxAxes> planned_{};
+  std::array<double, cell::kMaxAxes> planned_speed_{};
   std::array<double, cell::kMaxAxes> speed_sent_{};
   double speed_ = 0.0;
   double started_t_ = 0.0;

@@ -18,7 +18,7 @@ bool is_running_state(State s) noexcept {
 
 }  // namespace
 
-Supervisor::Supervisor(const config::CellConfig& cell, const recipe::Recipe& recipe,
+Supervisor::Supervisor(const config::CellCore& cell, const recipe::Recipe& recipe,
                        const recipe::Program& program, journal::EventSink& events, double dt,
                        SupervisorSettings settings)
     : cell_(cell),

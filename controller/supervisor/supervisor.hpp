@@ -10,7 +10,7 @@
 
 #include "cell/cell_state.hpp"
 #include "cell/intents.hpp"
-#include "config/cell_config.hpp"
+#include "config/cell_core.hpp"
 #include "journal/event_sink.hpp"
 #include "recipe/program.hpp"
 #include "recipe/recipe.hpp"
@@ -29,7 +29,7 @@ struct SupervisorSettings {
 
 class Supervisor {
  public:
-  Supervisor(const config::CellConfig& cell, const recipe::Recipe& recipe, const recipe::Program& program,
+  Supervisor(const config::CellCore& cell, const recipe::Recipe& recipe, const recipe::Program& program,
              journal::EventSink& events, double dt, SupervisorSettings settings = {});
 
   // An operator command, carried out at the next step. False when the state does not allow it now;
@@ -63,7 +63,7 @@ class Supervisor {
   [[nodiscard]] bool axes_still(const cell::CellState& s) const noexcept;
   void clear_motion() noexcept;
 
-  const config::CellConfig& cell_;
+  const config::CellCore& cell_;
   const recipe::Recipe& recipe_;
   const recipe::Program& program_;
   journal::EventSink& events_;

@@ -38,7 +38,6 @@ Session::Session(link::Link& link, const SessionConfig& config)
       scaling_(config.parameters, config.physical),
       counts_per_mm_(length_per_count(config, scaling_)),
       master_(link, config.bus, slave_setup(config)) {
-  fault_reason_.reserve(link::kFaultReasonCapacity);
   snapshot_.has_status_bits = has_status_bits(config_.parameters);
 }
 
@@ -48,34 +47,39 @@ void Session::activate(link::TimePoint now) {
   snapshot_.local_prm_violation = validate(config_.parameters, config_.physical);
   if (snapshot_.local_prm_violation) {
     // Never send parameters the encoder would refuse: say which rule, here.
-    snapshot_.lifecycle = link::Lifecycle::fault;
-    link::assign_formatted(fault_reason_, "parameters refused before sending: {}",
-                           snapshot_.local_prm_violation->describe());
+    enter_fault("parameters refused before sending: {}", snapshot_.local_prm_violation->describe());
     return;
   }
-  fault_reason_.clear();
+  enter(link::Lifecycle::activating, now);
   if (has_outputs(config_.parameters.functionality)) {
     std::array<std::uint8_t, 4> zero{};
     (void)master_.set_outputs(zero);
   }
   master_.activate(now);
-  snapshot_.lifecycle = master_.lifecycle();
+  update_lifecycle();
 }
 
 void Session::deactivate(link::TimePoint now) {
   handshake_.abort("session deactivated during the handshake");
   master_.deactivate(now);
+  update_lifecycle();
 }
 
-link::Lifecycle Session::poll(link::TimePoint now) {
-  if (snapshot_.local_prm_violation) return snapshot_.lifecycle;
-  const link::Lifecycle lc = master_.poll(now);
+void Session::transmit(link::TimePoint) {
+  if (!snapshot_.local_prm_violation) push_outputs();
+}
+
+void Session::receive(link::TimePoint now) {
+  if (snapshot_.local_prm_violation) return;
+  (void)master_.poll(now);
   const auto& stats = master_.stats();
   if (stats.data_exchanges != seen_exchanges_) {
     seen_exchanges_ = stats.data_exchanges;
     on_input(master_.inputs());
   }
+  bool fresh_diagnosis = false;
   if (stats.diag_reads != seen_diag_reads_) {
+    fresh_diagnosis = true;
     seen_diag_reads_ = stats.diag_reads;
     const auto& diag = master_.diagnosis();
     snapshot_.standard_diag = diag.standard;
@@ -91,10 +95,11 @@ link::Lifecycle Session::poll(link::TimePoint now) {
     snapshot_.diagnosis_reads = seen_diag_reads_;
   }
   const auto state = master_.dp_state();
-  snapshot_.lifecycle = lc;
   snapshot_.dp_state = state;
   snapshot_.data_exchange =
       state == profibus::DpState::data_exchange || state == profibus::DpState::diag_cyclic;
+  // A diagnosis the encoder raised (DH) while exchanging data, as opposed to the start-up's reads.
+  snapshot_.new_diagnosis = fresh_diagnosis && snapshot_.data_exchange;
   snapshot_.exchanges = seen_exchanges_;
   snapshot_.input_age = master_.input_age(now);
   snapshot_.bad_inputs = stats.bad_inputs;
@@ -106,36 +111,34 @@ link::Lifecycle Session::poll(link::TimePoint now) {
   }
   snapshot_.command =
       CommandStatus{handshake_.kind(), handshake_.phase(), handshake_.result(), handshake_.failure()};
-  update_fault(now);
-  return lc;
+  update_lifecycle();
 }
 
-void Session::update_fault(link::TimePoint) {
-  if (snapshot_.lifecycle != link::Lifecycle::fault) {
-    if (!fault_reason_.empty()) fault_reason_.clear();
+void Session::update_lifecycle() {
+  const link::Lifecycle lc = master_.lifecycle();
+  if (lc != link::Lifecycle::fault) {
+    if (lc != lifecycle()) enter(lc);
     return;
   }
-  if (!fault_reason_.empty()) return;  // written once per fault
+  if (lifecycle() == link::Lifecycle::fault) return;  // its reason is written once per fault
   // Formatted into the capacity reserved at construction: the cycle does not allocate for it.
   const std::string_view reason = master_.fault_reason();
   const auto& physical = config_.physical;
   if (snapshot_.startup_fault == profibus::StartupFault::Kind::prm_fault) {
     // The slave does not say which rule: the local check passed, so its resolution must differ.
     if (snapshot_.diagnosis)
-      link::assign_formatted(fault_reason_,
-                             "{} (parameters pass the local check for {} steps × {} revolutions; the "
-                             "encoder reports {} × {})",
-                             reason, physical.steps_per_revolution, physical.revolutions,
-                             snapshot_.diagnosis->singleturn_resolution, snapshot_.diagnosis->revolutions);
+      enter_fault(
+          "{} (parameters pass the local check for {} steps × {} revolutions; the encoder reports {} × {})",
+          reason, physical.steps_per_revolution, physical.revolutions,
+          snapshot_.diagnosis->singleturn_resolution, snapshot_.diagnosis->revolutions);
     else
-      link::assign_formatted(fault_reason_,
-                             "{} (parameters pass the local check for {} steps × {} revolutions)", reason,
-                             physical.steps_per_revolution, physical.revolutions);
+      enter_fault("{} (parameters pass the local check for {} steps × {} revolutions)", reason,
+                  physical.steps_per_revolution, physical.revolutions);
   } else if (snapshot_.startup_fault == profibus::StartupFault::Kind::cfg_fault) {
-    link::assign_formatted(fault_reason_, "{} (the encoder refused configuration {} with these parameters)",
-                           reason, to_string(config_.parameters.functionality));
+    enter_fault("{} (the encoder refused configuration {} with these parameters)", reason,
+                to_string(config_.parameters.functionality));
   } else {
-    link::assign_formatted(fault_reason_, "{}", reason);
+    enter_fault("{}", reason);
   }
 }
 

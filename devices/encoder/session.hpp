@@ -2,8 +2,10 @@
 // The encoder's DP master: a profibus::DpMaster set up with this encoder's Prm/Cfg (from typed
 // EncoderParameters), a typed snapshot per cycle (position in counts and mm, velocity in mm/s,
 // status bits, decoded diagnosis, start-up faults with the rule broken) and the manufacturer
-// functions as handshakes that run across cycles. Non-blocking: poll(now) never waits and allocates
-// nothing (a fault reason is formatted into capacity reserved at construction).
+// functions as handshakes that run across cycles. Driven through link::DeviceSession: receive(now)
+// steps the DP master (which exchanges data on its own cyclic schedule) and publishes the snapshot;
+// transmit(now) hands this cycle's output word to the master for its next Data_Exchange. Neither
+// waits nor allocates (a fault reason is formatted into capacity reserved at construction).
 
 #include <cstdint>
 #include <optional>
@@ -14,7 +16,7 @@
 #include "encoder/handshake.hpp"
 #include "encoder/parameters.hpp"
 #include "encoder/scaling.hpp"
-#include "link/lifecycle.hpp"
+#include "link/device_session.hpp"
 #include "link/link.hpp"
 #include "profibus/dp_master.hpp"
 
@@ -39,7 +41,6 @@ struct CommandStatus {
 };
 
 struct Snapshot {
-  link::Lifecycle lifecycle = link::Lifecycle::inactive;
   profibus::DpState dp_state = profibus::DpState::stopped;
   bool data_exchange = false;
   std::uint64_t exchanges = 0;  // Data_Exchange replies of the configured length so far
@@ -70,27 +71,30 @@ struct Snapshot {
   // did not decode as the encoder profile's (empty when they did or there were none).
   std::size_t extended_diag_octets = 0;
   std::string_view diagnosis_error;
+  // The encoder raised new diagnosis (DH) during data exchange since the previous receive(): a pulse.
+  bool new_diagnosis = false;
 
   std::optional<PrmViolation> local_prm_violation;  // refused here before anything was sent
   profibus::StartupFault::Kind startup_fault = profibus::StartupFault::Kind::none;  // what the slave said
   CommandStatus command;
 };
 
-class Session {
+class Session final : public link::DeviceSession {
  public:
   // Throws std::invalid_argument naming the field and value (scale factors, bus settings).
   Session(link::Link& link, const SessionConfig& config);
 
-  void activate(link::TimePoint now);
-  void deactivate(link::TimePoint now);
-  [[nodiscard]] link::Lifecycle poll(link::TimePoint now);
+  void activate(link::TimePoint now) override;
+  void deactivate(link::TimePoint now) override;
+  void receive(link::TimePoint now) override;
+  void transmit(link::TimePoint now) override;
+  [[nodiscard]] const link::LinkHealth& health() const noexcept override { return master_.health(); }
+  [[nodiscard]] bool awaiting_reply() const noexcept override { return false; }
   [[nodiscard]] std::optional<link::TimePoint> next_deadline() const noexcept {
     return master_.next_deadline();
   }
 
   [[nodiscard]] const Snapshot& snapshot() const noexcept { return snapshot_; }
-  [[nodiscard]] const link::LinkHealth& health() const noexcept { return master_.health(); }
-  [[nodiscard]] const std::string& fault_reason() const noexcept { return fault_reason_; }
   // Why the DP start-up was last begun again (slave lost, left data exchange …); empty before.
   [[nodiscard]] const std::string& restart_reason() const noexcept { return master_.restart_reason(); }
   [[nodiscard]] const SessionConfig& config() const noexcept { return config_; }
@@ -116,7 +120,7 @@ class Session {
   void on_input(std::span<const std::uint8_t> bytes) noexcept;
   [[nodiscard]] std::string_view flagged(const CyclicInput& in) const noexcept;
   void push_outputs() noexcept;
-  void update_fault(link::TimePoint now);
+  void update_lifecycle();
 
   SessionConfig config_;
   Scaling scaling_;
@@ -128,7 +132,6 @@ class Session {
   std::uint64_t outputs_changed_at_ = 0;  // exchange count when the output word last changed
   std::uint32_t output_word_ = 0;
   Snapshot snapshot_;
-  std::string fault_reason_;
 };
 
 }  // namespace cellctl::encoder

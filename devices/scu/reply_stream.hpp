@@ -9,6 +9,7 @@
 #include <span>
 
 #include "scu/codec.hpp"
+#include "wire/frame_buffer.hpp"
 
 namespace cellctl::scu {
 
@@ -31,15 +32,10 @@ class ReplyStream {
   std::size_t feed(std::span<const std::uint8_t> bytes) noexcept;
   // The next complete reply or error; a reply's data stays valid until the next call of any method.
   [[nodiscard]] Event next() noexcept;
-  [[nodiscard]] std::size_t buffered() const noexcept { return size_; }
+  [[nodiscard]] std::size_t buffered() const noexcept { return buffer_.size(); }
 
  private:
-  void drop(std::size_t n) noexcept;
-
-  static constexpr std::size_t kCapacity = 2 * kMaxReplyTelegram;
-  std::uint8_t buffer_[kCapacity]{};
-  std::size_t size_ = 0;
-  std::size_t consumed_ = 0;  // the last reply handed out, dropped at the next call
+  wire::FrameBuffer<2 * kMaxReplyTelegram> buffer_;
   ReplyShape shape_{};
   bool expecting_ = false;
 };

@@ -11,6 +11,7 @@
 
 #include "link/clock.hpp"
 #include "scu/codec.hpp"
+#include "wire/frame_buffer.hpp"
 
 namespace cellctl::scu {
 
@@ -33,15 +34,10 @@ class RequestStream {
   std::size_t expire(link::TimePoint now) noexcept;
   std::size_t feed(std::span<const std::uint8_t> bytes, link::TimePoint now) noexcept;
   [[nodiscard]] Event next() noexcept;
-  [[nodiscard]] std::size_t buffered() const noexcept { return size_; }
+  [[nodiscard]] std::size_t buffered() const noexcept { return buffer_.size(); }
 
  private:
-  void drop(std::size_t n) noexcept;
-
-  static constexpr std::size_t kCapacity = 2 * kMaxRequestTelegram;
-  std::uint8_t buffer_[kCapacity]{};
-  std::size_t size_ = 0;
-  std::size_t consumed_ = 0;
+  wire::FrameBuffer<2 * kMaxRequestTelegram> buffer_;
   link::Duration timeout_;
   link::TimePoint last_byte_at_{};
 };

@@ -1,5 +1,7 @@
 #include "scu/session.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 
 #include "scu/data_list.hpp"
@@ -29,12 +31,15 @@ namespace {
 std::uint8_t fnc(int function) {
   return static_cast<std::uint8_t>(function - 1);
 }
+// Actuator status 2 of A1..A6 (RG group): bit 0 = initialised. It is not in the cyclic object (which
+// carries status 1), so it is read by itself: after the first refresh and then this often.
+constexpr std::uint16_t kStatus2Group = 0x00E0;
+constexpr auto kStatus2Period = std::chrono::seconds(2);
 }  // namespace
 
 template <class... Args>
 void Session::fault(fmt::format_string<Args...> format, Args&&... args) {
-  state_ = link::Lifecycle::fault;
-  link::assign_formatted(fault_reason_, format, std::forward<Args>(args)...);
+  enter_fault(format, std::forward<Args>(args)...);
   urgent_.clear();
   normal_.clear();
   in_flight_.reset();
@@ -45,7 +50,6 @@ void Session::fault(fmt::format_string<Args...> format, Args&&... args) {
 Session::Session(link::Link& link, const SessionConfig& config)
     : link_(link), link_name_(link.describe()), config_(config), layout_(config.actuators) {
   validate(config_);
-  fault_reason_.reserve(link::kFaultReasonCapacity);
   for (std::size_t a = 0; a < kActuatorCount; ++a)
     snapshot_.actuators[a].configured = config_.actuators.test(a);
   keepalive_.purpose = Purpose::keepalive;
@@ -75,27 +79,29 @@ void Session::activate(link::TimePoint now) {
   normal_.clear();
   in_flight_.reset();
   replies_.expect_nothing();
-  fault_reason_.clear();
   snapshot_.remote_open = false;
+  snapshot_.status2_known = false;
+  snapshot_.last_refresh.reset();
   keepalive_armed_ = false;
+  status2_queued_ = false;
   stop_queued_.reset();
   activated_at_ = now;
   health_.last_good.reset();
-  state_ = link::Lifecycle::activating;
+  enter(link::Lifecycle::activating, now);
   const auto object = layout_.object_value();
   (void)enqueue(false, OpenRequest{config_.safety_id}, Purpose::open);
   (void)enqueue(false, CyclicRequest{}, Purpose::first_keepalive);
   (void)enqueue(false, TransferRequest{data_id::cyclic_object(1), object}, Purpose::setup_cyclic);
 }
 
-void Session::deactivate(link::TimePoint now) {
-  if (state_ != link::Lifecycle::active && state_ != link::Lifecycle::activating) {
-    state_ = link::Lifecycle::inactive;
+void Session::deactivate(link::TimePoint) {
+  if (lifecycle() != link::Lifecycle::active && lifecycle() != link::Lifecycle::activating) {
+    if (lifecycle() != link::Lifecycle::fault) enter(link::Lifecycle::inactive);
     return;
   }
-  (void)now;
   normal_.clear();
-  state_ = link::Lifecycle::deactivating;
+  status2_queued_ = false;
+  enter(link::Lifecycle::deactivating);
   for (int f = 1; f <= kMotionFunctionCount; ++f) {
     auto& fs = snapshot_.functions[static_cast<std::size_t>(f - 1)];
     const bool in_flight_execute =
@@ -110,36 +116,47 @@ void Session::deactivate(link::TimePoint now) {
   if (snapshot_.remote_open || in_flight_)
     (void)enqueue(false, AbortRequest{}, Purpose::close);
   else
-    state_ = link::Lifecycle::inactive;
+    enter(link::Lifecycle::inactive);
 }
 
-link::Lifecycle Session::poll(link::TimePoint now) {
-  if (state_ == link::Lifecycle::inactive || state_ == link::Lifecycle::fault) {
+void Session::receive(link::TimePoint now) {
+  if (quiet()) {
     std::array<std::uint8_t, 64> sink{};
     while (link_.read(sink).count > 0) {
     }  // nobody asked: whatever arrives is stale
-    return state_;
+    return;
   }
-  receive(now);
-  if (state_ == link::Lifecycle::fault) return state_;
+  snapshot_.position_age = now - snapshot_.last_refresh.value_or(activated_at_);
+  read_link(now);
+  if (lifecycle() == link::Lifecycle::fault) return;
   if (in_flight_ && now - sent_at_ > config_.reply_timeout) {
     ++health_.timeouts;
     retry_or_give_up(now, "no reply");
   }
-  if (state_ == link::Lifecycle::fault) return state_;
-  const auto silent = health_.silent_for(now, activated_at_);
-  if (silent > config_.link_fault_after) {
+  if (lifecycle() == link::Lifecycle::fault) return;
+  const auto silent = silent_for(now);
+  if (silent > config_.link_fault_after)
     fault(
         "SCU on {} silent for {:.0f} ms (limit {:.0f} ms): check the cable, the SCU's power, DTR/RTS and "
         "the baud rate",
         link_name_, link::to_milliseconds(silent), link::to_milliseconds(config_.link_fault_after));
-    return state_;
-  }
-  if (!in_flight_ && state_ != link::Lifecycle::inactive) send_next(now);
-  return state_;
 }
 
-void Session::receive(link::TimePoint now) {
+void Session::transmit(link::TimePoint now) {
+  if (quiet()) return;
+  schedule_status2(now);
+  if (!in_flight_) send_next(now);
+}
+
+void Session::schedule_status2(link::TimePoint now) {
+  if (!accepting() || status2_queued_ || snapshot_.refreshes == 0 || now < next_status2_) return;
+  if (enqueue(false, GetRequest{kStatus2Group}, Purpose::status2)) {
+    status2_queued_ = true;
+    next_status2_ = now + kStatus2Period;
+  }
+}
+
+void Session::read_link(link::TimePoint now) {
   std::array<std::uint8_t, 256> buf{};
   for (;;) {
     const auto r = link_.read(buf);
@@ -153,20 +170,22 @@ void Session::receive(link::TimePoint now) {
     for (auto e = replies_.next(); e.kind != ReplyStream::Event::Kind::need_more; e = replies_.next()) {
       if (e.kind == ReplyStream::Event::Kind::reply) {
         on_reply(e.reply, now);
-        if (state_ == link::Lifecycle::fault) return;
+        if (lifecycle() == link::Lifecycle::fault) return;
         continue;
       }
       ++health_.bad_frames;
       // A damaged reply to the request in flight (complete, wrong CRC): ask again at once.
       if (e.error == DecodeError::bad_crc && in_flight_) retry_or_give_up(now, "replies with a bad CRC");
-      if (state_ == link::Lifecycle::fault) return;
+      if (lifecycle() == link::Lifecycle::fault) return;
     }
   }
 }
 
 void Session::on_reply(const Reply& reply, link::TimePoint now) {
   if (!in_flight_) return;
-  health_.record_reply(sent_at_, now);
+  // Only an ACK is a sign of a healthy link: an SCU that answers every request with an error (after a
+  // watchdog lapse, say) must go silent in the link's eyes and fault, not pass for alive.
+  if (reply.status == Status::ack) health_.record_reply(sent_at_, now);
   if (reply.status == Status::checksum_error) {
     // The SCU saw our request damaged: the same request again.
     ++health_.error_replies;
@@ -226,11 +245,21 @@ void Session::on_ack(const Reply& reply, const Pending& p, link::TimePoint now) 
       (void)snapshot_.last_read.value.assign(reply.data);
       ++snapshot_.last_read.sequence;
       break;
+    case Purpose::status2:
+      on_status2(reply.data);
+      break;
     case Purpose::close:
       snapshot_.remote_open = false;
-      state_ = link::Lifecycle::inactive;
+      enter(link::Lifecycle::inactive);
       break;
   }
+}
+
+void Session::on_status2(std::span<const std::uint8_t> data) {
+  status2_queued_ = false;
+  for (std::size_t a = 0; a < kActuatorCount && a < data.size(); ++a)
+    snapshot_.actuators[a].initialised = Status2::from_byte(data[a]).initialized;
+  snapshot_.status2_known = true;
 }
 
 void Session::on_refusal(const Reply& reply, const Pending& p) {
@@ -246,7 +275,7 @@ void Session::on_refusal(const Reply& reply, const Pending& p) {
           "SCU {} refused with {} ({}) while {} remote mode: check safety_id and the SCU's parameterization, "
           "then activate again",
           to_string(reply.command), to_string(reply.status), describe(reply.status),
-          state_ == link::Lifecycle::deactivating ? "leaving" : "entering");
+          lifecycle() == link::Lifecycle::deactivating ? "leaving" : "entering");
       return;
     case Purpose::keepalive:
       // Remote mode is gone (watchdog lapse with Safety_ID 0, or the SCU was reset): it must be opened again.
@@ -272,6 +301,9 @@ void Session::on_refusal(const Reply& reply, const Pending& p) {
       snapshot_.last_read.value.clear();
       ++snapshot_.last_read.sequence;
       return;
+    case Purpose::status2:
+      status2_queued_ = false;  // asked again at the next period
+      return;
   }
 }
 
@@ -283,14 +315,18 @@ void Session::on_refresh(std::span<const std::uint8_t> data, link::TimePoint now
   }
   for (std::size_t a = 0; a < kActuatorCount; ++a) {
     if (!config_.actuators.test(a)) continue;
-    snapshot_.actuators[a].position_edges = r.positions[a];
-    snapshot_.actuators[a].status = r.status[a];
+    auto& act = snapshot_.actuators[a];
+    act.position_edges = r.positions[a];
+    act.position_mm = r.positions[a] / config_.specs[a].edges_per_mm;
+    act.status = r.status[a];
+    act.fault = r.errors.actuator_fault(static_cast<int>(a) + 1);
   }
   snapshot_.errors = r.errors;
   if (r.errors.remote_timeout()) snapshot_.watchdog_lapse_seen = true;
   ++snapshot_.refreshes;
   snapshot_.last_refresh = now;
-  if (state_ == link::Lifecycle::activating) state_ = link::Lifecycle::active;
+  snapshot_.position_age = link::Duration::zero();
+  if (lifecycle() == link::Lifecycle::activating) enter(link::Lifecycle::active);
   close_finished_executions();
 }
 
@@ -328,7 +364,7 @@ void Session::retry_or_give_up(link::TimePoint now, const char* why) {
   if (attempts_ <= config_.retries && !urgent_.empty() && !is_stop && defer_for_stop(now)) return;
   if (attempts_ <= config_.retries) {
     ++health_.retries;
-    transmit(*in_flight_, now);
+    send(*in_flight_, now);
     return;
   }
   const Pending failed = *in_flight_;
@@ -354,6 +390,9 @@ void Session::retry_or_give_up(link::TimePoint now, const char* why) {
       snapshot_.functions[failed.function].outcome = MoveOutcome::refused;
       drop_queued_moves(failed.function);
       return;
+    case Purpose::status2:
+      status2_queued_ = false;
+      return;
     case Purpose::keepalive:
     case Purpose::read:
       return;  // the next refresh or the caller's next read will do
@@ -366,7 +405,8 @@ bool Session::defer_for_stop(link::TimePoint now) {
   // keep-alive is not re-queued; the schedule sends the next one.
   const Pending deferred = *in_flight_;
   const bool requeue = deferred.purpose == Purpose::position || deferred.purpose == Purpose::speed ||
-                       deferred.purpose == Purpose::execute || deferred.purpose == Purpose::read;
+                       deferred.purpose == Purpose::execute || deferred.purpose == Purpose::read ||
+                       deferred.purpose == Purpose::status2;
   if (!requeue && deferred.purpose != Purpose::keepalive) return false;
   if (requeue && !normal_.push_front(deferred)) return false;
   ++health_.retries;
@@ -384,22 +424,22 @@ void Session::send_next(link::TimePoint now) {
     const Pending p = urgent_.front();
     urgent_.pop_front();
     attempts_ = 0;
-    transmit(p, now);
+    send(p, now);
   } else if (keepalive_due && config_.keepalive_period > link::Duration::zero()) {
     attempts_ = 0;
-    transmit(keepalive_, now);
+    send(keepalive_, now);
   } else if (!normal_.empty()) {
     const Pending p = normal_.front();
     normal_.pop_front();
     attempts_ = 0;
-    transmit(p, now);
+    send(p, now);
   } else if (keepalive_due) {
     attempts_ = 0;
-    transmit(keepalive_, now);
+    send(keepalive_, now);
   }
 }
 
-void Session::transmit(const Pending& p, link::TimePoint now) {
+void Session::send(const Pending& p, link::TimePoint now) {
   ++attempts_;
   in_flight_ = p;
   sent_at_ = now;
@@ -427,10 +467,19 @@ void Session::drop_queued_moves(std::optional<std::uint8_t> function) {
   }
 }
 
-bool Session::move_to(int function, std::span<const ActuatorTarget> targets, std::uint16_t speed_percent,
-                      bool soft) {
-  if (!accepting() || !defined(function) || speed_percent > 100 || snapshot_.emergency_stop_open)
+std::uint16_t Session::percent(int function, double speed_mm_s) const noexcept {
+  const auto& fn = config_.functions[static_cast<std::size_t>(function - 1)];
+  double full = 0.0;
+  for (std::size_t a = 0; a < kActuatorCount; ++a)
+    if (fn.actuators.test(a)) full = std::max(full, config_.specs[a].full_speed_mm_s);
+  if (!(full > 0.0) || !std::isfinite(speed_mm_s)) return 1;
+  return static_cast<std::uint16_t>(std::clamp(std::lround(100.0 * speed_mm_s / full), 1L, 100L));
+}
+
+bool Session::move_to(int function, std::span<const ActuatorTarget> targets, double speed_mm_s, bool soft) {
+  if (!accepting() || !defined(function) || !(speed_mm_s > 0.0) || snapshot_.emergency_stop_open)
     return false;
+  const auto speed_percent = percent(function, speed_mm_s);
   const auto f = static_cast<std::size_t>(function - 1);
   auto& fs = snapshot_.functions[f];
   if (fs.execution_open || stop_queued_.test(f) || fs.outcome == MoveOutcome::queued) return false;
@@ -442,12 +491,17 @@ bool Session::move_to(int function, std::span<const ActuatorTarget> targets, std
   }
   if (given != fn.actuators || normal_.free_space() < targets.size() + 2) return false;
   for (const auto& t : targets) {
+    const auto a = static_cast<std::size_t>(t.actuator - 1);
+    const double edges = std::round(t.mm * config_.specs[a].edges_per_mm);
+    if (!std::isfinite(edges) || std::abs(edges) > 2e9) return false;
+    fs.targets[a] = static_cast<std::int32_t>(edges);
+  }
+  for (const auto& t : targets) {
     std::array<std::uint8_t, 4> value{};
     wire::ByteWriter w(value);
-    w.le(t.edges);
+    w.le(fs.targets[static_cast<std::size_t>(t.actuator - 1)]);
     (void)enqueue(false, TransferRequest{data_id::remote_position(t.actuator), value}, Purpose::position,
                   fnc(function));
-    fs.targets[static_cast<std::size_t>(t.actuator - 1)] = t.edges;
   }
   std::array<std::uint8_t, 2> speed{};
   wire::ByteWriter w(speed);
@@ -478,7 +532,7 @@ bool Session::stop(int function, bool soft) {
 }
 
 bool Session::emergency_stop() {
-  if (state_ != link::Lifecycle::active && state_ != link::Lifecycle::deactivating) return false;
+  if (lifecycle() != link::Lifecycle::active && lifecycle() != link::Lifecycle::deactivating) return false;
   drop_queued_moves(std::nullopt);
   Pending p;
   const ExecuteRequest f20{kEmergencyStopFnc, kUnusedParam, kUnusedParam};
@@ -493,8 +547,10 @@ bool Session::release_emergency_stop() {
   return enqueue(true, StopRequest{kEmergencyStopFnc, kUnusedParam}, Purpose::release_emergency);
 }
 
-bool Session::set_speed(int function, std::uint16_t speed_percent) {
-  if (!accepting() || !defined(function) || speed_percent > 100) return false;
+bool Session::set_speed(int function, double speed_mm_s) {
+  if (!accepting() || !defined(function) || !(speed_mm_s > 0.0)) return false;
+  const auto speed_percent = percent(function, speed_mm_s);
+  if (snapshot_.functions[static_cast<std::size_t>(function - 1)].speed_percent == speed_percent) return true;
   std::array<std::uint8_t, 2> speed{};
   wire::ByteWriter w(speed);
   w.le(speed_percent);

@@ -1,16 +1,23 @@
 #pragma once
-// The master side of one SCU: a non-blocking state machine over a Link, stepped by poll(now).
+// The master side of one SCU: a non-blocking state machine over a Link, driven by the loop through
+// link::DeviceSession (receive(now) … transmit(now)).
 //
 //   activate → RO(safety_id) → RC (no object: the manual wants RC before anything else)
 //            → RT 0x3001 (CyclicObj 1 = CyclicLayout) → RC index 0 … active
 //   active: RC index 0 every keepalive_period (watchdog 500 ms) refreshing every actuator at once;
+//           RG 0x00E0 (actuator status 2: "initialised") after the first refresh and every 2 s;
 //           queued RT/RE/RS/RG go out one at a time, stops first (and a stop preempts queued moves);
 //           every RE is followed by its RS once the motion has ended (or on stop/shutdown).
 //   deactivate → RS for every open RE → RA → inactive
 //
-// One request in flight; a reply time-out or a CSE is retried up to `retries` times; a device silent
-// for longer than link_fault_after is Lifecycle::fault with a reason. No allocation in poll() (a fault
-// reason string is composed only when a fault happens).
+// The session owns the SCU's units and bits: positions come and go in mm (edges ÷ edges_per_mm of
+// each actuator, from the config), speeds in mm/s (% of the actuator's full speed), the status bytes
+// and the error word are decoded here into the snapshot's typed flags.
+//
+// One request in flight; a reply time-out or a CSE is retried up to `retries` times; only an ACK counts
+// as a sign of life (an SCU that answers nothing but errors goes silent and faults); a device silent
+// for longer than link_fault_after is Lifecycle::fault with a reason. No allocation in receive() or
+// transmit() (a fault reason is formatted into capacity reserved at construction).
 
 #include <bitset>
 #include <cstdint>
@@ -19,8 +26,7 @@
 #include <string>
 
 #include "link/clock.hpp"
-#include "link/fault_reason.hpp"
-#include "link/lifecycle.hpp"
+#include "link/device_session.hpp"
 #include "link/link.hpp"
 #include "link/link_health.hpp"
 #include "scu/codec.hpp"
@@ -33,39 +39,42 @@
 namespace cellctl::scu {
 
 struct ActuatorTarget {
-  int actuator = 1;        // 1..6
-  std::int32_t edges = 0;  // remote position
+  int actuator = 1;  // 1..6
+  double mm = 0.0;   // remote position
 };
 
-class Session {
+class Session final : public link::DeviceSession {
  public:
   // Throws std::invalid_argument for a bad config (see validate()).
   Session(link::Link& link, const SessionConfig& config);
 
-  void activate(link::TimePoint now);
-  void deactivate(link::TimePoint now);
-  [[nodiscard]] link::Lifecycle poll(link::TimePoint now);
+  void activate(link::TimePoint now) override;
+  void deactivate(link::TimePoint now) override;
+  void receive(link::TimePoint now) override;
+  void transmit(link::TimePoint now) override;
+  [[nodiscard]] const link::LinkHealth& health() const noexcept override { return health_; }
+  [[nodiscard]] bool awaiting_reply() const noexcept override { return in_flight_.has_value(); }
 
   // Move function f (1..10) to remote positions: RT 0x3021.. per actuator, RT 0x3011.. speed, RE(f, 9).
-  // Every actuator of the function needs a target. Refused while the function has an RE open or a
-  // move queued, during an emergency stop, or when not active.
-  [[nodiscard]] bool move_to(int function, std::span<const ActuatorTarget> targets,
-                             std::uint16_t speed_percent, bool soft);
+  // Every actuator of the function needs a target. The speed is a percentage of the fastest of the
+  // function's actuators (none goes faster than asked), at least 1 %. Refused while the function has
+  // an RE open or a move queued, during an emergency stop, or when not active.
+  [[nodiscard]] bool move_to(int function, std::span<const ActuatorTarget> targets, double speed_mm_s,
+                             bool soft);
   // RS for the function, ahead of everything queued; the function's queued move telegrams are dropped.
   [[nodiscard]] bool stop(int function, bool soft);
   // F20 ahead of everything; every queued move is dropped. Holds until release_emergency_stop().
   [[nodiscard]] bool emergency_stop();
   [[nodiscard]] bool release_emergency_stop();
-  // RT 0x3011.. while the function moves: the SCU changes speed keeping its ramp.
-  [[nodiscard]] bool set_speed(int function, std::uint16_t speed_percent);
+  // RT 0x3011.. while the function moves: the SCU changes speed keeping its ramp. Sends nothing when
+  // the speed rounds to the percentage in force (true: it is in force or on its way).
+  [[nodiscard]] bool set_speed(int function, double speed_mm_s);
   // RG; the value lands in snapshot().last_read.
   [[nodiscard]] bool read(std::uint16_t data_id);
 
-  [[nodiscard]] link::Lifecycle state() const noexcept { return state_; }
   [[nodiscard]] const Snapshot& snapshot() const noexcept { return snapshot_; }
-  [[nodiscard]] const link::LinkHealth& health() const noexcept { return health_; }
-  [[nodiscard]] const std::string& fault_reason() const noexcept { return fault_reason_; }
   [[nodiscard]] const CyclicLayout& layout() const noexcept { return layout_; }
+  [[nodiscard]] const SessionConfig& config() const noexcept { return config_; }
 
  private:
   enum class Purpose : std::uint8_t {
@@ -80,6 +89,7 @@ class Session {
     emergency_stop,
     release_emergency,
     read,
+    status2,
     close
   };
   struct Pending {
@@ -93,31 +103,31 @@ class Session {
 
   [[nodiscard]] bool enqueue(bool urgent, const Request& r, Purpose p, std::uint8_t function = 0,
                              std::uint16_t data_id = 0);
-  void receive(link::TimePoint now);
+  void read_link(link::TimePoint now);
   void on_reply(const Reply& reply, link::TimePoint now);
   void on_ack(const Reply& reply, const Pending& p, link::TimePoint now);
   void on_refusal(const Reply& reply, const Pending& p);
   void on_refresh(std::span<const std::uint8_t> data, link::TimePoint now);
+  void on_status2(std::span<const std::uint8_t> data);
+  void schedule_status2(link::TimePoint now);
   void retry_or_give_up(link::TimePoint now, const char* why);
   [[nodiscard]] bool defer_for_stop(link::TimePoint now);
   void send_next(link::TimePoint now);
-  void transmit(const Pending& p, link::TimePoint now);
+  void send(const Pending& p, link::TimePoint now);
   void close_finished_executions();
   void drop_queued_moves(std::optional<std::uint8_t> function);
-  // Formats the reason into fault_reason_, whose capacity is reserved at construction: a fault found
-  // in poll() allocates nothing.
+  // Lifecycle::fault with the reason; everything queued is dropped.
   template <class... Args>
   void fault(fmt::format_string<Args...> format, Args&&... args);
   [[nodiscard]] bool defined(int function) const noexcept;
-  [[nodiscard]] bool accepting() const noexcept { return state_ == link::Lifecycle::active; }
+  [[nodiscard]] bool accepting() const noexcept { return lifecycle() == link::Lifecycle::active; }
+  [[nodiscard]] std::uint16_t percent(int function, double speed_mm_s) const noexcept;
 
   link::Link& link_;
   std::string link_name_;  // link_.describe(), taken once at construction
   SessionConfig config_;
   CyclicLayout layout_;
   ReplyStream replies_;
-  link::Lifecycle state_ = link::Lifecycle::inactive;
-  std::string fault_reason_;
   Snapshot snapshot_;
   link::LinkHealth health_;
 
@@ -130,6 +140,8 @@ class Session {
   link::TimePoint activated_at_{};
   bool keepalive_armed_ = false;
   link::TimePoint last_keepalive_sent_{};
+  bool status2_queued_ = false;
+  link::TimePoint next_status2_{};
 
   // Per function: RS already queued, and the refresh count at the RE's ACK (motion state from later
   // refreshes only counts).

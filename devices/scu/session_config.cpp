@@ -26,6 +26,14 @@ void validate(const SessionConfig& c) {
     throw std::invalid_argument("scu session: link_fault_after_ms must exceed reply_timeout_ms, got " +
                                 fmt::format("{:.0f}", link::to_milliseconds(c.link_fault_after)));
   if (c.actuators.none()) throw std::invalid_argument("scu session: no actuator configured");
+  for (std::size_t a = 0; a < kActuatorCount; ++a) {
+    const auto& spec = c.specs[a];
+    if (c.actuators.test(a) &&
+        !(spec.edges_per_mm > 0.0 && spec.full_speed_mm_s > 0.0 && spec.stroke_mm > 0.0))
+      throw std::invalid_argument(fmt::format(
+          "scu session: actuator {} needs edges_per_mm, stroke_mm and full speed > 0, got {:g}, {:g}, {:g}",
+          a + 1, spec.edges_per_mm, spec.stroke_mm, spec.full_speed_mm_s));
+  }
   for (std::size_t f = 0; f < c.functions.size(); ++f) {
     const auto& fn = c.functions[f];
     if (fn.defined && (fn.actuators & ~c.actuators).any())

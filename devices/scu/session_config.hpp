@@ -1,7 +1,9 @@
 #pragma once
 // How the master drives one SCU: remote-mode safety, keep-alive and reply timing, retries, when
-// silence becomes a link fault, and which actuators and functions the cell has.
+// silence becomes a link fault, which actuators and functions the cell has, and each actuator's
+// scaling (edges per mm) and full speed — the session converts to and from mm and mm/s with them.
 
+#include <array>
 #include <bitset>
 #include <chrono>
 #include <cstdint>
@@ -10,6 +12,13 @@
 #include "scu/functions.hpp"
 
 namespace cellctl::scu {
+
+// What the program must know of a fitted actuator; the SCU's own parameterization says the same.
+struct ActuatorSpec {
+  double edges_per_mm = 100.0;    // SCU positions are encoder edges
+  double stroke_mm = 200.0;       // its travel from fully in
+  double full_speed_mm_s = 20.0;  // what 100 % remote speed is
+};
 
 struct SessionConfig {
   std::uint8_t safety_id = 0;  // RO parameter: 0, 1 or 2 (manual 4.1)
@@ -21,6 +30,7 @@ struct SessionConfig {
   link::Duration link_fault_after = std::chrono::milliseconds(1000);
   std::bitset<kActuatorCount> actuators = 1;  // bit a-1 = actuator a is fitted
   FunctionTable functions = scp11(1);
+  std::array<ActuatorSpec, kActuatorCount> specs{};  // specs[a-1]: actuator a, when fitted
   // A move has "arrived" when every actuator ended within this of its target.
   std::int32_t arrival_tolerance_edges = 5;
 };

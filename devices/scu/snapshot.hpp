@@ -1,7 +1,8 @@
 #pragma once
-// What the SCU session publishes each poll: per actuator position and decoded status, per function
-// the state of its RE/RS pair and the outcome of the last move, the decoded error word, remote mode,
-// and the last RG result.
+// What the SCU session publishes each receive(): per actuator its position in mm, decoded status 1,
+// "initialised" from status 2 and its fault bit from the error word; per function the state of its
+// RE/RS pair and the outcome of the last move; the typed error word, remote mode, the age of the
+// positions, and the last RG result.
 
 #include <array>
 #include <bitset>
@@ -16,8 +17,11 @@ namespace cellctl::scu {
 
 struct ActuatorState {
   bool configured = false;
-  std::int32_t position_edges = 0;
-  Status1 status;  // present, motion_active, in_position, out_position …
+  std::int32_t position_edges = 0;  // as the SCU reports it
+  double position_mm = 0.0;         // position_edges ÷ the actuator's edges_per_mm
+  Status1 status;                   // present, motion_active, in_position, out_position …
+  bool initialised = false;         // actuator status 2 bit 0 (valid once Snapshot::status2_known)
+  bool fault = false;               // the error word's bit for this actuator (15..20)
 };
 
 enum class MoveOutcome : std::uint8_t {
@@ -33,7 +37,7 @@ enum class MoveOutcome : std::uint8_t {
 struct FunctionState {
   bool execution_open = false;  // RE acknowledged, its RS not yet
   MoveOutcome outcome = MoveOutcome::none;
-  std::uint16_t speed_percent = 0;  // last remote speed written
+  std::uint16_t speed_percent = 0;  // last remote speed written (the one place the speed is held)
   std::bitset<kActuatorCount> targeted;
   std::array<std::int32_t, kActuatorCount> targets{};  // edges, for the targeted actuators
 };
@@ -60,6 +64,8 @@ struct Snapshot {
   bool watchdog_lapse_seen = false;  // error bit 22 was reported at least once
   std::uint64_t refreshes = 0;       // RC replies with position/status data
   std::optional<link::TimePoint> last_refresh;
+  link::Duration position_age{};  // since last_refresh (or since activation without one), as of receive()
+  bool status2_known = false;     // actuator status 2 read since activation: `initialised` is meaningful
   LastRead last_read;
   std::optional<Refusal> last_refusal;
   std::uint64_t refusals = 0;

@@ -54,6 +54,12 @@ class ErrorWord {
   constexpr void clear(int bit) noexcept { raw_ &= ~mask(bit); }
   [[nodiscard]] constexpr std::uint32_t raw() const noexcept { return raw_; }
   [[nodiscard]] constexpr bool any() const noexcept { return raw_ != 0; }
+  // The lowest set bit (1..32), 0 with none: the cause a fault report names first.
+  [[nodiscard]] constexpr int first() const noexcept {
+    for (int bit = 1; bit <= 32; ++bit)
+      if (has(bit)) return bit;
+    return 0;
+  }
 
   [[nodiscard]] bool over_current() const noexcept { return has(error_bit::kTotalCurrent); }
   [[nodiscard]] bool actuator_fault(int actuator) const noexcept {

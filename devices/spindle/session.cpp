@@ -44,7 +44,6 @@ constexpr bool representable_hz(double hz) noexcept {
 
 Session::Session(link::Link& link, const SessionConfig& config)
     : link_(link), config_(config), link_name_(link.describe()) {
-  fault_reason_.reserve(link::kFaultReasonCapacity);
   snapshot_.start_refused_reason.reserve(link::kFaultReasonCapacity);
 }
 
@@ -67,9 +66,16 @@ bool Session::enqueue(const Message& m) {
   return true;
 }
 
+template <class... Args>
+void Session::fault(fmt::format_string<Args...> format, Args&&... args) {
+  enter_fault(format, std::forward<Args>(args)...);
+  queued_ = 0;
+  in_flight_.reset();
+  watching_start_ = false;
+}
+
 void Session::activate(link::TimePoint now) {
-  lifecycle_ = link::Lifecycle::activating;
-  fault_reason_.clear();
+  enter(link::Lifecycle::activating, now);
   queued_ = 0;
   in_flight_.reset();
   tx_.clear();
@@ -77,19 +83,22 @@ void Session::activate(link::TimePoint now) {
   snapshot_ = Snapshot{};
   snapshot_.start_refused_reason.reserve(link::kFaultReasonCapacity);
   activated_at_ = now;
+  status_at_.reset();
+  values_at_.reset();
+  at_speed_since_.reset();
   next_status_at_ = next_values_at_ = now;
   start_parameters_sent_ = false;  // the converter may have been switched off and on in between
   watching_start_ = false;
 }
 
 void Session::deactivate(link::TimePoint) {
-  if (lifecycle_ == link::Lifecycle::inactive || lifecycle_ == link::Lifecycle::fault) return;
-  lifecycle_ = link::Lifecycle::deactivating;
+  if (quiet()) return;
+  enter(link::Lifecycle::deactivating);
   (void)stop();
 }
 
 bool Session::start(double frequency_hz, Direction direction) {
-  if (lifecycle_ != link::Lifecycle::active || !representable_hz(frequency_hz) ||
+  if (lifecycle() != link::Lifecycle::active || !representable_hz(frequency_hz) ||
       direction == Direction::digital_input)
     return false;
   const bool send_parameters =
@@ -102,6 +111,7 @@ bool Session::start(double frequency_hz, Direction direction) {
   }
   (void)enqueue(SetBasic{static_cast<std::uint16_t>(std::lround(frequency_hz)), SpeedUnit::hz});
   (void)enqueue(Command{MsgId::cmd_start});
+  snapshot_.run_requested = true;
   snapshot_.requested_frequency_hz = frequency_hz;
   snapshot_.direction = direction;
   snapshot_.start_refused = false;
@@ -110,22 +120,23 @@ bool Session::start(double frequency_hz, Direction direction) {
 }
 
 bool Session::set_frequency(double frequency_hz) {
-  if (lifecycle_ != link::Lifecycle::active || !representable_hz(frequency_hz)) return false;
+  if (lifecycle() != link::Lifecycle::active || !representable_hz(frequency_hz)) return false;
   if (!enqueue(SetBasic{static_cast<std::uint16_t>(std::lround(frequency_hz)), SpeedUnit::hz})) return false;
   snapshot_.requested_frequency_hz = frequency_hz;
   return true;
 }
 
 bool Session::stop() {
-  if (lifecycle_ != link::Lifecycle::active && lifecycle_ != link::Lifecycle::deactivating) return false;
+  if (lifecycle() != link::Lifecycle::active && lifecycle() != link::Lifecycle::deactivating) return false;
   // Nothing queued may run after a stop: drop it all and put the stop first.
   queued_ = 0;
   watching_start_ = false;
+  snapshot_.run_requested = false;
   return enqueue(Command{MsgId::cmd_stop});
 }
 
 bool Session::reset() {
-  if (lifecycle_ != link::Lifecycle::active) return false;
+  if (lifecycle() != link::Lifecycle::active) return false;
   return enqueue(Command{MsgId::cmd_reset});
 }
 
@@ -133,22 +144,24 @@ bool Session::commands_pending() const noexcept {
   return queued_ > 0 || (in_flight_ && in_flight_->command);
 }
 
-link::Lifecycle Session::poll(link::TimePoint now) {
-  if (lifecycle_ == link::Lifecycle::inactive || lifecycle_ == link::Lifecycle::fault) return lifecycle_;
+void Session::receive(link::TimePoint now) {
+  if (quiet()) return;
+  snapshot_.status_age = now - status_at_.value_or(activated_at_);
+  snapshot_.values_age = now - values_at_.value_or(activated_at_);
   read_replies(now);
   check_in_flight(now);
-  if (lifecycle_ == link::Lifecycle::fault) return lifecycle_;
-  if (health_.silent_for(now, activated_at_) > config_.link_fault_after) {
-    assign_formatted(fault_reason_, "spindle converter on {} silent for {:.0f} ms (limit {:.0f} ms)",
-                     link_name_, link::to_milliseconds(health_.silent_for(now, activated_at_)),
-                     link::to_milliseconds(config_.link_fault_after));
-    enter_fault();
-    return lifecycle_;
+  if (lifecycle() == link::Lifecycle::fault) return;
+  if (silent_for(now) > config_.link_fault_after) {
+    fault("spindle converter on {} silent for {:.0f} ms (limit {:.0f} ms)", link_name_,
+          link::to_milliseconds(silent_for(now)), link::to_milliseconds(config_.link_fault_after));
+    return;
   }
-  if (lifecycle_ == link::Lifecycle::deactivating && !in_flight_ && queued_ == 0) {
-    lifecycle_ = link::Lifecycle::inactive;
-    return lifecycle_;
-  }
+  if (lifecycle() == link::Lifecycle::deactivating && !in_flight_ && queued_ == 0)
+    enter(link::Lifecycle::inactive);
+}
+
+void Session::transmit(link::TimePoint now) {
+  if (quiet()) return;
   send_next(now);
   if (!tx_.empty()) {
     std::array<std::uint8_t, 2 * kMaxFrameLength> chunk{};
@@ -157,7 +170,6 @@ link::Lifecycle Session::poll(link::TimePoint now) {
     const auto r = link_.write(std::span(chunk).first(n));
     if (r.ok()) tx_.drop(r.count);
   }
-  return lifecycle_;
 }
 
 void Session::read_replies(link::TimePoint now) {
@@ -165,9 +177,7 @@ void Session::read_replies(link::TimePoint now) {
   for (;;) {
     const auto r = link_.read(buffer);
     if (!r.ok()) {
-      assign_formatted(fault_reason_, "spindle link {} {}", link_name_,
-                       r.status == link::IoStatus::closed ? "closed" : "failed");
-      enter_fault();
+      fault("spindle link {} {}", link_name_, r.status == link::IoStatus::closed ? "closed" : "failed");
       return;
     }
     if (r.count == 0) return;
@@ -191,11 +201,26 @@ void Session::on_reply(link::TimePoint now, const Message& m) {
     return;
   }
   health_.record_reply(sent_at_, now);
-  if (const auto* s = std::get_if<StatusOut>(&m)) on_statusout(*s);
-  if (const auto* v = std::get_if<StatusValues>(&m)) on_values(*v);
+  if (const auto* s = std::get_if<StatusOut>(&m)) {
+    on_statusout(*s);
+    status_at_ = now;
+    snapshot_.status_age = link::Duration::zero();
+    if (!s->at_speed())
+      at_speed_since_.reset();
+    else if (!at_speed_since_)
+      at_speed_since_ = now;
+    if (!at_speed_since_) snapshot_.settled = false;
+  }
+  if (const auto* v = std::get_if<StatusValues>(&m)) {
+    on_values(*v);
+    values_at_ = now;
+    snapshot_.values_age = link::Duration::zero();
+    // Asked for after at-speed was seen, and at speed still: the reading is of the settled motor.
+    snapshot_.settled = at_speed_since_ && sent_at_ >= *at_speed_since_;
+  }
   if (const auto* id = std::get_if<Identification>(&m)) {
     snapshot_.identification = *id;
-    if (lifecycle_ == link::Lifecycle::activating) lifecycle_ = link::Lifecycle::active;
+    if (lifecycle() == link::Lifecycle::activating) enter(link::Lifecycle::active);
   }
   if (ack && ack->acknowledged == MsgId::cmd_start) watching_start_ = true;
   in_flight_.reset();
@@ -238,18 +263,17 @@ void Session::on_values(const StatusValues& v) {
 }
 
 void Session::check_in_flight(link::TimePoint now) {
-  if (!in_flight_ || lifecycle_ == link::Lifecycle::fault || now - sent_at_ < config_.reply_timeout) return;
+  if (!in_flight_ || lifecycle() == link::Lifecycle::fault || now - sent_at_ < config_.reply_timeout) return;
   ++health_.timeouts;
   if (tries_ <= config_.retries) {
     ++health_.retries;
-    transmit(now, *in_flight_);
+    send(now, *in_flight_);
     return;
   }
   if (in_flight_->command) {
     // An unconfirmed SET or CMD leaves the converter's state unknown: that is a fault, not a shrug.
-    assign_formatted(fault_reason_, "spindle converter on {} did not acknowledge {} after {} tries",
-                     link_name_, name_of(in_flight_->sent_id), tries_);
-    enter_fault();
+    fault("spindle converter on {} did not acknowledge {} after {} tries", link_name_,
+          name_of(in_flight_->sent_id), tries_);
     return;
   }
   in_flight_.reset();  // a poll: the next one is due soon enough; silence is judged by link_fault_after
@@ -263,10 +287,10 @@ void Session::send_next(link::TimePoint now) {
     --queued_;
     tries_ = 0;
     in_flight_ = next;
-    transmit(now, next);
+    send(now, next);
     return;
   }
-  if (lifecycle_ == link::Lifecycle::deactivating) return;
+  if (lifecycle() == link::Lifecycle::deactivating) return;
   std::optional<MsgId> wanted;
   if (!snapshot_.identification) {
     wanted = MsgId::res_ident;
@@ -280,20 +304,13 @@ void Session::send_next(link::TimePoint now) {
   if (!wanted) return;
   tries_ = 0;
   in_flight_ = make(Request{*wanted});
-  transmit(now, *in_flight_);
+  send(now, *in_flight_);
 }
 
-void Session::transmit(link::TimePoint now, const Outgoing& o) {
+void Session::send(link::TimePoint now, const Outgoing& o) {
   ++tries_;
   sent_at_ = now;
   (void)tx_.push(o.frame.view());
-}
-
-void Session::enter_fault() noexcept {
-  lifecycle_ = link::Lifecycle::fault;
-  queued_ = 0;
-  in_flight_.reset();
-  watching_start_ = false;
 }
 
 }  // namespace cellctl::spindle

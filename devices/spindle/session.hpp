@@ -1,10 +1,11 @@
 #pragma once
-// The master side of the e@syDrive link: a non-blocking state machine stepped by poll(now). One request
-// in flight (the converter answers only when asked); commands go before polls and a stop before
-// everything; every SET and CMD is confirmed by its ACK and repeated on silence a bounded number of
-// times. It polls statusout fast (at speed, at rest, warnings) and the measured values slower, reads
-// the identification once, and publishes all of it as a typed Snapshot. Never sleeps, never blocks,
-// does not allocate in poll().
+// The master side of the e@syDrive link: a non-blocking state machine driven by the loop through
+// link::DeviceSession (receive(now) … transmit(now)). One request in flight (the converter answers
+// only when asked); commands go before polls and a stop before everything; every SET and CMD is
+// confirmed by its ACK and repeated on silence a bounded number of times. It polls statusout fast (at
+// speed, at rest, warnings) and the measured values slower, reads the identification once, and
+// publishes all of it as a typed Snapshot in Hz with the age of each reading. Never sleeps, never
+// blocks, does not allocate in receive() or transmit().
 
 #include <array>
 #include <chrono>
@@ -13,7 +14,7 @@
 #include <string>
 
 #include "link/clock.hpp"
-#include "link/lifecycle.hpp"
+#include "link/device_session.hpp"
 #include "link/link.hpp"
 #include "link/link_health.hpp"
 #include "spindle/codec.hpp"
@@ -36,13 +37,15 @@ struct SessionConfig {
 };
 
 struct Snapshot {
-  // What this session asked for.
+  // What this session asked for (the one place the commanded speed is held).
+  bool run_requested = false;  // a start went out and no stop since
   double requested_frequency_hz = 0.0;
   Direction direction = Direction::clockwise;
   // From statusout (0x60).
-  bool status_valid = false;  // at least one statusout since activation
-  bool at_speed = false;      // N_Soll_OK
-  bool at_rest = true;        // STILLSTAND
+  bool status_valid = false;    // at least one statusout since activation
+  link::Duration status_age{};  // since the last statusout (or activation), as of receive()
+  bool at_speed = false;        // N_Soll_OK
+  bool at_rest = true;          // STILLSTAND
   DeviceState state = DeviceState::none;
   std::uint8_t error_number = 0;  // the warning's or fault's number, 0 with none
   bool current_limit = false;     // WARNSTROM
@@ -50,6 +53,10 @@ struct Snapshot {
   std::uint8_t motor_code = 0;
   // From the status values (0x59).
   bool values_valid = false;
+  link::Duration values_age{};  // since the last status values (or activation), as of receive()
+  // The frequency reading was asked for after N_Soll_OK came and it has held since: only then is
+  // "actual off the set-point" meaningful (the values are polled slower than the status).
+  bool settled = false;
   double set_frequency_hz = 0.0;      // P10, as the converter has it
   double actual_frequency_hz = 0.0;   // P13, unsigned
   double peak_current_a = 0.0;        // P11
@@ -69,14 +76,17 @@ struct Snapshot {
   [[nodiscard]] bool fault() const noexcept { return state == DeviceState::fault; }
 };
 
-class Session {
+class Session final : public link::DeviceSession {
  public:
   Session(link::Link& link, const SessionConfig& config);
 
-  void activate(link::TimePoint now);
+  void activate(link::TimePoint now) override;
   // Stops the spindle (CMD System Stopp, confirmed) and then goes inactive.
-  void deactivate(link::TimePoint now);
-  [[nodiscard]] link::Lifecycle poll(link::TimePoint now);
+  void deactivate(link::TimePoint now) override;
+  void receive(link::TimePoint now) override;
+  void transmit(link::TimePoint now) override;
+  [[nodiscard]] const link::LinkHealth& health() const noexcept override { return health_; }
+  [[nodiscard]] bool awaiting_reply() const noexcept override { return in_flight_.has_value(); }
 
   // Commands; false when not active, out of range, or the command queue is full.
   [[nodiscard]] bool start(double frequency_hz, Direction direction = Direction::clockwise);
@@ -87,10 +97,8 @@ class Session {
   // True while a SET or CMD is queued or waiting for its ACK.
   [[nodiscard]] bool commands_pending() const noexcept;
 
-  [[nodiscard]] link::Lifecycle lifecycle() const noexcept { return lifecycle_; }
   [[nodiscard]] const Snapshot& snapshot() const noexcept { return snapshot_; }
-  [[nodiscard]] const link::LinkHealth& health() const noexcept { return health_; }
-  [[nodiscard]] const std::string& fault_reason() const noexcept { return fault_reason_; }
+  [[nodiscard]] const SessionConfig& config() const noexcept { return config_; }
 
  private:
   using Frame = wire::FixedBytes<kMaxFrameLength>;
@@ -110,17 +118,16 @@ class Session {
   void on_values(const StatusValues& v);
   void check_in_flight(link::TimePoint now);
   void send_next(link::TimePoint now);
-  void transmit(link::TimePoint now, const Outgoing& o);
-  // Lifecycle::fault with fault_reason_ (already written), queue dropped.
-  void enter_fault() noexcept;
+  void send(link::TimePoint now, const Outgoing& o);
+  // Lifecycle::fault with the reason, queue dropped.
+  template <class... Args>
+  void fault(fmt::format_string<Args...> format, Args&&... args);
 
   link::Link& link_;
   SessionConfig config_;
   std::string link_name_;
-  link::Lifecycle lifecycle_ = link::Lifecycle::inactive;
   Snapshot snapshot_;
   link::LinkHealth health_;
-  std::string fault_reason_;
   FrameDecoder decoder_;
   wire::ByteQueue<2 * kMaxFrameLength> tx_;
 
@@ -131,6 +138,9 @@ class Session {
   unsigned tries_ = 0;
 
   link::TimePoint activated_at_{};
+  std::optional<link::TimePoint> status_at_;  // when the last statusout / values arrived
+  std::optional<link::TimePoint> values_at_;
+  std::optional<link::TimePoint> at_speed_since_;
   link::TimePoint next_status_at_{};
   link::TimePoint next_values_at_{};
   bool start_parameters_sent_ = false;

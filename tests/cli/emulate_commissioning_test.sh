@@ -113,17 +113,17 @@ expect() {
 }
 
 run "SCU status" scu status
-expect "SCU status" "^actuator 1 +-?[0-9]+ edges, at rest"
+expect "SCU status" "^actuator 1 +-?[0-9.]+ mm \(-?[0-9]+ edges\), at rest"
 expect "SCU status" "^errors +none"
 
-run "SCU move" scu move --function 1 --actuator 1 --position-edges 200 --speed 100
+run "SCU move" scu move --function 1 --actuator 1 --position-mm 20 --speed-mm-s 20
 expect "SCU move" "^function F1 +arrived"
 # The SCU's own arrival tolerance (arrival_tolerance_edges in the config) is 2 edges.
 run "SCU status after the move" scu status
-expect "SCU status after the move" "^actuator 1 +(198|199|200|201|202) edges, at rest"
+expect "SCU status after the move" "^actuator 1 +(19\.8|19\.9|20\.0|20\.1|20\.2)0 mm \((198|199|200|201|202) edges\), at rest"
 # A command the session refuses is a failure (exit 1), not a bad command line (2).
 run_exits 1 "SCU move with a function the config does not define" scu move --function 3 --actuator 1 \
-  --position-edges 100
+  --position-mm 10
 expect "SCU move refused" "move refused: F3"
 
 run "spindle start" spindle start --frequency 400

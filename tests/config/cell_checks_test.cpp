@@ -9,6 +9,7 @@
 #include <string>
 
 #include "config/cell_config.hpp"
+#include "support/expect_config_error.hpp"
 
 namespace cellctl::config {
 namespace {
@@ -41,12 +42,7 @@ CellConfig parse(const std::string& text) {
 }
 
 void expect_error(const std::string& text, const std::string& message) {
-  try {
-    (void)parse(text);
-    ADD_FAILURE() << "expected: " << message;
-  } catch (const ConfigError& e) {
-    EXPECT_EQ(std::string(e.what()), message);
-  }
+  cellctl::testing::expect_config_error([&] { (void)parse(text); }, message);
 }
 
 TEST(CellLinkSilence, ShippedTimingsPass) {

@@ -4,16 +4,23 @@
 
 #include <gtest/gtest.h>
 
+#include "runtime/emulator_setup.hpp"
+
 namespace cellctl::config {
 namespace {
 
 EncoderSection parse(const std::string& text) {
   return parse_encoder_section(YamlNode::load_string(text, "cell.yaml").at("encoder"));
 }
+// The section's `emulator:` block, read where emulators are built.
+encoder::EmulatorConfig emulator_of(const std::string& text) {
+  const auto section = YamlNode::load_string(text, "cell.yaml").at("encoder");
+  return runtime::parse_encoder_emulator(section, parse_encoder_section(section).session);
+}
 
 std::string error_of(const std::string& text) {
   try {
-    (void)parse(text);
+    (void)emulator_of(text);
   } catch (const ConfigError& e) {
     return e.what();
   }
@@ -21,7 +28,7 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(EncoderSection, FullSectionReachesSessionAndEmulator) {
-  const auto s = parse(
+  const std::string text =
       "encoder:\n"
       "  port: emulated\n"
       "  baud: 1500000\n"
@@ -45,7 +52,9 @@ TEST(EncoderSection, FullSectionReachesSessionAndEmulator) {
       "    singleturn_steps: 8192\n"
       "    revolutions: 4096\n"
       "    serial: 'SCH8800042'\n"
-      "    state_file: /tmp/encoder.eeprom\n");
+      "    state_file: /tmp/encoder.eeprom\n";
+  const auto s = parse(text);
+  const auto emulator = emulator_of(text);
   EXPECT_EQ(s.port.line.baud, 1500000u);
   EXPECT_EQ(s.port.line.parity, link::Parity::even);
   EXPECT_EQ(s.session.station_address, 5);
@@ -64,17 +73,18 @@ TEST(EncoderSection, FullSectionReachesSessionAndEmulator) {
   EXPECT_EQ(s.session.bus.max_retries, 2);
   EXPECT_EQ(s.session.bus.lost_slave_time, std::chrono::milliseconds(50));
   EXPECT_EQ(s.session.bus.line.baud, 1500000u);
-  EXPECT_EQ(s.emulator.address, 5);
-  EXPECT_EQ(std::string(s.emulator.identity.serial.begin(), s.emulator.identity.serial.end()), "SCH8800042");
-  EXPECT_EQ(s.emulator.state_file, "/tmp/encoder.eeprom");
+  EXPECT_EQ(emulator.address, 5);
+  EXPECT_EQ(std::string(emulator.identity.serial.begin(), emulator.identity.serial.end()), "SCH8800042");
+  EXPECT_EQ(emulator.state_file, "/tmp/encoder.eeprom");
 }
 
 TEST(EncoderSection, DefaultsAreProfibus8E1At19200) {
   const auto s = parse("encoder:\n  counts_per_mm: 2048\n");
+  const auto emulator = emulator_of("encoder:\n  counts_per_mm: 2048\n");
   EXPECT_EQ(s.port.line.baud, 19200u);
   EXPECT_EQ(s.port.line.parity, link::Parity::even);
   EXPECT_EQ(s.session.parameters.functionality, encoder::Functionality::scancon22);
-  EXPECT_EQ(s.emulator.identity.physical.total(), 1u << 25);
+  EXPECT_EQ(emulator.identity.physical.total(), 1u << 25);
 }
 
 TEST(EncoderSection, ErrorsNameFileLineColumnFieldAndRule) {

@@ -1,5 +1,5 @@
-// The session's poll() allocates nothing after construction — data exchange, a lost slave with its
-// restart during a handshake, and the start-up refusals whose reasons are composed in the cycle.
+// The session's receive() and transmit() allocate nothing after construction — data exchange, a lost slave
+// with its restart during a handshake, and the start-up refusals whose reasons are composed in the cycle.
 
 #include <gtest/gtest.h>
 
@@ -46,7 +46,7 @@ TEST(EncoderNoAllocation, SlavePrmFaultReasonIsComposedWithoutAllocating) {
   rig.session_config.parameters.measuring_units = 16384;
   rig.session_config.parameters.total_range = 16384 * 64;
   Session& s = rig.start();
-  ASSERT_TRUE(rig.run_until([&] { return s.snapshot().lifecycle == Lifecycle::fault; }, 200ms));
+  ASSERT_TRUE(rig.run_until([&] { return s.lifecycle() == Lifecycle::fault; }, 200ms));
 
   EXPECT_EQ(rig.session_poll_allocations, 0u);
   EXPECT_EQ(s.snapshot().startup_fault, profibus::StartupFault::Kind::prm_fault);
@@ -62,7 +62,7 @@ TEST(EncoderNoAllocation, SlaveCfgFaultReasonIsComposedWithoutAllocating) {
   // Without Status Bits is a Scancon 3.0 parameter: the encoder refuses it with the 2.2 configuration.
   rig.session_config.parameters.without_status_bits = true;
   Session& s = rig.start();
-  ASSERT_TRUE(rig.run_until([&] { return s.snapshot().lifecycle == Lifecycle::fault; }, 200ms));
+  ASSERT_TRUE(rig.run_until([&] { return s.lifecycle() == Lifecycle::fault; }, 200ms));
 
   EXPECT_EQ(rig.session_poll_allocations, 0u);
   EXPECT_NE(s.fault_reason().find("Cfg_Fault"), std::string::npos) << s.fault_reason();

@@ -38,7 +38,8 @@ TEST(EncoderPty, DataExchangeAndPresetOverAPseudoTerminal) {
   const auto run_until = [&](auto done) {
     const auto deadline = clock.now() + 5s;
     while (clock.now() < deadline) {
-      (void)session.poll(clock.now());
+      session.receive(clock.now());
+      session.transmit(clock.now());
       emulator.poll(clock.now());
       if (done()) return true;
       std::this_thread::yield();

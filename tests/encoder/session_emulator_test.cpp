@@ -19,7 +19,7 @@ TEST(EncoderSession, PowerOnToDataExchangeWithPositionInMm) {
   Session& s = rig.start();
   ASSERT_TRUE(rig.run_until([&] { return rig.exchanging(); }, 200ms)) << s.fault_reason();
   const Snapshot& snap = s.snapshot();
-  EXPECT_EQ(snap.lifecycle, Lifecycle::active);
+  EXPECT_EQ(s.lifecycle(), Lifecycle::active);
   EXPECT_EQ(snap.position_counts, 20480u);
   EXPECT_DOUBLE_EQ(snap.position_mm, 10.0);
   EXPECT_TRUE(snap.has_status_bits);
@@ -53,7 +53,8 @@ TEST(EncoderSession, BadParametersAreRefusedLocallyWithTheRule) {
   rig.session_config.parameters.measuring_units = 3000;
   rig.session_config.parameters.total_range = 3000 * 10 + 7;
   Session& s = rig.start();
-  EXPECT_EQ(s.poll(rig.clock.now()), Lifecycle::fault);
+  s.receive(rig.clock.now());
+  EXPECT_EQ(s.lifecycle(), Lifecycle::fault);
   ASSERT_TRUE(s.snapshot().local_prm_violation);
   EXPECT_EQ(s.snapshot().local_prm_violation->parameter, "Total Measuring Range");
   EXPECT_NE(s.fault_reason().find("integer multiple"), std::string::npos) << s.fault_reason();
@@ -69,7 +70,7 @@ TEST(EncoderSession, SlavePrmFaultIsReportedWithTheEmulatorsRule) {
   rig.session_config.parameters.measuring_units = 16384;
   rig.session_config.parameters.total_range = 16384 * 64;
   Session& s = rig.start();
-  ASSERT_TRUE(rig.run_until([&] { return s.snapshot().lifecycle == Lifecycle::fault; }, 200ms));
+  ASSERT_TRUE(rig.run_until([&] { return s.lifecycle() == Lifecycle::fault; }, 200ms));
   EXPECT_EQ(s.snapshot().startup_fault, profibus::StartupFault::Kind::prm_fault);
   EXPECT_TRUE(s.snapshot().standard_diag.prm_fault);
   EXPECT_NE(s.fault_reason().find("Prm_Fault"), std::string::npos) << s.fault_reason();
@@ -87,7 +88,7 @@ TEST(EncoderSession, ParametersTheChosenConfigurationDoesNotAllowGiveCfgFault) {
   Rig rig(Functionality::scancon22);
   rig.session_config.parameters.without_status_bits = true;  // a Scancon 3.0 parameter
   Session& s = rig.start();
-  ASSERT_TRUE(rig.run_until([&] { return s.snapshot().lifecycle == Lifecycle::fault; }, 200ms));
+  ASSERT_TRUE(rig.run_until([&] { return s.lifecycle() == Lifecycle::fault; }, 200ms));
   EXPECT_EQ(s.snapshot().startup_fault, profibus::StartupFault::Kind::cfg_fault);
   EXPECT_NE(s.fault_reason().find("Cfg_Fault"), std::string::npos) << s.fault_reason();
   EXPECT_EQ(rig.emulator->last_cfg_reason(),
@@ -136,7 +137,7 @@ TEST(EncoderSession, SilentSlaveIsDetectedInTimeAndRecovers) {
   const auto before = s.snapshot().exchanges;
   ASSERT_TRUE(rig.run_until([&] { return s.snapshot().data_exchange && s.snapshot().exchanges > before + 2; },
                             500ms));
-  EXPECT_EQ(s.snapshot().lifecycle, Lifecycle::active);
+  EXPECT_EQ(s.lifecycle(), Lifecycle::active);
 }
 
 TEST(EncoderSession, PresetThroughTheMaster) {

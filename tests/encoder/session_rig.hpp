@@ -73,7 +73,8 @@ struct Rig {
   // The session's poll alone is counted: the emulator (the device side) is not under test there.
   void poll_session(link::TimePoint now) {
     const std::size_t before = allocation_count ? allocation_count() : 0;
-    (void)session->poll(now);
+    session->receive(now);
+    session->transmit(now);
     if (allocation_count) session_poll_allocations += allocation_count() - before;
   }
   bool exchanging() const { return session->snapshot().data_exchange && session->snapshot().exchanges > 2; }

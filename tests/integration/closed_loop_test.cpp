@@ -29,7 +29,7 @@ class ClosedLoop : public FaultRun {
   void SetUp() override {
     FaultRun::SetUp();
     // The SCU's sensor of x reads 1 % long: told to go to 100 mm, the rod stops at 99.01 mm.
-    cell_.scu->emulator.actuators[0].physics.scale_error = 0.01;
+    emulators().scu->actuators[0].physics.scale_error = 0.01;
     load_recipe_text(kOneMoveRecipe);
   }
   [[nodiscard]] double true_x() { return run_->emulators()->scu()->actuator(1).true_position_mm(); }
@@ -70,17 +70,12 @@ TEST_F(ClosedLoop, WithoutCorrectionsTheSameMoveMissesTheTolerance) {
 TEST_F(ClosedLoop, NoMotionIsFoundWellBeforeTheMoveTimeOut) {
   // The real threshold of x is 5 mm/s (load, wear); the recipe moves it at 3 mm/s, which the cell's
   // configured 0.8 mm/s minimum allows: the actuator does not move at all.
-  cell_.scu->emulator.actuators[0].physics.scale_error = 0.0;
-  cell_.scu->emulator.actuators[0].physics.min_speed_mm_s = 5.0;
-  load_recipe_text(R"(
-recipe: {name: slow, version: "1", cell: demo-cell}
-limits:
-  axes:
-    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
-  timeouts: {move_s: 30}
-steps:
-  - {name: creep, move: {to: {x: 30}, speed_mm_s: 3}}
-)");
+  emulators().scu->actuators[0].physics.scale_error = 0.0;
+  emulators().scu->actuators[0].physics.min_speed_mm_s = 5.0;
+  // The monitor's following-error rule would stop the cell first (following_error_test): loosened
+  // here, so that the supervisor's own no-motion check is what is tested.
+  cell_.axes[0].ferror_mm = cell_.axes[0].min_ferror_mm = 100.0;
+  load_recipe_text(kCreepRecipe);
   const auto r = run_with([](double, runtime::CellRun&) { return true; });
   EXPECT_EQ(r.final_state, State::stopped) << r.summary_text;
   const auto started = events("step_started");
@@ -99,7 +94,7 @@ steps:
 TEST_F(ClosedLoop, FullSpeedTraverseRaisesNoFalseDisagreement) {
   // At the axis's 20 mm/s the SCU's position (with the RC reply, every 100 ms) is up to 2 mm old
   // while the encoder's is fresh: the disagreement rule must not mistake that for a fault.
-  cell_.scu->emulator.actuators[0].physics.scale_error = 0.002;  // the shipped plant
+  emulators().scu->actuators[0].physics.scale_error = 0.002;  // the shipped plant
   load_recipe_text(R"(
 recipe: {name: fast, version: "1", cell: demo-cell}
 limits:

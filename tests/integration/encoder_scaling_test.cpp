@@ -32,7 +32,7 @@ TEST_F(EncoderScaling, ScaledUnitsPerRevolutionReadTheTruePosition) {
   session.parameters.total_range = 1000u * session.physical.revolutions;
   session.mm_per_revolution = 0.0;
   session.counts_per_mm = 250.0;
-  cell_.scu->emulator.actuators[0].physics.scale_error = 0.0;
+  emulators().scu->actuators[0].physics.scale_error = 0.0;
   load_recipe_text(kOneMoveRecipe);
 
   const auto r = run_with([](double, runtime::CellRun&) { return true; });

@@ -32,6 +32,17 @@ steps:
 )";
 inline constexpr std::size_t kTraverseStep = 1;  // program index of the traverse
 
+// x alone, 0 → 30 mm at 3 mm/s: below the real threshold of an actuator made to stall at 5 mm/s.
+inline constexpr const char* kCreepRecipe = R"(
+recipe: {name: slow, version: "1", cell: demo-cell}
+limits:
+  axes:
+    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
+  timeouts: {move_s: 30}
+steps:
+  - {name: creep, move: {to: {x: 30}, speed_mm_s: 3}}
+)";
+
 struct Timeline {
   std::optional<double> cause_t;  // the cycle the cause was put in place (or became true in the plant)
   std::optional<double> f20_t;    // first cycle the SCU emulator held an emergency stop (F20)

@@ -129,14 +129,14 @@ bool plant_disagrees(runtime::CellRun& run, const config::CellConfig& cell) {
 
 TEST_F(MonitorRule, DisagreementFromShaftSlip) {
   // The encoder's coupling slips 5 %: SCU and encoder part by 2 mm after 40 mm of travel.
-  cell_.plant.encoder_slip = 0.05;
+  emulators().plant.encoder_slip = 0.05;
   const auto r = run_with([this](double, runtime::CellRun& run) { return plant_disagrees(run, cell_); });
   expect_controlled_stop(r, "disagreement", kDisagreementMs);
 }
 
 TEST_F(MonitorRule, DisagreementFromScaleError) {
   // The SCU's position sensor of x reads 5 % long (the shipped plant: 0.2 %).
-  cell_.scu->emulator.actuators[0].physics.scale_error = 0.05;
+  emulators().scu->actuators[0].physics.scale_error = 0.05;
   const auto r = run_with([this](double, runtime::CellRun& run) { return plant_disagrees(run, cell_); });
   expect_controlled_stop(r, "disagreement", kDisagreementMs);
 }

@@ -30,7 +30,6 @@ class RunFixture : public ::testing::Test {
     std::filesystem::remove_all(dir_);
     // The encoder's EEPROM file lives per test, so runs do not see each other's presets.
     cell_ = config::load_cell_config(source_dir() / "config/cell.yaml");
-    if (cell_.encoder) cell_.encoder->emulator.state_file = dir_ / "encoder.eeprom";
   }
   void TearDown() override {
     if (!HasFailure()) std::filesystem::remove_all(dir_);
@@ -41,8 +40,18 @@ class RunFixture : public ::testing::Test {
     recipe_ = recipe::parse_recipe(config::YamlNode::load_string(text, "test-recipe.yaml"), cell_);
   }
 
+  // The emulators' set-up, read from the cell file on first use: change cell_'s sessions before.
+  runtime::EmulatorSetup& emulators() {
+    if (!emulators_) {
+      emulators_ = runtime::load_emulator_setup(cell_);
+      if (emulators_->encoder) emulators_->encoder->state_file = dir_ / "encoder.eeprom";
+    }
+    return *emulators_;
+  }
+
   runtime::CellRun& make_run() {
     runtime::RunOptions o;
+    o.emulators = emulators();
     o.mode = runtime::RunMode::virtual_time;
     o.journal_dir = dir_ / "journal";
     o.supervisor = supervisor_settings_;
@@ -69,6 +78,7 @@ class RunFixture : public ::testing::Test {
 
   std::filesystem::path dir_;
   config::CellConfig cell_;
+  std::optional<runtime::EmulatorSetup> emulators_;
   recipe::Recipe recipe_;
   std::unique_ptr<runtime::CellRun> run_;
   std::atomic<bool> interrupt_{false};

@@ -10,18 +10,19 @@ namespace {
 
 using namespace std::chrono_literals;
 
-config::CellConfig cell_config() {
-  return config::parse_cell_config(config::YamlNode::load_string(R"(cell: t
+// The monitor reads the cell's core only (axes, limits, stops).
+config::CellCore cell_config() {
+  return config::parse_cell_core(config::YamlNode::load_string(R"(cell: t
 axes:
-  - {name: x, actuator: 1, function: 1, edges_per_mm: 10, min_mm: 0, max_mm: 100, max_speed_mm_s: 20, encoder: true}
+  - {name: x, actuator: 1, function: 1, edges_per_mm: 10, min_mm: 0, max_mm: 100, max_speed_mm_s: 20, encoder: true,
+     min_ferror_mm: 0.5, ferror_mm: 4}
   - {name: z, actuator: 2, function: 2, edges_per_mm: 10, min_mm: 0, max_mm: 50, max_speed_mm_s: 10}
-encoder: {mm_per_revolution: 4, time_base: steps_per_10ms}
 limits: {overspeed_mm_s: 25, disagreement_mm: 2, link_silence_ms: 300, spindle_min_hz: 100, spindle_max_hz: 800,
          spindle_tolerance_hz: 5}
-stops: {fault: 1, link: 0, operator: 2}
+stops: {fault: 1, link: 0, operator: 2, following_error: 2}
 )",
-                                                                 "cell.yaml"),
-                                   "cell.yaml");
+                                                               "cell.yaml"),
+                                 "cell.yaml");
 }
 
 cell::CellState healthy() {
@@ -36,7 +37,7 @@ cell::CellState healthy() {
 
 class MonitorTest : public ::testing::Test {
  protected:
-  config::CellConfig cfg = cell_config();
+  config::CellCore cfg = cell_config();
   Monitor m{cfg};
   void SetUp() override { m.arm(); }
 
@@ -128,7 +129,9 @@ TEST_F(MonitorTest, SpindleOffItsSetPointAtSpeed) {
 
 TEST_F(MonitorTest, ScuErrorBitsAreNamed) {
   auto s = healthy();
-  s.scu_error_word = 1u << 21;  // bit 22: remote communication time-out
+  // As the SCU session types bit 22 (remote communication time-out).
+  s.scu_errors = {
+      .word = 1u << 21, .first_bit = 22, .first_cause = "remote communication time-out (watchdog)"};
   expect_only(s, Rule::scu_error, StopCategory::controlled_off);
   const auto detail = std::string(m.latch(Rule::scu_error).detail.view());
   EXPECT_NE(detail.find("SCU error bit 22"), std::string::npos) << detail;
@@ -177,6 +180,86 @@ TEST_F(MonitorTest, StrongestCategoryWins) {
   s.links[0].fault = true;        // category 0
   (void)m.evaluate(s, {}, 1.0);
   EXPECT_EQ(m.demanded_stop(), StopCategory::immediate);
+}
+
+}  // namespace
+}  // namespace cellctl::monitor
+
+namespace cellctl::monitor {
+namespace {
+
+// The supervisor's plan for axis `i`: at `planned_mm`, moving at `mm_s`.
+cell::Intents planned(std::size_t i, double planned_mm, double mm_s, cell::Halt halt = cell::Halt::none) {
+  cell::Intents in;
+  in.halt = halt;
+  in.axes[i] = {.move_id = 1,
+                .move = true,
+                .target_mm = 50.0,
+                .speed_mm_s = mm_s,
+                .soft = true,
+                .planned_mm = planned_mm,
+                .planned_mm_s = mm_s};
+  return in;
+}
+
+bool latched(const cell::CellState& s, Monitor& m) {
+  return m.evaluate(s, {}, 1.0).test(static_cast<std::size_t>(Rule::following_error));
+}
+
+// x: max 20 mm/s, min_ferror 0.5 mm, ferror 4 mm → 2 mm allowed at 10 mm/s, 0.5 mm at rest.
+TEST_F(MonitorTest, FollowingErrorAllowanceGrowsWithThePlannedSpeed) {
+  const auto s = healthy();  // x measured by the encoder at 10.1 mm
+  m.expect_axes(planned(0, 12.0, 10.0));
+  EXPECT_FALSE(latched(s, m)) << "1.9 mm behind at 10 mm/s is within 2 mm";
+  m.expect_axes(planned(0, 12.2, 10.0));
+  expect_only(s, Rule::following_error, StopCategory::controlled_hold);  // stops.following_error: 2
+  const auto detail = std::string(m.latch(Rule::following_error).detail.view());
+  EXPECT_NE(detail.find("following error 2.10 mm > 2.00 mm allowed at 10.0 mm/s"), std::string::npos)
+      << detail;
+}
+
+TEST_F(MonitorTest, FollowingErrorAtRestIsHeldToTheMinimum) {
+  const auto s = healthy();
+  m.expect_axes(planned(0, 10.5, 0.0));
+  EXPECT_FALSE(latched(s, m)) << "0.4 mm off at rest is within min_ferror 0.5 mm";
+  m.expect_axes(planned(0, 9.5, 0.0));
+  EXPECT_TRUE(latched(s, m)) << "0.6 mm ahead of the measurement at rest";
+}
+
+TEST_F(MonitorTest, FollowingErrorNeverExceedsFerror) {
+  const auto s = healthy();
+  m.expect_axes(planned(0, 10.1 + 4.1, 40.0));  // a planned speed above the axis's maximum
+  EXPECT_TRUE(latched(s, m)) << "the allowance stops growing at ferror_mm";
+}
+
+TEST_F(MonitorTest, FollowingErrorOnlyWhileAMoveRunsUnhalted) {
+  const auto s = healthy();
+  m.expect_axes(planned(0, 20.0, 10.0, cell::Halt::controlled));
+  EXPECT_FALSE(latched(s, m)) << "a halting axis leaves its plan on its own ramp";
+  auto idle = planned(0, 20.0, 10.0);
+  idle.axes[0].move = false;
+  m.expect_axes(idle);
+  EXPECT_FALSE(latched(s, m)) << "no move, no plan to follow";
+}
+
+TEST_F(MonitorTest, FollowingErrorLatchesUntilResetWithTheCauseGone) {
+  const auto s = healthy();
+  m.expect_axes(planned(0, 15.0, 10.0));
+  EXPECT_TRUE(latched(s, m));
+  m.expect_axes(planned(0, 10.1, 10.0));  // back on its plan
+  (void)m.evaluate(s, {}, 2.0);
+  EXPECT_TRUE(m.latch(Rule::following_error).active) << "latched until an operator reset";
+  EXPECT_TRUE(m.reset(s, {}));
+  EXPECT_FALSE(m.latch(Rule::following_error).active);
+}
+
+TEST_F(MonitorTest, FollowingErrorOfAnAxisKnownByTheScuAllowsForItsPositionsAge) {
+  auto s = healthy();  // z: by the SCU at 5.0 mm; defaults min_ferror 1 mm, ferror 5 mm, max 10 mm/s
+  s.scu_position_age = 100ms;
+  m.expect_axes(planned(1, 5.0 + 5.0 + 0.9, 10.0));
+  EXPECT_FALSE(latched(s, m)) << "5 mm allowed at 10 mm/s, plus 1 mm the plan moved since the reply";
+  s.scu_position_age = 0ms;
+  EXPECT_TRUE(latched(s, m)) << "a fresh position leaves no allowance";
 }
 
 }  // namespace

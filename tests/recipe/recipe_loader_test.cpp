@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "config/cell_config.hpp"
+
 namespace cellctl::recipe {
 namespace {
 

@@ -1,5 +1,5 @@
-// poll() allocates nothing after construction — cyclic refresh, a move, and the link fault with its
-// reason composed at the moment it happens — on session and emulator both.
+// receive() and transmit() allocate nothing after construction — cyclic refresh, a move, and the link fault
+// with its reason composed at the moment it happens — on session and emulator both.
 
 #include <gtest/gtest.h>
 
@@ -19,11 +19,11 @@ TEST(ScuNoAllocation, CyclicExchangeAMoveAndALinkFault) {
   ASSERT_TRUE(rig.activate());
 
   const std::size_t before = cellctl::testing::allocation_count();
-  const ActuatorTarget t[] = {{1, 4000}};
-  ASSERT_TRUE(rig.session.move_to(1, t, 50, true));
+  const ActuatorTarget t[] = {{1, 40.0}};
+  ASSERT_TRUE(rig.session.move_to(1, t, 10.0, true));
   rig.run_until(500ms, [] { return false; });
   rig.sim.set_cut(true);
-  const bool faulted = rig.run_until(2s, [&] { return rig.session.state() == Lifecycle::fault; });
+  const bool faulted = rig.run_until(2s, [&] { return rig.session.lifecycle() == Lifecycle::fault; });
   const std::size_t after = cellctl::testing::allocation_count();
 
   ASSERT_TRUE(faulted);
@@ -37,7 +37,7 @@ TEST(ScuNoAllocation, AnUnansweredActivationFaultsWithoutAllocating) {
   const std::size_t before = cellctl::testing::allocation_count();
   rig.session.activate(rig.clock.now());
   rig.emulator.drop_next_replies(100);
-  const bool faulted = rig.run_until(2s, [&] { return rig.session.state() == Lifecycle::fault; });
+  const bool faulted = rig.run_until(2s, [&] { return rig.session.lifecycle() == Lifecycle::fault; });
   const std::size_t after = cellctl::testing::allocation_count();
 
   ASSERT_TRUE(faulted);

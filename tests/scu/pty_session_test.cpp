@@ -29,7 +29,8 @@ TEST(ScuPty, MoveOverARealPseudoTerminal) {
     while (clock.now() < deadline) {
       const auto now = clock.now();
       emulator.poll(now);
-      (void)session.poll(now);
+      session.receive(now);
+      session.transmit(now);
       if (done()) return true;
       std::this_thread::sleep_for(200us);
     }
@@ -37,10 +38,10 @@ TEST(ScuPty, MoveOverARealPseudoTerminal) {
   };
 
   session.activate(clock.now());
-  ASSERT_TRUE(run_until(3s, [&] { return session.state() == link::Lifecycle::active; }))
+  ASSERT_TRUE(run_until(3s, [&] { return session.lifecycle() == link::Lifecycle::active; }))
       << session.fault_reason();
-  const ActuatorTarget target[] = {{1, 300}};  // 3 mm at 100 %: well under a second of motion
-  ASSERT_TRUE(session.move_to(1, target, 100, true));
+  const ActuatorTarget target[] = {{1, 3.0}};  // 3 mm at 20 mm/s: well under a second of motion
+  ASSERT_TRUE(session.move_to(1, target, 20.0, true));
   ASSERT_TRUE(run_until(5s,
                         [&] {
                           const auto& f = session.snapshot().functions[0];
@@ -50,7 +51,7 @@ TEST(ScuPty, MoveOverARealPseudoTerminal) {
   EXPECT_FALSE(emulator.execution_open(1)) << "RS reached the SCU";
   EXPECT_NEAR(session.snapshot().actuators[0].position_edges, 300, 1);
   session.deactivate(clock.now());
-  ASSERT_TRUE(run_until(3s, [&] { return session.state() == link::Lifecycle::inactive; }));
+  ASSERT_TRUE(run_until(3s, [&] { return session.lifecycle() == link::Lifecycle::inactive; }));
   EXPECT_FALSE(emulator.remote_open());
   EXPECT_EQ(session.health().bad_frames, 0u);
 }

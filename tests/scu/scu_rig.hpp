@@ -32,7 +32,8 @@ struct Rig {
 
   void step(link::TimePoint now) {
     emulator.poll(now);
-    (void)session.poll(now);
+    session.receive(now);
+    session.transmit(now);
   }
   template <class Done>
   bool run_until(link::Duration limit, Done&& done, link::Duration dt = std::chrono::milliseconds(1)) {
@@ -41,7 +42,8 @@ struct Rig {
   }
   bool activate() {
     session.activate(clock.now());
-    return run_until(std::chrono::seconds(1), [this] { return session.state() == link::Lifecycle::active; });
+    return run_until(std::chrono::seconds(1),
+                     [this] { return session.lifecycle() == link::Lifecycle::active; });
   }
 
   link::VirtualClock clock;

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "config/cell_config.hpp"
+#include "runtime/emulator_setup.hpp"
+#include "support/expect_config_error.hpp"
 
 namespace cellctl::config {
 namespace {
@@ -17,12 +19,7 @@ ScuSection parse(const std::string& text) {
 }
 
 void expect_error(const std::string& text, const std::string& message) {
-  try {
-    (void)parse(text);
-    ADD_FAILURE() << "expected: " << message;
-  } catch (const ConfigError& e) {
-    EXPECT_EQ(std::string(e.what()), message);
-  }
+  cellctl::testing::expect_config_error([&] { (void)parse(text); }, message);
 }
 
 TEST(ScuSection, ParsesAValidSection) {
@@ -51,11 +48,10 @@ TEST(ScuSection, ParsesAValidSection) {
   EXPECT_TRUE(s.session.functions[3].synchronized);
   EXPECT_TRUE(s.session.functions[3].moves(3));
   EXPECT_FALSE(s.session.functions[1].defined);
-  EXPECT_TRUE(s.emulator.actuators[2].present);
-  EXPECT_DOUBLE_EQ(s.emulator.actuators[2].edges_per_mm, 20.0);
-  EXPECT_DOUBLE_EQ(s.emulator.actuators[0].physics.stroke_mm, 300.0);
+  EXPECT_DOUBLE_EQ(s.session.specs[2].edges_per_mm, 20.0);
+  EXPECT_DOUBLE_EQ(s.session.specs[0].stroke_mm, 300.0);
+  EXPECT_DOUBLE_EQ(s.session.specs[0].full_speed_mm_s, 25.0);
   EXPECT_NO_THROW(scu::validate(s.session));
-  EXPECT_NO_THROW(scu::validate(s.emulator));
 }
 
 TEST(ScuSection, DefaultsToScp11) {
@@ -71,7 +67,14 @@ TEST(ScuSection, TheShippedCellConfigLoads) {
   ASSERT_TRUE(cell.scu.has_value());
   EXPECT_EQ(cell.scu->session.actuators.to_ulong(), 0b11u);
   EXPECT_NO_THROW(scu::validate(cell.scu->session));
-  EXPECT_NO_THROW(scu::validate(cell.scu->emulator));
+  const auto emulated = runtime::load_emulator_setup(cell);
+  ASSERT_TRUE(emulated.scu.has_value());
+  EXPECT_NO_THROW(scu::validate(*emulated.scu));
+  // The emulated actuator is the session's (scaling, stroke, speed) with the physics added.
+  EXPECT_TRUE(emulated.scu->actuators[1].present);
+  EXPECT_DOUBLE_EQ(emulated.scu->actuators[0].edges_per_mm, cell.scu->session.specs[0].edges_per_mm);
+  EXPECT_DOUBLE_EQ(emulated.scu->actuators[0].physics.scale_error, 0.002);
+  EXPECT_DOUBLE_EQ(emulated.scu->actuators[1].physics.ramp_mm_s2, 30.0);
 }
 
 TEST(ScuSection, MalformedInputsNameFileLineColumn) {

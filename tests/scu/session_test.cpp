@@ -20,7 +20,7 @@ TEST(ScuSession, HoldsRemoteModeForTenVirtualMinutesWithoutAWatchdogLapse) {
   bool always_active = true;
   cellctl::testing::run_for(rig.clock, 1ms, 10min, [&](link::TimePoint t) {
     rig.step(t);
-    always_active = always_active && rig.session.state() == Lifecycle::active;
+    always_active = always_active && rig.session.lifecycle() == Lifecycle::active;
   });
   EXPECT_TRUE(always_active);
   EXPECT_FALSE(rig.emulator.error_word().remote_timeout()) << "bit 22 must never be set";
@@ -38,8 +38,8 @@ TEST(ScuSession, HoldsRemoteModeForTenVirtualMinutesWithoutAWatchdogLapse) {
 TEST(ScuSession, MoveToARemotePositionCompletesAndIsFollowedByRs) {
   Rig rig(1);
   ASSERT_TRUE(rig.activate());
-  const ActuatorTarget target[] = {{1, 5000}};
-  ASSERT_TRUE(rig.session.move_to(1, target, 50, true));
+  const ActuatorTarget target[] = {{1, 50.0}};
+  ASSERT_TRUE(rig.session.move_to(1, target, 10.0, true));
   EXPECT_EQ(rig.session.snapshot().functions[0].outcome, MoveOutcome::queued);
   bool saw_motion = false;
   ASSERT_TRUE(rig.run_until(20s, [&] {
@@ -59,12 +59,12 @@ TEST(ScuSession, MoveToARemotePositionCompletesAndIsFollowedByRs) {
 TEST(ScuSession, AStopIssuedMidMoveGoesAheadOfQueuedTelegrams) {
   Rig rig(2);
   ASSERT_TRUE(rig.activate());
-  const ActuatorTarget far1[] = {{1, 15000}};
-  ASSERT_TRUE(rig.session.move_to(1, far1, 100, true));
+  const ActuatorTarget far1[] = {{1, 150.0}};
+  ASSERT_TRUE(rig.session.move_to(1, far1, 20.0, true));
   ASSERT_TRUE(rig.run_until(2s, [&] { return rig.session.snapshot().actuators[0].status.motion_active; }));
   // F2's three telegrams are queued first, then the stop of F1: the RS must overtake them.
-  const ActuatorTarget far2[] = {{2, 15000}};
-  ASSERT_TRUE(rig.session.move_to(2, far2, 100, true));
+  const ActuatorTarget far2[] = {{2, 150.0}};
+  ASSERT_TRUE(rig.session.move_to(2, far2, 20.0, true));
   ASSERT_TRUE(rig.session.stop(1, false));
   ASSERT_TRUE(rig.run_until(1s, [&] { return !rig.emulator.execution_open(1); }));
   EXPECT_FALSE(rig.emulator.execution_open(2)) << "F2's RE was still queued behind the RS";
@@ -77,8 +77,8 @@ TEST(ScuSession, AStopDropsTheFunctionsQueuedMove) {
   Rig rig(1);
   ASSERT_TRUE(rig.activate());
   const double before = rig.emulator.actuator(1).position_mm();
-  const ActuatorTarget t[] = {{1, 9000}};
-  ASSERT_TRUE(rig.session.move_to(1, t, 100, true));
+  const ActuatorTarget t[] = {{1, 90.0}};
+  ASSERT_TRUE(rig.session.move_to(1, t, 20.0, true));
   ASSERT_TRUE(rig.session.stop(1, true));
   rig.run_until(2s, [] { return false; });
   EXPECT_FALSE(rig.emulator.execution_open(1));
@@ -100,7 +100,7 @@ TEST(ScuSession, ACorruptedReplyIsRetried) {
   const auto v = rig.session.snapshot().last_read.value.view();
   ASSERT_EQ(v.size(), 31u);
   EXPECT_EQ(std::string(v.begin(), v.begin() + 8), "SCU V2B3");
-  EXPECT_EQ(rig.session.state(), Lifecycle::active);
+  EXPECT_EQ(rig.session.lifecycle(), Lifecycle::active);
 }
 
 TEST(ScuSession, ALostReplyIsRetriedAfterTheReplyTimeout) {
@@ -110,7 +110,7 @@ TEST(ScuSession, ALostReplyIsRetriedAfterTheReplyTimeout) {
   rig.run_until(1s, [] { return false; });
   EXPECT_EQ(rig.session.health().timeouts, 2u);
   EXPECT_EQ(rig.session.health().retries, 2u);
-  EXPECT_EQ(rig.session.state(), Lifecycle::active);
+  EXPECT_EQ(rig.session.lifecycle(), Lifecycle::active);
   EXPECT_FALSE(rig.emulator.error_word().remote_timeout()) << "two lost replies stay inside the watchdog";
 }
 
@@ -119,7 +119,7 @@ TEST(ScuSession, ASilentDeviceBecomesALinkFaultWithinTheConfiguredTime) {
   ASSERT_TRUE(rig.activate());
   const auto cut_at = rig.clock.now();
   rig.sim.set_cut(true);
-  ASSERT_TRUE(rig.run_until(5s, [&] { return rig.session.state() == Lifecycle::fault; }));
+  ASSERT_TRUE(rig.run_until(5s, [&] { return rig.session.lifecycle() == Lifecycle::fault; }));
   const auto took = rig.clock.now() - cut_at;
   EXPECT_LE(took, 1000ms + 20ms) << "link_fault_after is 1000 ms";
   EXPECT_GE(took, 900ms);
@@ -130,8 +130,8 @@ TEST(ScuSession, ASilentDeviceBecomesALinkFaultWithinTheConfiguredTime) {
 TEST(ScuSession, ASpeedBelowTheActuatorsThresholdIsDetectedNotWaitedOn) {
   Rig rig(1);
   ASSERT_TRUE(rig.activate());
-  const ActuatorTarget t[] = {{1, 9000}};
-  ASSERT_TRUE(rig.session.move_to(1, t, 2, true));  // 2 % of 20 mm/s = 0.4 mm/s < 0.8 mm/s minimum
+  const ActuatorTarget t[] = {{1, 90.0}};
+  ASSERT_TRUE(rig.session.move_to(1, t, 0.4, true));  // 0.4 mm/s (2 % of 20 mm/s) < 0.8 mm/s minimum
   ASSERT_TRUE(rig.run_until(2s, [&] {
     return !rig.session.snapshot().functions[0].execution_open &&
            rig.session.snapshot().functions[0].outcome != MoveOutcome::queued;
@@ -143,11 +143,11 @@ TEST(ScuSession, ASpeedBelowTheActuatorsThresholdIsDetectedNotWaitedOn) {
 TEST(ScuSession, ChangesSpeedDuringTheMotion) {
   Rig rig(1);
   ASSERT_TRUE(rig.activate());
-  const ActuatorTarget t[] = {{1, 18000}};
-  ASSERT_TRUE(rig.session.move_to(1, t, 25, true));
+  const ActuatorTarget t[] = {{1, 180.0}};
+  ASSERT_TRUE(rig.session.move_to(1, t, 5.0, true));
   rig.run_until(3s, [] { return false; });
   EXPECT_NEAR(rig.emulator.actuator(1).velocity_mm_s(), 5.0, 1e-9);
-  ASSERT_TRUE(rig.session.set_speed(1, 75));
+  ASSERT_TRUE(rig.session.set_speed(1, 15.0));
   rig.run_until(1s, [] { return false; });
   EXPECT_NEAR(rig.emulator.actuator(1).velocity_mm_s(), 15.0, 1e-9) << "ramped up to the new speed";
   EXPECT_EQ(rig.session.snapshot().functions[0].outcome, MoveOutcome::running);
@@ -156,11 +156,11 @@ TEST(ScuSession, ChangesSpeedDuringTheMotion) {
 TEST(ScuSession, EmergencyStopHaltsEverythingAndDropsQueuedMoves) {
   Rig rig(2);
   ASSERT_TRUE(rig.activate());
-  const ActuatorTarget t1[] = {{1, 15000}};
-  ASSERT_TRUE(rig.session.move_to(1, t1, 100, false));
+  const ActuatorTarget t1[] = {{1, 150.0}};
+  ASSERT_TRUE(rig.session.move_to(1, t1, 20.0, false));
   ASSERT_TRUE(rig.run_until(2s, [&] { return rig.emulator.actuator(1).moving(); }));
-  const ActuatorTarget t2[] = {{2, 15000}};
-  ASSERT_TRUE(rig.session.move_to(2, t2, 100, false));
+  const ActuatorTarget t2[] = {{2, 150.0}};
+  ASSERT_TRUE(rig.session.move_to(2, t2, 20.0, false));
   ASSERT_TRUE(rig.session.emergency_stop());
   ASSERT_TRUE(rig.run_until(1s, [&] { return rig.session.snapshot().emergency_stop_open; }));
   EXPECT_FALSE(rig.emulator.actuator(1).active());
@@ -168,22 +168,22 @@ TEST(ScuSession, EmergencyStopHaltsEverythingAndDropsQueuedMoves) {
   rig.run_until(1s, [] { return false; });
   EXPECT_FALSE(rig.emulator.execution_open(1)) << "the ended motion got its RS";
   EXPECT_FALSE(rig.emulator.execution_open(2)) << "the queued move was dropped";
-  EXPECT_FALSE(rig.session.move_to(1, t1, 50, true)) << "no motion while F20 holds";
+  EXPECT_FALSE(rig.session.move_to(1, t1, 10.0, true)) << "no motion while F20 holds";
   ASSERT_TRUE(rig.session.release_emergency_stop());
   ASSERT_TRUE(rig.run_until(1s, [&] { return !rig.session.snapshot().emergency_stop_open; }));
   EXPECT_FALSE(rig.emulator.emergency_stop_active());
-  EXPECT_TRUE(rig.session.move_to(1, t1, 50, true));
+  EXPECT_TRUE(rig.session.move_to(1, t1, 10.0, true));
 }
 
 TEST(ScuSession, DeactivateStopsOpenMotionThenLeavesRemoteMode) {
   Rig rig(1);
   ASSERT_TRUE(rig.activate());
-  const ActuatorTarget t[] = {{1, 15000}};
-  ASSERT_TRUE(rig.session.move_to(1, t, 100, true));
+  const ActuatorTarget t[] = {{1, 150.0}};
+  ASSERT_TRUE(rig.session.move_to(1, t, 20.0, true));
   ASSERT_TRUE(rig.run_until(2s, [&] { return rig.emulator.execution_open(1); }));
   rig.session.deactivate(rig.clock.now());
-  EXPECT_EQ(rig.session.state(), Lifecycle::deactivating);
-  ASSERT_TRUE(rig.run_until(2s, [&] { return rig.session.state() == Lifecycle::inactive; }));
+  EXPECT_EQ(rig.session.lifecycle(), Lifecycle::deactivating);
+  ASSERT_TRUE(rig.run_until(2s, [&] { return rig.session.lifecycle() == Lifecycle::inactive; }));
   EXPECT_FALSE(rig.emulator.execution_open(1));
   EXPECT_FALSE(rig.emulator.remote_open());
   EXPECT_FALSE(rig.session.snapshot().remote_open);
@@ -223,21 +223,21 @@ TEST(ScuSession, AnUnansweredActivationIsAFaultNamingTheCommand) {
   Rig rig(1);
   rig.session.activate(rig.clock.now());
   rig.emulator.drop_next_replies(100);
-  ASSERT_TRUE(rig.run_until(2s, [&] { return rig.session.state() == Lifecycle::fault; }));
+  ASSERT_TRUE(rig.run_until(2s, [&] { return rig.session.lifecycle() == Lifecycle::fault; }));
   EXPECT_NE(rig.session.fault_reason().find("RO"), std::string::npos) << rig.session.fault_reason();
 }
 
 TEST(ScuSession, RejectsCommandsItCannotCarryOut) {
   Rig rig(2);
-  const ActuatorTarget t[] = {{1, 100}};
-  EXPECT_FALSE(rig.session.move_to(1, t, 50, true)) << "not active yet";
+  const ActuatorTarget t[] = {{1, 1.0}};
+  EXPECT_FALSE(rig.session.move_to(1, t, 10.0, true)) << "not active yet";
   ASSERT_TRUE(rig.activate());
-  EXPECT_FALSE(rig.session.move_to(3, t, 50, true)) << "F3 is not defined";
-  EXPECT_FALSE(rig.session.move_to(2, t, 50, true)) << "F2 moves A2, not A1";
-  EXPECT_FALSE(rig.session.move_to(1, t, 101, true)) << "speed is in %";
+  EXPECT_FALSE(rig.session.move_to(3, t, 10.0, true)) << "F3 is not defined";
+  EXPECT_FALSE(rig.session.move_to(2, t, 10.0, true)) << "F2 moves A2, not A1";
+  EXPECT_FALSE(rig.session.move_to(1, t, 0.0, true)) << "a speed must be above 0";
   EXPECT_FALSE(rig.session.read(0x0017)) << "no such data ID";
-  EXPECT_TRUE(rig.session.move_to(1, t, 50, true));
-  EXPECT_FALSE(rig.session.move_to(1, t, 50, true)) << "a move is already queued";
+  EXPECT_TRUE(rig.session.move_to(1, t, 10.0, true));
+  EXPECT_FALSE(rig.session.move_to(1, t, 10.0, true)) << "a move is already queued";
   EXPECT_THROW(Session(rig.sim.master(),
                        [] {
                          auto c = testing::session_config(1);
@@ -250,8 +250,8 @@ TEST(ScuSession, RejectsCommandsItCannotCarryOut) {
 TEST(ScuSession, AnEmergencyStopOvertakesTheRetriesOfALostReply) {
   Rig rig(1);
   ASSERT_TRUE(rig.activate());
-  const ActuatorTarget far[] = {{1, 15000}};
-  ASSERT_TRUE(rig.session.move_to(1, far, 100, true));
+  const ActuatorTarget far[] = {{1, 150.0}};
+  ASSERT_TRUE(rig.session.move_to(1, far, 20.0, true));
   ASSERT_TRUE(rig.run_until(2s, [&] { return rig.session.snapshot().actuators[0].status.motion_active; }));
   // The replies to the next two requests are lost; an emergency stop comes while the first waits.
   rig.emulator.drop_next_replies(2);

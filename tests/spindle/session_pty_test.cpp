@@ -29,7 +29,9 @@ TEST(SpindleSessionPty, StartsToSpeedAndStopsOverAPseudoTerminal) {
     const auto deadline = clock.now() + 5s;
     while (clock.now() < deadline) {
       emulator.poll(clock.now());
-      state = session.poll(clock.now());
+      session.receive(clock.now());
+      session.transmit(clock.now());
+      state = session.lifecycle();
       if (done() || state == link::Lifecycle::fault) return done();
       std::this_thread::sleep_for(200us);
     }

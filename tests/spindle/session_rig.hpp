@@ -29,7 +29,9 @@ struct SessionRig {
 
   void step(link::TimePoint now) {
     emulator.poll(now);
-    state = session.poll(now);
+    session.receive(now);
+    session.transmit(now);
+    state = session.lifecycle();
   }
   template <class Done>
   bool run_until(link::Duration limit, Done&& done) {

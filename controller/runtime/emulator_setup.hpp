@@ -1,0 +1,43 @@
+#pragma once
+// The emulated devices' set-up, read from the cell config file only where emulators are built (the
+// controller core and the sessions never see it): each emulator mirrors its device's session settings
+// (actuators and functions, station address, functionality, line) and adds its physics — actuator
+// ramps and scale error, the converter's motor and identification, the encoder's resolution and
+// EEPROM file — and the plant that couples them (the encoder's shaft slip).
+
+#include <optional>
+
+#include "config/cell_config.hpp"
+#include "config/yaml_node.hpp"
+#include "encoder/emulator.hpp"
+#include "scu/emulator_config.hpp"
+#include "spindle/emulator.hpp"
+
+namespace cellctl::runtime {
+
+// The emulated cell's physics beyond each device's own (what couples them): the encoder's shaft
+// slips this fraction against the axis it measures.
+struct PlantConfig {
+  double encoder_slip = 0.0;
+};
+
+struct EmulatorSetup {
+  std::optional<scu::EmulatorConfig> scu;  // present when the cell has the device
+  std::optional<spindle::EmulatorConfig> spindle;
+  std::optional<encoder::EmulatorConfig> encoder;
+  PlantConfig plant;
+};
+
+// Each throws config::ConfigError (file:line:column: field: rule) on an unknown key or a value out of
+// range. The device parts take the device's section node and mirror its session's settings.
+[[nodiscard]] scu::EmulatorConfig parse_scu_emulator(const config::YamlNode& scu_section,
+                                                     const config::ScuSection& scu);
+[[nodiscard]] spindle::EmulatorConfig parse_spindle_emulator(const config::YamlNode& spindle_section);
+[[nodiscard]] encoder::EmulatorConfig parse_encoder_emulator(const config::YamlNode& encoder_section,
+                                                             const encoder::SessionConfig& session);
+[[nodiscard]] EmulatorSetup parse_emulator_setup(const config::YamlNode& root,
+                                                 const config::CellConfig& cell);
+// From the file the cell was loaded from (cell.source).
+[[nodiscard]] EmulatorSetup load_emulator_setup(const config::CellConfig& cell);
+
+}  // namespace cellctl::runtime

@@ -1,0 +1,145 @@
+// The device boundary on simulated lines and a virtual clock: the runtime's cycle (receive → state →
+// decide → apply → transmit) puts a stop decided in cycle k on the wire in cycle k — the SCU's
+// emergency stop F20 and the spindle's stop — whenever the half-duplex line is free in that cycle.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "config/cell_config.hpp"
+#include "link/sim_link.hpp"
+#include "runtime/cell_devices.hpp"
+#include "runtime/emulated_cell.hpp"
+#include "scu/codec.hpp"
+#include "spindle/codec.hpp"
+
+namespace cellctl::testing {
+namespace {
+
+using namespace std::chrono_literals;
+
+// The session's end of a line, recording what is written to it and in which cycle.
+class RecordingLink final : public link::Link {
+ public:
+  explicit RecordingLink(link::Link& inner) : inner_(inner) {}
+  link::IoResult read(std::span<std::uint8_t> buffer) override { return inner_.read(buffer); }
+  link::IoResult write(std::span<const std::uint8_t> bytes) override {
+    const auto r = inner_.write(bytes);
+    written_.insert(written_.end(), bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(r.count));
+    return r;
+  }
+  [[nodiscard]] std::string describe() const override { return inner_.describe(); }
+
+  void mark() { mark_ = written_.size(); }
+  // Whether `telegram` was written since mark().
+  [[nodiscard]] bool wrote_since_mark(std::span<const std::uint8_t> telegram) const {
+    const auto from = written_.begin() + static_cast<std::ptrdiff_t>(mark_);
+    return std::search(from, written_.end(), telegram.begin(), telegram.end()) != written_.end();
+  }
+
+ private:
+  link::Link& inner_;
+  std::vector<std::uint8_t> written_;
+  std::size_t mark_ = 0;
+};
+
+class Boundary : public ::testing::Test {
+ protected:
+  Boundary()
+      : cell_(config::load_cell_config(CELLCTL_SOURCE_DIR "/config/cell.yaml")),
+        setup_(runtime::load_emulator_setup(cell_)),
+        scu_line_(clock_, cell_.scu->port.line, "scu"),
+        spindle_line_(clock_, cell_.spindle->port.line, "spindle"),
+        scu_rec_(scu_line_.master()),
+        spindle_rec_(spindle_line_.master()),
+        emulated_(cell_, setup_, {.scu = &scu_line_.device(), .spindle = &spindle_line_.device()}),
+        devices_(cell_, {.scu = &scu_rec_, .spindle = &spindle_rec_}) {}
+
+  // One control cycle as CellRun runs it, with `decide` as the supervisor.
+  template <class Decide>
+  void cycle(Decide&& decide) {
+    const auto now = clock_.now();
+    emulated_.poll(now);
+    devices_.receive(now);
+    devices_.read(now, state_);
+    decide();
+    scu_rec_.mark();
+    spindle_rec_.mark();
+    devices_.apply(intents_);
+    devices_.transmit(now);
+    clock_.advance(1ms);
+  }
+  template <class Done>
+  bool cycle_until(Done&& done, int limit = 5000) {
+    for (int i = 0; i < limit; ++i) {
+      cycle([] {});
+      if (done()) return true;
+    }
+    return false;
+  }
+
+  config::CellConfig cell_;
+  runtime::EmulatorSetup setup_;
+  link::VirtualClock clock_;
+  link::SimLink scu_line_;
+  link::SimLink spindle_line_;
+  RecordingLink scu_rec_;
+  RecordingLink spindle_rec_;
+  runtime::EmulatedCell emulated_;
+  runtime::CellDevices devices_;
+  cell::CellState state_;
+  cell::Intents intents_;
+};
+
+TEST_F(Boundary, AnEmergencyStopDecidedInCycleKIsOnTheScuLineInCycleK) {
+  devices_.activate(clock_.now());
+  ASSERT_TRUE(cycle_until([&] { return state_.links[0].active && state_.axes[0].present; }));
+  intents_.axes[0] = {.move_id = 1, .move = true, .target_mm = 150.0, .speed_mm_s = 10.0, .soft = true};
+  ASSERT_TRUE(cycle_until([&] { return state_.axes[0].moving; }));
+
+  scu::RequestBytes f20;
+  ASSERT_TRUE(scu::encode_request(
+      scu::ExecuteRequest{scu::kEmergencyStopFnc, scu::kUnusedParam, scu::kUnusedParam}, f20));
+  // The first cycle whose receive() left the line free decides the stop.
+  auto* scu = devices_.scu();
+  bool decided = false;
+  for (int i = 0; i < 1000 && !decided; ++i) {
+    cycle([&] {
+      if (scu->awaiting_reply()) return;
+      intents_.halt = cell::Halt::immediate;
+      decided = true;
+    });
+  }
+  ASSERT_TRUE(decided);
+  EXPECT_TRUE(scu_rec_.wrote_since_mark(f20.view())) << "F20 left in the cycle that decided it";
+  // And the SCU acts on it: the actuator stops.
+  ASSERT_TRUE(cycle_until([&] { return scu->snapshot().emergency_stop_open; }, 200));
+  EXPECT_TRUE(emulated_.scu()->emergency_stop_active());
+}
+
+TEST_F(Boundary, ASpindleStopDecidedInCycleKIsOnTheSpindleLineInCycleK) {
+  devices_.activate(clock_.now());
+  ASSERT_TRUE(cycle_until([&] { return state_.links[1].active; }));
+  intents_.spindle = {.run = true, .frequency_hz = 400.0, .clockwise = true, .reset = false};
+  ASSERT_TRUE(cycle_until([&] { return state_.spindle.at_speed; }));
+
+  std::array<std::uint8_t, spindle::kMaxFrameLength> stop_frame{};
+  const auto n = spindle::Codec::encode(spindle::Command{spindle::MsgId::cmd_stop}, stop_frame);
+  const std::span<const std::uint8_t> stop(stop_frame.data(), n);
+  auto* sp = devices_.spindle();
+  bool decided = false;
+  for (int i = 0; i < 1000 && !decided; ++i) {
+    cycle([&] {
+      if (sp->awaiting_reply()) return;
+      intents_.spindle.run = false;
+      decided = true;
+    });
+  }
+  ASSERT_TRUE(decided);
+  EXPECT_TRUE(spindle_rec_.wrote_since_mark(stop)) << "the stop left in the cycle that decided it";
+  ASSERT_TRUE(cycle_until([&] { return state_.spindle.at_rest; }, 5000));
+}
+
+}  // namespace
+}  // namespace cellctl::testing
