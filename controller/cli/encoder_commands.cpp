@@ -235,10 +235,10 @@ int run_encoder(const GlobalOptions& global, const EncoderOptions& options, Acti
 
 void add_encoder_commands(CLI::App& app, Commands& commands) {
   auto options = std::make_shared<EncoderOptions>();
-  auto* group = add_device_group(app, "encoder", "Commission the Scancon SCH88BEX encoder (PROFIBUS DP, 8E1)",
-                                 *options, "Seconds to wait for the encoder");
+  DeviceGroup group(app, "encoder", "Commission the Scancon SCH88BEX encoder (PROFIBUS DP, 8E1)", *options,
+                    "Seconds to wait for the encoder");
   auto add = [&](const char* name, const char* help, Action action) {
-    auto* sub = group->add_subcommand(name, help);
+    auto* sub = group.add_action(name, help);
     commands.on(sub, [&commands, options, action] { return run_encoder(commands.global, *options, action); });
     return sub;
   };

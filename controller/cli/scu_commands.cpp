@@ -139,12 +139,11 @@ int run_scu(const GlobalOptions& global, const ScuOptions& options, Action actio
 
 void add_scu_commands(CLI::App& app, Commands& commands) {
   auto options = std::make_shared<ScuOptions>();
-  auto* group =
-      add_device_group(app, "scu", "Commission the Ewellix SCU control unit and its actuators (RS232)",
-                       *options, "Seconds to wait for the SCU or the motion");
+  DeviceGroup group(app, "scu", "Commission the Ewellix SCU control unit and its actuators (RS232)", *options,
+                    "Seconds to wait for the SCU or the motion");
 
   auto add = [&](const char* name, const char* help, Action action) {
-    auto* sub = group->add_subcommand(name, help);
+    auto* sub = group.add_action(name, help);
     commands.on(sub, [&commands, options, action] { return run_scu(commands.global, *options, action); });
     return sub;
   };

@@ -152,11 +152,11 @@ int run_spindle(const GlobalOptions& global, const SpindleOptions& options, Acti
 
 void add_spindle_commands(CLI::App& app, Commands& commands) {
   auto options = std::make_shared<SpindleOptions>();
-  auto* group = add_device_group(app, "spindle", "Commission the SycoTec spindle converter (RS232)", *options,
-                                 "Seconds to wait for the converter");
+  DeviceGroup group(app, "spindle", "Commission the SycoTec spindle converter (RS232)", *options,
+                    "Seconds to wait for the converter");
 
   auto add = [&](const char* name, const char* help, Action action) {
-    auto* sub = group->add_subcommand(name, help);
+    auto* sub = group.add_action(name, help);
     commands.on(sub, [&commands, options, action] { return run_spindle(commands.global, *options, action); });
     return sub;
   };

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # End to end, as an integrator commissions an emulated cell: `cellctl emulate` publishes the three
 # devices' pseudo-terminals, then the commissioning commands talk to them through the cell config —
-# SCU status and a move, spindle start/status/stop, encoder status — and Ctrl-C ends the emulation
+# SCU status and a move, spindle start/status/stop, encoder status, with --port and --timeout before or
+# after the action — and Ctrl-C ends the emulation
 # cleanly (exit 0, published links removed). A command the SCU session refuses exits 1. A second
 # `cellctl emulate` of the same cell is refused (exit 4, naming the live one) and leaves the links alone.
 # With --trace the emulation writes a hex trace of what each device received and sent.
@@ -115,6 +116,19 @@ expect() {
 run "SCU status" scu status
 expect "SCU status" "^actuator 1 +-?[0-9.]+ mm \(-?[0-9]+ edges\), at rest"
 expect "SCU status" "^errors +none"
+# --port and --timeout where a person types them: before the action and after it alike; a --port
+# after the action is the one used (a missing device is named, exit 4).
+run "SCU status, options before the action" scu --port "$work/scu" --timeout 5 status
+expect "SCU status, options before the action" "^actuator 1 +-?[0-9.]+ mm"
+run "SCU status, options after the action" scu status --port "$work/scu" --timeout 5
+expect "SCU status, options after the action" "^actuator 1 +-?[0-9.]+ mm"
+run_exits 4 "SCU status on a --port after the action that does not exist" scu status --port "$work/no-such-port"
+expect "SCU status on a missing --port" "$work/no-such-port does not exist"
+run_exits 2 "SCU status with a --timeout after the action out of range" scu status --timeout 0.01
+expect "SCU status, --timeout out of range" "--timeout: Value 0.01 not in range"
+run "spindle start --help" spindle start --help
+expect "spindle start --help lists the group's options" "^  --port TEXT"
+expect "spindle start --help lists the group's options" "^  --timeout FLOAT"
 
 run "SCU move" scu move --function 1 --actuator 1 --position-mm 20 --speed-mm-s 20
 expect "SCU move" "^function F1 +arrived"
@@ -133,10 +147,10 @@ run "spindle status while running" spindle status
 expect "spindle status while running" "^motion +at speed"
 expect "spindle status while running" "^frequency +set 400 Hz, actual (39[5-9]|40[0-5]) Hz"
 expect "spindle status while running" "^state +ok"
-run "spindle stop" spindle stop
+run "spindle stop" spindle stop --timeout 20 --port "$work/spindle"
 expect "spindle stop" "^motion +at rest"
 
-run "encoder status" encoder status
+run "encoder status" encoder status --port "$work/encoder" --timeout 5
 expect "encoder status" "^bus +active \((data_exchange|diag_cyclic)\), [1-9][0-9]* exchanges"
 expect "encoder status" "^position +[0-9]+ counts = [0-9]+\.[0-9]{3} mm"
 # The encoder's shaft turns with axis 1, which the SCU moved to 200 edges = 20 mm by its own sensor;
