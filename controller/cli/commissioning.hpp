@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include <atomic>
+#include <string>
 
 #include "cli/device_group.hpp"
 #include "cli/device_link.hpp"
@@ -74,7 +75,12 @@ class Commissioning {
   int failed_to(const char* what, int timed_out = kExitFailed) const {
     if (g_interrupted.load()) return kExitInterrupted;
     if (faulted()) {
-      spdlog::error("{} on {}: {}", device_, path(), session_.fault_reason());
+      // Most reasons name the device and its link already ("SCU on P (38400 8N1): …"): said once.
+      const auto& reason = session_.fault_reason();
+      if (reason.find(path()) != std::string::npos)
+        spdlog::error("{}", reason);
+      else
+        spdlog::error("{} on {}: {}", device_, path(), reason);
       return kExitLink;
     }
     spdlog::error("{} on {} did not {} within {} s", device_, path(), what, options_.timeout_s);

@@ -1,7 +1,8 @@
 #pragma once
 // Opens the serial link a commissioning command talks over: the --port given on the command line,
 // else the configured port, else — for a device the cell config marks "emulated" — the pseudo-terminal
-// that `cellctl emulate` publishes. Wraps it in a hex trace when --trace is on.
+// that `cellctl emulate` publishes. Wraps it in a hex trace when --trace is on. A port that does not
+// open is reported with the device's name and, for a published one, whether an emulation runs.
 
 #include <memory>
 #include <optional>

@@ -165,9 +165,25 @@ class EncoderCommissioning {
   int set_address() {
     if (!session_.set_slave_address(static_cast<std::uint8_t>(options_.value)))
       return refuse("set the address");
-    if (!drive([&] { return session_.address_change_status() != profibus::RequestStatus::pending; }) ||
-        session_.address_change_status() != profibus::RequestStatus::done)
-      return failed_to("accept the new address");
+    if (!drive([&] { return session_.address_change_status() != profibus::RequestStatus::pending; }))
+      return failed_to("answer Set_Slave_Add at station 126");
+    if (session_.address_change_status() != profibus::RequestStatus::done) {
+      // The request ended before the time-out: refused, or no station 126 answered its retries.
+      if (session_.health().error_replies > 0) {
+        spdlog::error(
+            "encoder on {}: the station at address 126 refused Set_Slave_Add (its address may be locked); "
+            "it keeps address 126",
+            c_.path());
+        return kExitFailed;
+      }
+      spdlog::error(
+          "encoder on {}: no encoder answers at address 126 ({} tries): set-address only reaches an encoder "
+          "whose address switches are at 126 (manual 3.4). An encoder that answers at another address needs "
+          "no new one: set station_address in the config and check with `cellctl encoder status`; else check "
+          "the cable and the port",
+          c_.path(), session_.health().retries + 1);
+      return kExitLink;
+    }
     fmt::print(
         "encoder now answers at station {} (stored in its EEPROM); set station_address: {} in the config\n",
         options_.value, options_.value);

@@ -34,7 +34,28 @@ bool still_at(int fd, const std::filesystem::path& path) {
          held.st_dev == named.st_dev;
 }
 
+// The exclusive lock, waiting up to 100 ms for it: holder() of another process takes a shared lock
+// for a moment to see whether the lock is held, and must not make an emulation starting just then
+// refuse. A live emulation holds it far longer. False with errno set when it stays held.
+bool lock_soon(int fd) {
+  for (int attempt = 0;; ++attempt) {
+    if (::flock(fd, LOCK_EX | LOCK_NB) == 0) return true;
+    if (errno != EWOULDBLOCK || attempt == 20) return false;
+    ::usleep(5000);
+  }
+}
+
 }  // namespace
+
+std::optional<std::string> PublishLock::holder(const std::filesystem::path& publish_as) {
+  const std::string path = publish_as.string() + ".lock";
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  std::optional<std::string> owner;
+  if (::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK) owner = owner_of(fd);
+  ::close(fd);  // also releases the shared lock when it was free
+  return owner;
+}
 
 PublishLock::PublishLock(std::filesystem::path publish_as) : path_(publish_as.string() + ".lock") {
   for (;;) {
@@ -42,7 +63,7 @@ PublishLock::PublishLock(std::filesystem::path publish_as) : path_(publish_as.st
     if (fd_ < 0)
       throw link::LinkError(fmt::format("cannot publish at {}: lock file {}: {}", publish_as.string(),
                                         path_.string(), std::strerror(errno)));
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    if (!lock_soon(fd_)) {
       const int err = errno;
       const std::string owner = owner_of(fd_);
       ::close(fd_);

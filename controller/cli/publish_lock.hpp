@@ -5,6 +5,8 @@
 // the first one's link (and deleting it when it ends). A lock left by a dead process is taken over.
 
 #include <filesystem>
+#include <optional>
+#include <string>
 
 namespace cellctl::cli {
 
@@ -14,6 +16,10 @@ class PublishLock {
   // lock file cannot be created.
   explicit PublishLock(std::filesystem::path publish_as);
   ~PublishLock();
+
+  // Whether a live `cellctl emulate` publishes at `publish_as`: its process id as it wrote it (empty
+  // when unreadable), or nothing when no live process holds the lock.
+  [[nodiscard]] static std::optional<std::string> holder(const std::filesystem::path& publish_as);
   PublishLock(const PublishLock&) = delete;
   PublishLock& operator=(const PublishLock&) = delete;
 

@@ -49,9 +49,9 @@ speed_t speed_for(std::uint32_t baud) {
   }
 }
 
-[[noreturn]] void fail(int fd, const std::string& message) {
+[[noreturn]] void fail(int fd, const std::string& message, int cause = 0) {
   if (fd >= 0) ::close(fd);
-  throw LinkError(message);
+  throw LinkError(message, cause);
 }
 
 std::string open_failure(const std::string& path, int err) {
@@ -102,9 +102,12 @@ void configure_line(int fd, const std::string& path, LineFormat format) {
 
 std::unique_ptr<SerialLink> SerialLink::open(const std::string& path, LineFormat format) {
   const int fd = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) throw LinkError(open_failure(path, errno));
+  if (fd < 0) {
+    const int err = errno;
+    throw LinkError(open_failure(path, err), err);
+  }
   // flock also holds against root, which TIOCEXCL does not.
-  if (flock(fd, LOCK_EX | LOCK_NB) != 0) fail(fd, open_failure(path, EBUSY));
+  if (flock(fd, LOCK_EX | LOCK_NB) != 0) fail(fd, open_failure(path, EBUSY), EBUSY);
   ioctl(fd, TIOCEXCL);
   configure_line(fd, path, format);
 

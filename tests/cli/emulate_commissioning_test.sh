@@ -123,12 +123,28 @@ expect "SCU status, options before the action" "^actuator 1 +-?[0-9.]+ mm"
 run "SCU status, options after the action" scu status --port "$work/scu" --timeout 5
 expect "SCU status, options after the action" "^actuator 1 +-?[0-9.]+ mm"
 run_exits 4 "SCU status on a --port after the action that does not exist" scu status --port "$work/no-such-port"
-expect "SCU status on a missing --port" "$work/no-such-port does not exist"
+expect "SCU status on a missing --port names the device" "SCU: serial port $work/no-such-port does not exist"
 run_exits 2 "SCU status with a --timeout after the action out of range" scu status --timeout 0.01
 expect "SCU status, --timeout out of range" "--timeout: Value 0.01 not in range"
 run "spindle start --help" spindle start --help
 expect "spindle start --help lists the group's options" "^  --port TEXT"
 expect "spindle start --help lists the group's options" "^  --timeout FLOAT"
+
+# A port another process holds while the emulation runs: said so, not "start cellctl emulate".
+holder_log=$work/holder.log
+# (In a process group of its own, so that the whole holder — flock and its sleep — ends at once.)
+setsid flock "$work/scu" -c 'echo held; exec sleep 20' >"$holder_log" 2>&1 &
+holder_pid=$!
+for _ in $(seq 100); do
+  grep -q held "$holder_log" && break
+  sleep 0.1
+done
+grep -q held "$holder_log" || fail "flock did not take $work/scu within 10 s"
+run_exits 4 "SCU status on a port another process holds" scu status
+kill -- -"$holder_pid" 2>/dev/null || true
+wait "$holder_pid" 2>/dev/null || true
+expect "busy published port" "SCU: serial port $work/scu is in use by another process \\(\`cellctl emulate\` \\(pid $emulate_pid\\) publishes it; another command talks to the SCU now"
+grep -q "start \`cellctl emulate\`" <<<"$out" && fail "a busy port advises starting cellctl emulate while it runs"
 
 run "SCU move" scu move --function 1 --actuator 1 --position-mm 20 --speed-mm-s 20
 expect "SCU move" "^function F1 +arrived"
@@ -157,6 +173,16 @@ expect "encoder status" "^position +[0-9]+ counts = [0-9]+\.[0-9]{3} mm"
 # that sensor reads 0.2 % long (scale_error in the config), so the encoder sees 20 / 1.002 = 19.96 mm.
 expect "encoder status: the axis the SCU moved" "^position +[0-9]+ counts = 19\.9[0-9]{2} mm"
 
+# set-address talks to station 126 only; the emulated encoder is at 5: said so, at once, exit 4.
+run_exits 4 "encoder set-address to an encoder not at 126" encoder set-address 7 --timeout 10
+expect "encoder set-address names what happened" "no encoder answers at address 126 \\([0-9]+ tries\\)"
+grep -q "within 10 s" <<<"$out" && fail "encoder set-address blamed a time-out that did not happen"
+
+# An SCU command on the encoder's port: no SCU answers; the reason names the device and port once.
+run_exits 4 "SCU status on a port where no SCU answers" scu status --port "$work/encoder" --timeout 5
+expect "SCU status where no SCU answers" "SCU on $work/encoder"
+[[ $(grep -o "$work/encoder" <<<"$out" | wc -l) -eq 1 ]] || fail "the SCU's fault names its port more than once"
+
 # --- Ctrl-C ends the emulation ---------------------------------------------------------------------
 kill -INT "$emulate_pid"
 for _ in $(seq 100); do
@@ -178,4 +204,8 @@ done
 for l in "${links[@]}"; do
   [[ ! -e $l && ! -L $l ]] || fail "cellctl emulate left $l behind"
 done
+# With no emulation running, a command on an emulated device says to start one.
+run_exits 4 "SCU status with no emulation" scu status
+expect "SCU status with no emulation" "SCU: serial port $work/scu does not exist \\(the cell config says the SCU is emulated: start \`cellctl emulate\` first"
+
 echo "PASS: emulate + scu/spindle/encoder commissioning over published pseudo-terminals"
