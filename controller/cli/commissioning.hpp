@@ -4,6 +4,7 @@
 // (link::DeviceSession: receive, then transmit) on the real clock until a condition holds, and report
 // a failure the same way — the session's fault reason (exit 4), Ctrl-C (130) or a time-out.
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <atomic>
@@ -14,6 +15,7 @@
 #include "cli/drive.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/options.hpp"
+#include "cli/terminal_screen.hpp"
 #include "config/line_section.hpp"
 #include "link/clock.hpp"
 #include "link/device_session.hpp"
@@ -23,6 +25,8 @@ namespace cellctl::cli {
 template <class Session>
 class Commissioning {
  public:
+  static constexpr link::Duration kProgressEvery = std::chrono::milliseconds(500);
+
   // Throws link::LinkError when the port cannot be opened, std::invalid_argument for a bad config.
   template <class SessionConfig>
   Commissioning(const GlobalOptions& global, const DeviceOptions& options, const config::PortConfig& port,
@@ -51,6 +55,22 @@ class Commissioning {
     return drive_until(
                clock_, timeout, [&](auto now) { step(now); }, [&] { return faulted() || done(); }) &&
            !faulted();
+  }
+  // drive() that shows how the work goes, so a command is never silent while it waits: a line from
+  // `progress()` at once and then every 0.5 s, with the time since — on a terminal one status line
+  // rewritten in place (the last one kept), piped (a log) a line each.
+  template <class Done, class Progress>
+  bool drive_showing(Done&& done, Progress&& progress) {
+    TerminalScreen screen;
+    const auto started = clock_.now();
+    auto next = started;
+    return drive([&] {
+      if (const auto now = clock_.now(); now >= next) {
+        screen.status(fmt::format("{:5.1f} s  {}", link::to_seconds(now - started), progress()));
+        next = now + kProgressEvery;
+      }
+      return done();
+    });
   }
   bool drive_for(link::Duration span) {
     const auto until = clock_.now() + span;

@@ -93,18 +93,26 @@ class ScuCommissioning {
     }
     const auto& f = c_.snapshot().functions[static_cast<std::size_t>(options_.function - 1)];
     // Waits for the motion to end and its RS to be acknowledged.
-    const bool ended = c_.drive([&] {
-      return f.outcome != scu::MoveOutcome::queued && f.outcome != scu::MoveOutcome::running &&
-             !f.execution_open;
-    });
+    const auto& a = c_.snapshot().actuators[static_cast<std::size_t>(options_.actuator - 1)];
+    const bool ended = c_.drive_showing(
+        [&] {
+          return f.outcome != scu::MoveOutcome::queued && f.outcome != scu::MoveOutcome::running &&
+                 !f.execution_open;
+        },
+        [&] {
+          return fmt::format("F{} {}: actuator {} at {:.2f} mm, target {:.2f} mm", options_.function,
+                             f.execution_open && f.outcome != scu::MoveOutcome::queued &&
+                                     f.outcome != scu::MoveOutcome::running
+                                 ? "ending (RS)"
+                                 : scu::to_string(f.outcome),
+                             options_.actuator, a.position_mm, options_.position_mm);
+        });
     if (!ended) return c_.failed_to("finish the move (raise --timeout for long strokes)");
     if (f.outcome == scu::MoveOutcome::arrived) return kExitOk;
     spdlog::error(
         "F{} {} (actuator {} at {:.2f} mm, target {:.2f} mm): check the error word below; a speed below "
         "the actuator's minimum does not move it — try a higher --speed-mm-s",
-        options_.function, scu::to_string(f.outcome), options_.actuator,
-        c_.snapshot().actuators[static_cast<std::size_t>(options_.actuator - 1)].position_mm,
-        options_.position_mm);
+        options_.function, scu::to_string(f.outcome), options_.actuator, a.position_mm, options_.position_mm);
     print_snapshot(c_.snapshot());
     return kExitFailed;
   }

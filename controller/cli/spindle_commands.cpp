@@ -72,7 +72,11 @@ class SpindleCommissioning {
         const auto dir = options_.direction == "ccw" ? spindle::Direction::counter_clockwise
                                                      : spindle::Direction::clockwise;
         if (!session_.start(options_.frequency_hz, dir)) return refuse("start");
-        if (!c_.drive([&] { return snapshot().at_speed || snapshot().start_refused; }))
+        if (!c_.drive_showing([&] { return snapshot().at_speed || snapshot().start_refused; },
+                              [&] {
+                                return frequency_progress(
+                                    fmt::format("running up to {:.0f} Hz", options_.frequency_hz));
+                              }))
           return failed_to("reach speed");
         if (snapshot().start_refused) {
           spdlog::error("start refused: {}", snapshot().start_refused_reason);
@@ -82,7 +86,8 @@ class SpindleCommissioning {
       }
       case Action::stop:
         if (!session_.stop()) return refuse("stop");
-        if (!c_.drive([&] { return snapshot().at_rest && !session_.commands_pending(); }))
+        if (!c_.drive_showing([&] { return snapshot().at_rest && !session_.commands_pending(); },
+                              [&] { return frequency_progress("running down"); }))
           return failed_to("come to rest");
         break;
       case Action::set:
@@ -105,6 +110,10 @@ class SpindleCommissioning {
 
  private:
   const spindle::Snapshot& snapshot() const { return c_.snapshot(); }
+  // The measured frequency is polled every values_poll (250 ms by default): fresh enough for 0.5 s lines.
+  std::string frequency_progress(const std::string& phase) const {
+    return fmt::format("{}: actual {:.0f} Hz", phase, snapshot().actual_frequency_hz);
+  }
 
   // The command line was checked by the parser: a refusal is the session's state (not active, its
   // command queue full), so the command failed — not a usage error.

@@ -2,7 +2,7 @@
 # End to end, as an integrator commissions an emulated cell: `cellctl emulate` publishes the three
 # devices' pseudo-terminals, then the commissioning commands talk to them through the cell config —
 # SCU status and a move, spindle start/status/stop, encoder status, with --port and --timeout before or
-# after the action — and Ctrl-C ends the emulation
+# after the action, progress shown while they wait — and Ctrl-C ends the emulation
 # cleanly (exit 0, published links removed). A command the SCU session refuses exits 1. A second
 # `cellctl emulate` of the same cell is refused (exit 4, naming the live one) and leaves the links alone.
 # With --trace the emulation writes a hex trace of what each device received and sent.
@@ -148,6 +148,9 @@ grep -q "start \`cellctl emulate\`" <<<"$out" && fail "a busy port advises start
 
 run "SCU move" scu move --function 1 --actuator 1 --position-mm 20 --speed-mm-s 20
 expect "SCU move" "^function F1 +arrived"
+# Not silent while it moves: a progress line at once and every 0.5 s (20 mm at 20 mm/s take at least 1 s).
+expect "SCU move shows progress at once" "^ +0\.0 s  F1 (queued|running): actuator 1 at -?[0-9]+\.[0-9]{2} mm, target 20\.00 mm$"
+expect "SCU move shows progress while running" "^ +0\.5 s  F1 running: actuator 1 at [0-9]+\.[0-9]{2} mm, target 20\.00 mm$"
 # The SCU's own arrival tolerance (arrival_tolerance_edges in the config) is 2 edges.
 run "SCU status after the move" scu status
 expect "SCU status after the move" "^actuator 1 +(19\.8|19\.9|20\.0|20\.1|20\.2)0 mm \((198|199|200|201|202) edges\), at rest"
@@ -159,12 +162,14 @@ expect "SCU move refused" "move refused: F3"
 run "spindle start" spindle start --frequency 400
 expect "spindle start" "^motion +at speed"
 expect "spindle start" "^frequency +set 400 Hz"
+expect "spindle start shows the run-up" "^ +0\.5 s  running up to 400 Hz: actual [0-9]+ Hz$"
 run "spindle status while running" spindle status
 expect "spindle status while running" "^motion +at speed"
 expect "spindle status while running" "^frequency +set 400 Hz, actual (39[5-9]|40[0-5]) Hz"
 expect "spindle status while running" "^state +ok"
 run "spindle stop" spindle stop --timeout 20 --port "$work/spindle"
 expect "spindle stop" "^motion +at rest"
+expect "spindle stop shows the run-down" "^ +0\.0 s  running down: actual [0-9]+ Hz$"
 
 run "encoder status" encoder status --port "$work/encoder" --timeout 5
 expect "encoder status" "^bus +active \((data_exchange|diag_cyclic)\), [1-9][0-9]* exchanges"
