@@ -148,6 +148,11 @@ Status Emulator::remote_permission() const noexcept {
 }
 
 void Emulator::answer(const Request& request, link::TimePoint now) {
+  if (refuse_count_ > 0 && (!refuse_only_ || *refuse_only_ == command_of(request))) {
+    --refuse_count_;
+    send(Reply{command_of(request), refuse_status_, false, {}}, now);
+    return;
+  }
   wire::ByteWriter data(reply_data_);
   Reply reply;
   reply.command = command_of(request);

@@ -47,6 +47,13 @@ class Emulator {
   void drop_next_replies(int n) noexcept { drop_replies_ = n; }
   void set_reply_delay(link::Duration d) noexcept { reply_delay_ = d; }
   void corrupt_next_reply_crc() noexcept { corrupt_next_ = true; }
+  // The next n requests (of command `only`, when given) are answered with error status s and not
+  // carried out: a refused move, a refused keep-alive, an SCU that answers nothing but errors.
+  void refuse_next_requests(int n, Status s, std::optional<Command> only = std::nullopt) noexcept {
+    refuse_count_ = n;
+    refuse_status_ = s;
+    refuse_only_ = only;
+  }
   void inject_actuator_fault(int a);  // bit 15+a-1, actuator a fast-stopped
   // A lasting defect of actuator a (a broken sensor, a short): its fault is injected now and again at
   // every motion start while `on` — the bit is "reset with next motion" and set again at once, so the
@@ -140,6 +147,9 @@ class Emulator {
   int drop_replies_ = 0;
   link::Duration reply_delay_{};
   bool corrupt_next_ = false;
+  int refuse_count_ = 0;
+  Status refuse_status_ = Status::permission_error;
+  std::optional<Command> refuse_only_;
   std::array<bool, kActuatorCount> lasting_fault_{};
   static constexpr std::size_t kOutgoing = 4;
   std::array<Outgoing, kOutgoing> outgoing_{};

@@ -85,6 +85,7 @@ void Session::activate(link::TimePoint now) {
   keepalive_armed_ = false;
   status2_queued_ = false;
   stop_queued_.reset();
+  f20_refused_ = false;
   activated_at_ = now;
   health_.last_good.reset();
   enter(link::Lifecycle::activating, now);
@@ -234,6 +235,7 @@ void Session::on_ack(const Reply& reply, const Pending& p, link::TimePoint now) 
       break;
     case Purpose::emergency_stop:
       snapshot_.emergency_stop_open = true;
+      f20_refused_ = false;
       break;
     case Purpose::release_emergency:
       snapshot_.emergency_stop_open = false;
@@ -292,6 +294,8 @@ void Session::on_refusal(const Reply& reply, const Pending& p) {
       stop_queued_.reset(p.function);
       return;
     case Purpose::emergency_stop:
+      f20_refused_ = true;
+      return;
     case Purpose::release_emergency:
       return;
     case Purpose::read:
@@ -522,11 +526,16 @@ bool Session::stop(int function, bool soft) {
   if (!accepting() || !defined(function)) return false;
   const auto f = static_cast<std::size_t>(function - 1);
   drop_queued_moves(fnc(function));
-  (void)urgent_.remove_if(
-      [&](const Pending& p) { return p.purpose == Purpose::stop && p.function == fnc(function); });
-  if (!enqueue(true, StopRequest{fnc(function), soft ? kSoftStartStop : kFastStartStop}, Purpose::stop,
-               fnc(function)))
-    return false;
+  const StopRequest rs{fnc(function), soft ? kSoftStartStop : kFastStartStop};
+  // Asked again while its RS still waits, the RS keeps its place (only its mode may change): a stop
+  // asked again every cycle must not fall behind what was queued meanwhile, such as a re-sent F20.
+  if (auto* queued = urgent_.find_if(
+          [&](const Pending& p) { return p.purpose == Purpose::stop && p.function == fnc(function); })) {
+    (void)encode_request(rs, queued->bytes);
+    stop_queued_.set(f);
+    return true;
+  }
+  if (!enqueue(true, rs, Purpose::stop, fnc(function))) return false;
   stop_queued_.set(f);
   return true;
 }
@@ -539,7 +548,9 @@ bool Session::emergency_stop() {
   (void)encode_request(f20, p.bytes);
   p.shape = reply_shape(f20);
   p.purpose = Purpose::emergency_stop;
-  return urgent_.push_front(p);
+  // The first F20 goes ahead of everything. One asked for again after the SCU refused it waits behind
+  // the stops queued meanwhile: an SCU that keeps refusing F20 must not starve each axis's own stop.
+  return f20_refused_ ? urgent_.push_back(p) : urgent_.push_front(p);
 }
 
 bool Session::release_emergency_stop() {

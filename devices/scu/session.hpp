@@ -63,7 +63,8 @@ class Session final : public link::DeviceSession {
                              bool soft);
   // RS for the function, ahead of everything queued; the function's queued move telegrams are dropped.
   [[nodiscard]] bool stop(int function, bool soft);
-  // F20 ahead of everything; every queued move is dropped. Holds until release_emergency_stop().
+  // F20 ahead of everything (after a refused F20: behind the stops queued); every queued move is
+  // dropped. Holds until release_emergency_stop().
   [[nodiscard]] bool emergency_stop();
   [[nodiscard]] bool release_emergency_stop();
   // RT 0x3011.. while the function moves: the SCU changes speed keeping its ramp. Sends nothing when
@@ -146,6 +147,7 @@ class Session final : public link::DeviceSession {
   // Per function: RS already queued, and the refresh count at the RE's ACK (motion state from later
   // refreshes only counts).
   std::bitset<kMotionFunctionCount> stop_queued_;
+  bool f20_refused_ = false;  // the last F20 answer was a refusal (a new one queues behind the stops)
   std::array<std::uint64_t, kMotionFunctionCount> execute_mark_{};
 };
 

@@ -39,6 +39,13 @@ class TelegramQueue {
     }
     return removed;
   }
+  // The first queued item `pred` holds for (nullptr: none), to change in place.
+  template <class Pred>
+  [[nodiscard]] T* find_if(Pred&& pred) noexcept {
+    for (std::size_t i = 0; i < size_; ++i)
+      if (pred(items_[i])) return &items_[i];
+    return nullptr;
+  }
   template <class Pred>
   [[nodiscard]] bool any(Pred&& pred) const noexcept {
     for (std::size_t i = 0; i < size_; ++i)

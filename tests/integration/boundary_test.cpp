@@ -141,5 +141,61 @@ TEST_F(Boundary, ASpindleStopDecidedInCycleKIsOnTheSpindleLineInCycleK) {
   ASSERT_TRUE(cycle_until([&] { return state_.spindle.at_rest; }, 5000));
 }
 
+// Category 0 when the SCU refuses the F20: the refusal must not leave the axes running.
+class RefusedEmergencyStop : public Boundary {
+ protected:
+  // Activates, starts x on a long move at 10 mm/s and waits for it to run at speed.
+  void start_x() {
+    devices_.activate(clock_.now());
+    ASSERT_TRUE(cycle_until([&] { return state_.links[0].active && state_.axes[0].present; }));
+    intents_.axes[0] = {.move_id = 1, .move = true, .target_mm = 150.0, .speed_mm_s = 10.0, .soft = true};
+    ASSERT_TRUE(cycle_until([&] { return emulated_.scu()->actuator(1).velocity_mm_s() >= 10.0 - 1e-9; }));
+  }
+  void halt_immediately() {
+    intents_.axes[0].move = false;
+    intents_.halt = cell::Halt::immediate;
+  }
+};
+
+TEST_F(RefusedEmergencyStop, ARefusedF20IsSentAgain) {
+  start_x();
+  emulated_.scu()->refuse_next_requests(1, scu::Status::permission_error, scu::Command::execute);
+  halt_immediately();
+  ASSERT_TRUE(cycle_until([&] { return devices_.scu()->snapshot().refusals > 0; }, 500));
+  ASSERT_TRUE(devices_.scu()->snapshot().last_refusal.has_value());
+  EXPECT_EQ(devices_.scu()->snapshot().last_refusal->command, scu::Command::execute) << "the F20 was refused";
+  EXPECT_FALSE(emulated_.scu()->emergency_stop_active());
+  // The next F20 goes out and holds.
+  ASSERT_TRUE(cycle_until([&] { return emulated_.scu()->emergency_stop_active(); }, 500))
+      << "the refused F20 was never sent again";
+  EXPECT_TRUE(cycle_until([&] { return devices_.scu()->snapshot().emergency_stop_open; }, 50));
+}
+
+TEST_F(RefusedEmergencyStop, EveryAxisStillGetsAFastStopOfItsOwn) {
+  start_x();
+  // The SCU refuses every RE for a while: F20 does not hold, only the per-axis RS can stop x.
+  emulated_.scu()->refuse_next_requests(1000, scu::Status::permission_error, scu::Command::execute);
+  const double at_decision = emulated_.scu()->actuator(1).true_position_mm();
+  halt_immediately();
+  scu::RequestBytes fast_rs;
+  ASSERT_TRUE(scu::encode_request(
+      scu::StopRequest{static_cast<std::uint8_t>(cell_.axes[0].function - 1), scu::kFastStartStop}, fast_rs));
+  scu_rec_.mark();
+  bool fast_rs_sent = false;
+  ASSERT_TRUE(cycle_until(
+      [&] {
+        fast_rs_sent = fast_rs_sent || scu_rec_.wrote_since_mark(fast_rs.view());
+        return !emulated_.scu()->actuator(1).moving();
+      },
+      1000));
+  EXPECT_FALSE(emulated_.scu()->emergency_stop_active());
+  EXPECT_TRUE(fast_rs_sent) << "category 0 stops each axis fast (RS mode 0)";
+  // Stopping distance, category 0: 10 mm/s for the time the RS waits behind the F20 (its reply and
+  // refusal, two 38400-baud round trips, well under 50 ms: 0.5 mm) and no ramp. A soft stop would
+  // add the 40 mm/s² ramp's 10²/(2·40) = 1.25 mm.
+  const double travelled = emulated_.scu()->actuator(1).true_position_mm() - at_decision;
+  EXPECT_LT(travelled, 0.5) << "stopped fast, not ramped down";
+}
+
 }  // namespace
 }  // namespace cellctl::testing

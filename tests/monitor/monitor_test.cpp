@@ -63,6 +63,21 @@ TEST_F(MonitorTest, PositionOutsideTheCellLimits) {
   EXPECT_EQ(m.latch(Rule::position_limit).detail.view(), "axis z at 50.60 mm, outside [0, 50] mm");
 }
 
+TEST_F(MonitorTest, PositionBelowTheLowerCellLimit) {
+  auto s = healthy();
+  s.axes[1].scu_mm = -0.6;  // 0.1 mm past the 0.5 mm margin below min_mm 0
+  expect_only(s, Rule::position_limit, StopCategory::controlled_off);
+  EXPECT_EQ(m.latch(Rule::position_limit).detail.view(), "axis z at -0.60 mm, outside [0, 50] mm");
+}
+
+TEST_F(MonitorTest, PositionInsideTheMarginAtEitherEndIsNoFault) {
+  auto s = healthy();
+  s.axes[1].scu_mm = -0.4;
+  EXPECT_TRUE(m.evaluate(s, {}, 0.0).none());
+  s.axes[1].scu_mm = 50.4;
+  EXPECT_TRUE(m.evaluate(s, {}, 0.0).none());
+}
+
 TEST_F(MonitorTest, TheEncoderDecidesWhereItMeasures) {
   auto s = healthy();
   s.axes[0].scu_mm = 101.0;  // the SCU's counting drifted, the encoder is the truth
@@ -82,6 +97,28 @@ TEST_F(MonitorTest, ScuAndEncoderDisagree) {
   expect_only(s, Rule::disagreement, StopCategory::controlled_off);
   EXPECT_EQ(m.latch(Rule::disagreement).detail.view(),
             "axis x: SCU 10.00 mm, encoder 12.50 mm (tolerance 2 mm)");
+}
+
+TEST_F(MonitorTest, DisagreementAllowanceIsTheToleranceNoMore) {
+  // Just inside and just outside the 2 mm tolerance, either sign, with a fresh SCU position.
+  auto s = healthy();
+  s.axes[0].encoder_mm = 10.0 + 1.9;
+  EXPECT_TRUE(m.evaluate(s, {}, 0.0).none());
+  s.axes[0].encoder_mm = 10.0 - 1.9;
+  EXPECT_TRUE(m.evaluate(s, {}, 0.0).none());
+  s.axes[0].encoder_mm = 10.0 - 2.1;
+  expect_only(s, Rule::disagreement, StopCategory::controlled_off);
+}
+
+TEST_F(MonitorTest, DisagreementAllowsOnlyWhatTheAxisTravelledSinceTheScuReply) {
+  // 100 ms old SCU position at 10 mm/s by the encoder: 1 mm more is allowed, 3 mm in all.
+  auto s = healthy();
+  s.scu_position_age = 100ms;
+  s.axes[0].encoder_mm_s = 10.0;
+  s.axes[0].encoder_mm = 10.0 + 2.9;
+  EXPECT_TRUE(m.evaluate(s, {}, 0.0).none());
+  s.axes[0].encoder_mm = 10.0 + 3.2;
+  expect_only(s, Rule::disagreement, StopCategory::controlled_off);
 }
 
 TEST_F(MonitorTest, EncoderRules) {

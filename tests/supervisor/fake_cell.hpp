@@ -3,7 +3,12 @@
 // (the same ones the emulators use) directly, and the plant is read back as a CellState. The SCU
 // reports the actuator's indicated position, the encoder the true one. The SCU's motion bit can be
 // made to lag a move command (set_motion_latency), as the real one does until its next RC reply.
+// Like the real devices: a category-0 stop halts an axis in the cycle after it was decided (the F20
+// is on the line in cycle k, the SCU acts on it after), a controlled hold keeps the spindle running,
+// and "initialised" is known only once the SCU's status 2 has been read (set_status2_after). The
+// failure branches can be produced on purpose: an axis not homed, a refused move, a refused start.
 
+#include <algorithm>
 #include <vector>
 
 #include "cell/cell_state.hpp"
@@ -27,7 +32,20 @@ class FakeCell {
                                                     .scale_error = scale_error});
     ids_.resize(actuators_.size(), 0);
     motion_reported_from_.resize(actuators_.size(), link::Duration{});
+    homed_.resize(actuators_.size(), true);
+    refuses_moves_.resize(actuators_.size(), false);
+    move_refused_.resize(actuators_.size(), false);
+    fast_stop_due_.resize(actuators_.size(), false);
   }
+
+  // Actuator status 2 is known from this time on (the real session reads it after the first refresh);
+  // Duration::max(): never.
+  void set_status2_after(link::Duration d) { status2_after_ = d; }
+  void set_homed(std::size_t axis, bool homed) { homed_.at(axis) = homed; }
+  // The SCU answers an error to the axis's next moves: the actuator does not move, the move reads refused.
+  void refuse_moves(std::size_t axis) { refuses_moves_.at(axis) = true; }
+  // The converter acknowledges starts but stays at rest, with this warning/fault number.
+  void refuse_spindle_start(std::uint8_t error_number) { spindle_refusal_ = error_number; }
 
   // A move's motion is reported this long after it was commanded (the real SCU's status comes with
   // its RC reply, up to one keep-alive period later); before that the axis reads as not moving.
@@ -38,7 +56,7 @@ class FakeCell {
       auto& act = actuators_[i];
       const auto& intent = in.axes[i];
       if (in.halt == cell::Halt::immediate) {
-        act.stop(false);
+        fast_stop_due_[i] = act.active();  // at the end of this cycle, not in it
         continue;
       }
       if (in.halt == cell::Halt::controlled || !intent.move) {
@@ -47,13 +65,16 @@ class FakeCell {
       }
       if (intent.move_id != ids_[i]) {
         ids_[i] = intent.move_id;
+        move_refused_[i] = refuses_moves_[i];
+        if (move_refused_[i]) continue;
         act.move_to(intent.target_mm, intent.speed_mm_s, intent.soft);
         motion_reported_from_[i] = elapsed_ + motion_latency_;
       } else {
         act.set_speed(intent.speed_mm_s);
       }
     }
-    if (in.spindle.run && in.halt == cell::Halt::none)
+    // A controlled hold keeps the spindle running (CellDevices stops it only on category 0).
+    if (in.spindle.run && in.halt != cell::Halt::immediate && !spindle_refusal_)
       spindle_.run(in.spindle.frequency_hz, in.spindle.clockwise);
     else
       spindle_.stop();
@@ -62,7 +83,11 @@ class FakeCell {
 
   void advance(link::Duration dt) {
     elapsed_ += dt;
-    for (auto& a : actuators_) a.step(dt);
+    for (std::size_t i = 0; i < actuators_.size(); ++i) {
+      actuators_[i].step(dt);
+      if (fast_stop_due_[i]) actuators_[i].stop(false);
+      fast_stop_due_[i] = false;
+    }
     spindle_.step(dt);
   }
 
@@ -77,7 +102,8 @@ class FakeCell {
       a.moving = actuators_[i].moving() && elapsed_ >= motion_reported_from_[i];
       // The move stays open until the SCU has reported it and the actuator has come to its end.
       a.commanded = ids_[i] != 0 && (elapsed_ < motion_reported_from_[i] || actuators_[i].active());
-      a.homed = true;
+      a.homed = homed_[i] && elapsed_ >= status2_after_;  // unknown reads as not initialised
+      a.move_refused = move_refused_[i];
       a.measured = cell_.axes[i].encoder;
       if (a.measured) {
         a.encoder_mm = actuators_[i].true_position_mm();
@@ -91,9 +117,13 @@ class FakeCell {
     s.spindle.set_hz = spindle_set_;
     s.spindle.at_rest = spindle_.at_rest();
     s.spindle.at_speed = spindle_set_ > 0 && std::abs(std::abs(spindle_.frequency_hz()) - spindle_set_) < 1.0;
+    s.spindle.start_refused = spindle_set_ > 0 && spindle_refusal_ != 0;
+    s.spindle.error_number = spindle_refusal_;
     for (auto& l : s.links) l.active = true;
     s.scu_remote = true;
-    s.scu_status2_known = true;
+    s.scu_status2_known = elapsed_ >= status2_after_;
+    if (std::find(move_refused_.begin(), move_refused_.end(), true) != move_refused_.end())
+      s.scu_refusal = "PE (permission error)";
     return s;
   }
 
@@ -108,6 +138,9 @@ class FakeCell {
   std::vector<link::Duration> motion_reported_from_;  // by axis: when its motion bit catches up
   plant::SpindleMotor spindle_;
   double spindle_set_ = 0.0;
+  link::Duration status2_after_ = std::chrono::milliseconds(30);  // about the real session's first RG
+  std::vector<bool> homed_, refuses_moves_, move_refused_, fast_stop_due_;
+  std::uint8_t spindle_refusal_ = 0;
 };
 
 }  // namespace cellctl::testing

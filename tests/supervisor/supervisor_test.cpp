@@ -262,5 +262,88 @@ TEST_F(SupervisorTest, AFailedRequireStopsBeforeAnyMotion) {
   EXPECT_DOUBLE_EQ(now().axes[0].encoder_mm, 0.0);
 }
 
+// The failure branches: each stops the run with a reason that says what to do, before or without motion.
+
+TEST_F(SupervisorTest, ARequiredAxisNotHomedStopsBeforeAnyMotion) {
+  load(R"(  - require: {homed: [x, z]}
+  - move: {to: {x: 150}, speed_mm_s: 15}
+)");
+  fake_->set_homed(1, false);
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run_to(State::stopped, 5.0)) << to_string(sup_->state());
+  EXPECT_EQ(std::string(sup_->failure().view()),
+            "axis z is not homed: the SCU reports actuator 2 not initialised");
+  EXPECT_DOUBLE_EQ(now().axes[0].encoder_mm, 0.0);
+}
+
+TEST_F(SupervisorTest, ARequireWaitsForTheScuStatusBeforeJudgingHomed) {
+  load(R"(  - require: {homed: [x, z]}
+  - move: {to: {x: 10}, speed_mm_s: 15}
+)");
+  fake_->set_status2_after(500ms);
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run_to(State::complete, 30.0)) << sup_->failure().view();
+  EXPECT_NEAR(now().axes[0].encoder_mm, 10.0, 0.1);
+}
+
+TEST_F(SupervisorTest, AnScuStatusNeverKnownFailsTheRequireAfterItsWait) {
+  load(R"(  - require: {homed: [x]}
+  - move: {to: {x: 150}, speed_mm_s: 15}
+)");
+  fake_->set_status2_after(link::Duration::max());
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run_to(State::stopped, 10.0)) << to_string(sup_->state());
+  EXPECT_GE(t(), 3.0) << "waited its 3 s for the status";
+  EXPECT_LT(t(), 3.5);
+  EXPECT_NE(std::string(sup_->failure().view()).find("did not report whether the actuators are initialised"),
+            std::string::npos)
+      << sup_->failure().view();
+  EXPECT_DOUBLE_EQ(now().axes[0].encoder_mm, 0.0);
+}
+
+TEST_F(SupervisorTest, ARefusedSpindleStartFailsTheRunNamingTheConvertersNumber) {
+  load(R"(  - spindle: {start_hz: 400}
+  - move: {to: {x: 150}, speed_mm_s: 15}
+)");
+  fake_->refuse_spindle_start(12);
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run_to(State::stopped, 5.0)) << to_string(sup_->state());
+  EXPECT_LT(t(), 1.0) << "reported at once, not after the 10 s spindle time-out";
+  EXPECT_NE(std::string(sup_->failure().view()).find("refused the start (its warning/fault 12"),
+            std::string::npos)
+      << sup_->failure().view();
+  EXPECT_DOUBLE_EQ(now().axes[0].encoder_mm, 0.0);
+}
+
+TEST_F(SupervisorTest, ARefusedMoveFailsTheRunWithTheScusReason) {
+  load(R"(  - move: {to: {x: 150, z: 40}, speed_mm_s: 10}
+)");
+  fake_->refuse_moves(0);
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run_to(State::stopped, 5.0)) << to_string(sup_->state());
+  EXPECT_LT(t(), 1.0) << "reported at once, not after the 30 s move time-out";
+  EXPECT_EQ(std::string(sup_->failure().view()),
+            "the SCU refused the move of axis x to 150.000 mm (PE (permission error))");
+  EXPECT_DOUBLE_EQ(now().axes[0].encoder_mm, 0.0);
+  EXPECT_FALSE(now().axes[1].moving) << "the other axis of the move was stopped too";
+}
+
+TEST_F(SupervisorTest, AHoldKeepsTheSpindleRunning) {
+  load(R"(  - spindle: {start_hz: 400}
+  - move: {to: {x: 150}, speed_mm_s: 15}
+  - spindle: stop
+)");
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run(30.0, [&] { return now().axes[0].encoder_mm > 40.0; }));
+  ASSERT_TRUE(sup_->command(Command::hold, "test", t()));
+  ASSERT_TRUE(run_to(State::held, 5.0));
+  (void)run(1.0, [] { return false; });
+  EXPECT_TRUE(now().spindle.at_speed) << "category 2 holds the axes, the spindle keeps cutting speed";
+  EXPECT_FALSE(now().axes[0].moving);
+  ASSERT_TRUE(sup_->command(Command::unhold, "test", t()));
+  ASSERT_TRUE(run_to(State::complete));
+  EXPECT_TRUE(now().spindle.at_rest);
+}
+
 }  // namespace
 }  // namespace cellctl::supervisor
