@@ -28,9 +28,9 @@
 #include "runtime/cell_devices.hpp"
 #include "runtime/cell_links.hpp"
 #include "runtime/emulated_cell.hpp"
+#include "runtime/emulator_setup.hpp"
 #include "runtime/fault_rehearsal.hpp"
 #include "runtime/fault_spec.hpp"
-#include "runtime/emulator_setup.hpp"
 #include "runtime/status_view.hpp"
 #include "supervisor/supervisor.hpp"
 

@@ -11,7 +11,6 @@
 
 #include "config/yaml_structure.hpp"
 #include "config/yaml_text.hpp"
-
 #include "support/expect_config_error.hpp"
 
 namespace cellctl::config {
@@ -88,43 +87,47 @@ TEST(YamlNode, EmptyValueIsNamed) {
 TEST(YamlNode, NumbersBeyondAnyFieldAreOutOfRangeNotGarbage) {
   auto root = YamlNode::load_string("n: 99999999999999999999\nm: -1e999\nh: 0x-5\n", "t.yaml");
   expect_config_error([&] { (void)root.at("n").as_int<int>(); },
-               "t.yaml:1:4: n: 99999999999999999999 is out of range [-2147483648, 2147483647]");
+                      "t.yaml:1:4: n: 99999999999999999999 is out of range [-2147483648, 2147483647]");
   expect_config_error(
       [&] { (void)root.at("n").as_integer(); },
       "t.yaml:1:4: n: 99999999999999999999 is out of range [-9223372036854775808, 9223372036854775807]");
   expect_config_error([&] { (void)root.at("m").as_double_in(0, 10); },
-               "t.yaml:2:4: m: -1e999 is out of range [0, 10]");
+                      "t.yaml:2:4: m: -1e999 is out of range [0, 10]");
   expect_config_error([&] { (void)root.at("h").as_integer(); },
-               "t.yaml:3:4: h: expected a whole number, got '0x-5'");
+                      "t.yaml:3:4: h: expected a whole number, got '0x-5'");
 }
 
 // yaml-cpp keeps one of two equal keys without a word; a cell or recipe with both is ambiguous.
 TEST(YamlStructure, DuplicateKeysAreRefusedNamingBothPlaces) {
-  expect_config_error([] { (void)YamlNode::load_string("a: 1\nb:\n  c: 2\n  c: 3\n", "d.yaml"); },
-               "d.yaml:4:3: b.c: duplicate key 'c': also given at line 3, column 3; which one is meant?");
-  expect_config_error([] { (void)YamlNode::load_string("x: [{p: 1, p: 2}]\n", "d.yaml"); },
-               "d.yaml:1:12: x[0].p: duplicate key 'p': also given at line 1, column 6; which one is meant?");
+  expect_config_error(
+      [] { (void)YamlNode::load_string("a: 1\nb:\n  c: 2\n  c: 3\n", "d.yaml"); },
+      "d.yaml:4:3: b.c: duplicate key 'c': also given at line 3, column 3; which one is meant?");
+  expect_config_error(
+      [] { (void)YamlNode::load_string("x: [{p: 1, p: 2}]\n", "d.yaml"); },
+      "d.yaml:1:12: x[0].p: duplicate key 'p': also given at line 1, column 6; which one is meant?");
   // The same key in sibling mappings is no duplicate; quoting does not make a different key.
   EXPECT_NO_THROW((void)YamlNode::load_string("a: {k: 1}\nb: {k: 1}\n", "d.yaml"));
-  expect_config_error([] { (void)YamlNode::load_string("k: 1\n'k': 2\n", "d.yaml"); },
-               "d.yaml:2:1: k: duplicate key 'k': also given at line 1, column 1; which one is meant?");
+  expect_config_error(
+      [] { (void)YamlNode::load_string("k: 1\n'k': 2\n", "d.yaml"); },
+      "d.yaml:2:1: k: duplicate key 'k': also given at line 1, column 1; which one is meant?");
 }
 
 TEST(YamlStructure, OneDocumentPerFile) {
-  expect_config_error([] { (void)YamlNode::load_string("a: 1\n---\nb: 2\n", "m.yaml"); },
-               "m.yaml:2:1: a second YAML document starts here; a config or recipe file holds one document");
+  expect_config_error(
+      [] { (void)YamlNode::load_string("a: 1\n---\nb: 2\n", "m.yaml"); },
+      "m.yaml:2:1: a second YAML document starts here; a config or recipe file holds one document");
   EXPECT_NO_THROW((void)YamlNode::load_string("---\na: 1\n...\n", "m.yaml"));
 }
 
 TEST(YamlStructure, KeysArePlainNames) {
   expect_config_error([] { (void)YamlNode::load_string("? [a, b]\n: 1\n", "k.yaml"); },
-               "k.yaml:1:3: a key must be a plain name, not a list");
+                      "k.yaml:1:3: a key must be a plain name, not a list");
   expect_config_error([] { (void)YamlNode::load_string("{a: 1}: 2\n", "k.yaml"); },
-               "k.yaml:1:1: a key must be a plain name, not a mapping");
+                      "k.yaml:1:1: a key must be a plain name, not a mapping");
   expect_config_error([] { (void)YamlNode::load_string("s:\n  ~: 2\n", "k.yaml"); },
-               "k.yaml:2:3: s: a key must be a plain name, not null or empty");
+                      "k.yaml:2:3: s: a key must be a plain name, not null or empty");
   expect_config_error([] { (void)YamlNode::load_string("a: &n x\nb: {*n : 1}\n", "k.yaml"); },
-               "k.yaml:2:5: b: a key must be a plain name, not an alias");
+                      "k.yaml:2:5: b: a key must be a plain name, not an alias");
 }
 
 TEST(YamlStructure, NestingDeeperThanTheLimitIsRefusedBeforeYamlCppRecursesFurther) {
@@ -143,17 +146,18 @@ TEST(YamlStructure, NestingDeeperThanTheLimitIsRefusedBeforeYamlCppRecursesFurth
 
 TEST(YamlText, NulBytesAndInvalidUtf8AreRefusedWhereTheyAre) {
   expect_config_error([] { (void)YamlNode::load_string(std::string("a: 1\nb: x\0y\n", 12), "t.yaml"); },
-               "t.yaml:2:5: NUL byte: the file must be UTF-8 text (is it UTF-16 or binary?)");
+                      "t.yaml:2:5: NUL byte: the file must be UTF-8 text (is it UTF-16 or binary?)");
   expect_config_error([] { (void)YamlNode::load_string("a: caf\xe9\n", "t.yaml"); },
-               "t.yaml:1:7: invalid UTF-8 (byte 0xE9): the file must be UTF-8 text");
+                      "t.yaml:1:7: invalid UTF-8 (byte 0xE9): the file must be UTF-8 text");
   expect_config_error([] { (void)YamlNode::load_string("a: \xc0\xaf\n", "t.yaml"); },  // overlong '/'
-               "t.yaml:1:4: invalid UTF-8 (byte 0xC0): the file must be UTF-8 text");
+                      "t.yaml:1:4: invalid UTF-8 (byte 0xC0): the file must be UTF-8 text");
   expect_config_error([] { (void)YamlNode::load_string("a: \xed\xa0\x80\n", "t.yaml"); },  // a surrogate
-               "t.yaml:1:4: invalid UTF-8 (byte 0xED): the file must be UTF-8 text");
-  expect_config_error([] { (void)YamlNode::load_string("a: \xf4\x90\x80\x80\n", "t.yaml"); },  // above U+10FFFF
-               "t.yaml:1:4: invalid UTF-8 (byte 0xF4): the file must be UTF-8 text");
+                      "t.yaml:1:4: invalid UTF-8 (byte 0xED): the file must be UTF-8 text");
+  expect_config_error(
+      [] { (void)YamlNode::load_string("a: \xf4\x90\x80\x80\n", "t.yaml"); },  // above U+10FFFF
+      "t.yaml:1:4: invalid UTF-8 (byte 0xF4): the file must be UTF-8 text");
   expect_config_error([] { (void)YamlNode::load_string("a: \xe2\x82", "t.yaml"); },  // cut off
-               "t.yaml:1:4: invalid UTF-8 (byte 0xE2): the file must be UTF-8 text");
+                      "t.yaml:1:4: invalid UTF-8 (byte 0xE2): the file must be UTF-8 text");
   EXPECT_EQ(YamlNode::load_string("a: café ±0.1 µm\n", "t.yaml").string_at("a"), "café ±0.1 µm");
 }
 
@@ -182,9 +186,9 @@ TEST_F(YamlFile, ReadsARegularFile) {
 TEST_F(YamlFile, UnreadablePathsAreNamedWithTheReason) {
   const auto missing = (dir_ / "missing.yaml").string();
   expect_config_error([&] { (void)YamlNode::load_file(missing); },
-               missing + ":1:1: cannot read the file: No such file or directory");
+                      missing + ":1:1: cannot read the file: No such file or directory");
   expect_config_error([&] { (void)YamlNode::load_file(dir_); },
-               dir_.string() + ":1:1: cannot read the file: it is a directory");
+                      dir_.string() + ":1:1: cannot read the file: it is a directory");
   expect_config_error(
       [] { (void)YamlNode::load_file("/dev/zero"); },
       "/dev/zero:1:1: cannot read the file: it is not a regular file (a device, a pipe or a socket)");
@@ -200,9 +204,10 @@ TEST_F(YamlFile, AFileOverTheSizeLimitIsRefusedUnread) {
   EXPECT_EQ(std::filesystem::file_size(at_limit), kMaxYamlFileBytes);
   EXPECT_EQ(YamlNode::load_file(at_limit).at("a").as_int<int>(), 1);
   const auto over = write("over.yaml", std::string(kMaxYamlFileBytes + 1, '#'));
-  expect_config_error([&] { (void)YamlNode::load_file(over); },
-               over.string() +
-                   ":1:1: cannot read the file: it is 1048577 bytes, over the limit of 1048576 bytes (1 MiB)");
+  expect_config_error(
+      [&] { (void)YamlNode::load_file(over); },
+      over.string() +
+          ":1:1: cannot read the file: it is 1048577 bytes, over the limit of 1048576 bytes (1 MiB)");
 }
 
 }  // namespace
