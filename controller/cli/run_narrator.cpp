@@ -32,11 +32,12 @@ void RunNarrator::operator()(const nlohmann::json& j) {
     const auto cmd = j.value("command", "?");
     const char* what = cmd == "hold"
                            ? "the cell comes to rest and holds; type unhold to go on, or stop to end"
-                       : cmd == "unhold" ? "the run goes on unless a fault is still latched"
+                       : cmd == "unhold" ? "checking the latched faults: Unholding follows, or a refusal"
                        : cmd == "stop"   ? "the cell comes to a controlled stop and the run ends"
                        : cmd == "abort"  ? "the cell stops at once and the run ends"
                                          : "done";
-    screen_.message(fmt::format("{} {}: accepted — {}", at, cmd, what));
+    // An unhold is judged after it is journaled (a latched fault refuses it): received, not accepted.
+    screen_.message(fmt::format("{} {}: {} — {}", at, cmd, cmd == "unhold" ? "received" : "accepted", what));
   } else if (event == "note") {
     const auto text = j.value("text", "");
     if (contains(text, "operator typed")) return;  // the console has answered it

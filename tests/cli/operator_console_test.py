@@ -64,6 +64,7 @@ os.write(fd, b"\x03")  # Ctrl-C through the terminal's line discipline: SIGINT
 wait_for(r"Ctrl-C: the cell holds — type `stop` to end, or `reset` then `unhold` to go on")
 wait_for(r"(?s)Ctrl-C: the cell holds.*→ Held")
 os.write(fd, b"unhold\n")
+wait_for(r"unhold: received — checking the latched faults")
 wait_for(r"refused: unhold refused: a latched fault still demands a stop \(reset it first\) — type reset, then unhold")
 os.write(fd, b"reset\n")
 wait_for(r"reset: done, faults cleared — type unhold to go on, or stop to end")
