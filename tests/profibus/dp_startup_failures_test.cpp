@@ -224,7 +224,7 @@ TEST(DpStartup, MalformedDiagnosisIsCountedAndTheStartUpBegunAgain) {
   EXPECT_GE(bus.master.stats().startups, 3u);
   EXPECT_GE(bus.master.health().error_replies, 2u);
   EXPECT_EQ(bus.master.restart_reason(),
-            "Slave_Diag reply of 3 octets, 6 expected: not taken, start-up begun again");
+            "Slave_Diag reply of 3 octets, 6 to 244 expected: not taken, start-up begun again");
 }
 
 TEST(DpStartup, DataExchangeReplyOfTheWrongLengthIsNotTakenAsInputs) {
