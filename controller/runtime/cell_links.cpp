@@ -2,7 +2,21 @@
 
 #include <fmt/format.h>
 
+#include "link/link_error.hpp"
+
 namespace cellctl::runtime {
+
+namespace {
+// An open failure names the device first: with three ports, a path alone does not say which is missing.
+std::unique_ptr<link::SerialLink> open_serial(const std::string& device, const std::string& path,
+                                              const link::LineFormat& line) {
+  try {
+    return link::SerialLink::open(path, line);
+  } catch (const link::LinkError& e) {
+    throw link::LinkError(fmt::format("{}: {}", device, e.what()), e.cause());
+  }
+}
+}  // namespace
 
 CellLinks::CellLinks(const config::CellConfig& cell, RunMode mode, const link::Clock& clock, bool trace,
                      std::bitset<cell::kDevices> fault_lines)
@@ -29,10 +43,10 @@ link::Link* CellLinks::open(cell::Device device, const config::PortConfig& port,
     // A pty of our own (not the published one: `cellctl emulate` may be running beside us).
     auto& pty = *ptys_.emplace_back(std::make_unique<link::PtyPair>(name));
     device_side = &pty.device();
-    master = owned_.emplace_back(link::SerialLink::open(pty.peer_path(), port.line)).get();
+    master = owned_.emplace_back(open_serial(name, pty.peer_path(), port.line)).get();
     descriptions_.push_back(fmt::format("{}: emulator on pseudo-terminal {}", name, pty.peer_path()));
   } else {
-    master = owned_.emplace_back(link::SerialLink::open(port.port, port.line)).get();
+    master = owned_.emplace_back(open_serial(name, port.port, port.line)).get();
     descriptions_.push_back(fmt::format("{}: {}", name, master->describe()));
   }
   if (const auto d = static_cast<std::size_t>(device); fault_lines_.test(d)) {
