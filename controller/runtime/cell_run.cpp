@@ -73,7 +73,7 @@ CellRun::~CellRun() {
 }
 
 void CellRun::run_emulator_thread() {
-  // Emulated devices behind pseudo-terminals answer like hardware, on their own time.
+  // Emulated devices behind their links answer like hardware, on their own time.
   while (!emulators_stop_.load()) {
     const auto now = real_clock_.now();
     if (rehearsal_) rehearsal_->drive_emulators(now, *emulated_);
@@ -248,6 +248,8 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   start_ = clock_.now();
   links_->start_trace_clock(start_);
   if (rehearsal_) rehearsal_->start(start_, links_->fault_links());
+  // Started after apply_realtime, so it inherits the loop's SCHED_FIFO priority and memory lock: an
+  // emulator the load keeps off the CPU would look like a device that stops answering.
   if (emulated_ && options_.mode != RunMode::virtual_time)
     emulator_thread_ = std::thread([this] { run_emulator_thread(); });
 
