@@ -125,7 +125,7 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
              fmt::format("{:.2f}", result.duration_s), result.wall_s);
   if (options.mode == runtime::RunMode::virtual_time)
     fmt::print(" ({:.0f}× real time)", result.duration_s / result.wall_s);
-  fmt::print("\n{}\n", result.loop_summary);
+  fmt::print("\n{}{}\n", result.loop_summary, result.link_summary);
   fmt::print("run record: {}\n", options.journal_dir.string());
 
   if (result.final_state == supervisor::State::complete) return kExitOk;

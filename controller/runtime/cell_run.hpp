@@ -60,6 +60,7 @@ struct RunResult {
   double wall_s = 0.0;                    // real time it took
   std::uint64_t cycles = 0;
   std::string loop_summary;
+  std::string link_summary;  // per device: replies, worst round trip, longest silence, time-outs
   std::string summary_text;  // the journal's summary for the terminal
 };
 
