@@ -19,6 +19,8 @@
 #include "config/cell_config.hpp"
 #include "journal/record_header.hpp"
 #include "journal/run_record.hpp"
+#include "plant_link/link_config.hpp"
+#include "plant_link/plant_link.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "runtime/cell_run.hpp"
 #include "runtime/fault_rehearsal.hpp"
@@ -90,6 +92,8 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
       args.journal_dir.empty() ? default_run_dir(args.recipe) : std::filesystem::path(args.journal_dir);
   options.trace = global.trace;
   options.faults = args.faults;
+  // The plant link's section is read (and so checked) before anything opens: a bad one is exit 3.
+  const auto plant_link = plant_link::load_link_config(cell);
   const auto info = record_info(cell, global.config, recipe, recipe::unroll(recipe), options.mode);
   options.record_header = journal::record_header(info);
 
@@ -106,7 +110,18 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   {
     TerminalScreen screen;
     RunNarrator narrator(screen);
-    run.on_journal_line([&narrator](const nlohmann::json& line) { narrator(line); });
+    std::unique_ptr<plant_link::PlantLink> link;  // before the run ends, gone before the run is
+    if (plant_link) {
+      link = std::make_unique<plant_link::PlantLink>(
+          *plant_link, cell,
+          plant_link::RunAccess{[&run](supervisor::Command c) { run.request(c); }, &run.status(), to_string(options.mode)});
+      screen.message(fmt::format("  plant link: MQTT {}:{} as '{}', tags under {}", plant_link->host, plant_link->port,
+                                 plant_link->client_id, plant_link->topic("")));
+    }
+    run.on_journal_line([&narrator, &link](const nlohmann::json& line) {
+      narrator(line);
+      if (link) link->on_journal_line(line);
+    });
     fmt::print("  {}\n", ctrl_c_hint(cell.stops.operator_stop));
     std::vector<std::optional<double>> planned;
     for (const auto& st : info.steps) planned.push_back(st.planned_s);
@@ -116,6 +131,7 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
       screen.message("  type hold, unhold, stop, abort or reset (h, u, s, a, r) and Enter");
     result = run.run(g_interrupted, &g_terminated);
     run.on_journal_line({});
+    link.reset();  // its last tags out (the run's end), then a clean goodbye
   }
   for (const auto& w : run.realtime_warnings()) spdlog::warn("real-time: {}", w);
   fmt::print("\n{}", result.summary_text);
