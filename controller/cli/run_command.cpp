@@ -21,6 +21,8 @@
 #include "journal/run_record.hpp"
 #include "plant_link/link_config.hpp"
 #include "plant_link/plant_link.hpp"
+#include "web/operator_page.hpp"
+#include "web/page_token.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "runtime/cell_run.hpp"
 #include "runtime/fault_rehearsal.hpp"
@@ -36,7 +38,21 @@ struct RunArgs {
   std::string journal_dir;
   std::vector<std::string> faults_text;
   std::vector<runtime::FaultSpec> faults;  // parsed (and so checked) by the option's validator
+  std::string http_text;
+  std::optional<web::PageOptions> http;    // --http, parsed by its validator
+  std::string http_token_file;
 };
+
+// --http's validator: ADDR:PORT or PORT (loopback).
+CLI::Validator listen_validator(std::optional<web::PageOptions>& out) {
+  return CLI::Validator(
+      [&out](std::string& text) -> std::string {
+        std::string why;
+        out = web::parse_listen_address(text, why);
+        return out ? std::string() : "'" + text + "': " + why;
+      },
+      "ADDR:PORT");
+}
 
 // --fault's validator: the text becomes a FaultSpec here, or the reason is CLI11's error (exit 2).
 CLI::Validator fault_spec_validator(std::vector<runtime::FaultSpec>& out) {
@@ -118,9 +134,22 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
       screen.message(fmt::format("  plant link: MQTT {}:{} as '{}', tags under {}", plant_link->host, plant_link->port,
                                  plant_link->client_id, plant_link->topic("")));
     }
-    run.on_journal_line([&narrator, &link](const nlohmann::json& line) {
+    std::unique_ptr<web::OperatorPage> page;
+    if (args.http) {
+      auto page_options = *args.http;
+      const auto token = web::page_token(args.http_token_file);
+      page_options.token = token.token;
+      page_options.recipes = plant_link ? plant_link->recipes : std::filesystem::path("recipes");
+      page = std::make_unique<web::OperatorPage>(
+          page_options, cell,
+          plant_link::RunAccess{[&run](supervisor::Command c) { run.request(c); }, &run.status(), to_string(options.mode)});
+      screen.message(fmt::format("  operator page: http://{}:{}/ — command token ({}): {}", page_options.address,
+                                 page->port(), token.origin, token.origin == "generated" ? token.token : "as given"));
+    }
+    run.on_journal_line([&narrator, &link, &page](const nlohmann::json& line) {
       narrator(line);
       if (link) link->on_journal_line(line);
+      if (page) page->on_journal_line(line);
     });
     fmt::print("  {}\n", ctrl_c_hint(cell.stops.operator_stop));
     std::vector<std::optional<double>> planned;
@@ -132,6 +161,7 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
     result = run.run(g_interrupted, &g_terminated);
     run.on_journal_line({});
     link.reset();  // its last tags out (the run's end), then a clean goodbye
+    page.reset();
   }
   for (const auto& w : run.realtime_warnings()) spdlog::warn("real-time: {}", w);
   fmt::print("\n{}", result.summary_text);
@@ -179,6 +209,12 @@ void add_run_command(CLI::App& app, Commands& commands) {
                   "MS ms late), error (the device's own fault: SCU actuator faults, spindle over-\n"
                   "temperature 31, encoder position alarm). The journal records each fault's start and end.")
       ->check(fault_spec_validator(args->faults));
+  sub->add_option("--http", args->http_text,
+                  "Serve the operator page (live state, hold/unhold/stop/reset, /metrics) on ADDR:PORT,\n"
+                  "or on 127.0.0.1:PORT given a port alone; commands need the token (--http-token-file,\n"
+                  "else CELLCTL_HTTP_TOKEN, else a random one printed at the start)")
+      ->check(listen_validator(args->http));
+  sub->add_option("--http-token-file", args->http_token_file, "File whose first line is the operator page's token");
   commands.on(sub, [&commands, args] { return run_recipe(commands.global, *args); });
 }
 

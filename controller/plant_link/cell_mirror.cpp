@@ -118,7 +118,10 @@ nlohmann::json CellMirror::status_tag(const LiveStatus& live) const {
   j["step"] = live.known ? live.step : step_;
   j["steps"] = live.known ? live.steps : steps_;
   j["label"] = live.known ? live.label : step_label_;
-  j["progress"] = (live.known && live.steps) ? static_cast<double>(live.step) / live.steps : 0.0;
+  // The fraction of steps done: the current one counts once it is over (all of them at Complete).
+  const auto steps = live.known ? live.steps : steps_;
+  const auto step = live.known ? live.step : step_;
+  j["progress"] = state_ == "Complete" ? 1.0 : steps ? static_cast<double>(step > 0 ? step - 1 : 0) / steps : 0.0;
   nlohmann::json axes = nlohmann::json::array();
   for (std::size_t i = 0; i < axes_.size(); ++i) {
     nlohmann::json a{{"name", axes_[i]}};
