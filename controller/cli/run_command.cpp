@@ -21,12 +21,12 @@
 #include "journal/run_record.hpp"
 #include "plant_link/link_config.hpp"
 #include "plant_link/plant_link.hpp"
-#include "web/operator_page.hpp"
-#include "web/page_token.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "runtime/cell_run.hpp"
 #include "runtime/fault_rehearsal.hpp"
 #include "runtime/fault_spec.hpp"
+#include "web/operator_page.hpp"
+#include "web/page_token.hpp"
 
 namespace cellctl::cli {
 namespace {
@@ -39,7 +39,7 @@ struct RunArgs {
   std::vector<std::string> faults_text;
   std::vector<runtime::FaultSpec> faults;  // parsed (and so checked) by the option's validator
   std::string http_text;
-  std::optional<web::PageOptions> http;    // --http, parsed by its validator
+  std::optional<web::PageOptions> http;  // --http, parsed by its validator
   std::string http_token_file;
 };
 
@@ -126,13 +126,14 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   {
     TerminalScreen screen;
     RunNarrator narrator(screen);
+    // The plant link and the web page command through the operator's path, as the console does.
+    const plant_link::RunAccess access{[&run](supervisor::Command c) { run.request(c); }, &run.status(),
+                                       to_string(options.mode)};
     std::unique_ptr<plant_link::PlantLink> link;  // before the run ends, gone before the run is
     if (plant_link) {
-      link = std::make_unique<plant_link::PlantLink>(
-          *plant_link, cell,
-          plant_link::RunAccess{[&run](supervisor::Command c) { run.request(c); }, &run.status(), to_string(options.mode)});
-      screen.message(fmt::format("  plant link: MQTT {}:{} as '{}', tags under {}", plant_link->host, plant_link->port,
-                                 plant_link->client_id, plant_link->topic("")));
+      link = std::make_unique<plant_link::PlantLink>(*plant_link, cell, access);
+      screen.message(fmt::format("  plant link: MQTT {}:{} as '{}', tags under {}", plant_link->host,
+                                 plant_link->port, plant_link->client_id, plant_link->topic("")));
     }
     std::unique_ptr<web::OperatorPage> page;
     if (args.http) {
@@ -140,11 +141,10 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
       const auto token = web::page_token(args.http_token_file);
       page_options.token = token.token;
       page_options.recipes = plant_link ? plant_link->recipes : std::filesystem::path("recipes");
-      page = std::make_unique<web::OperatorPage>(
-          page_options, cell,
-          plant_link::RunAccess{[&run](supervisor::Command c) { run.request(c); }, &run.status(), to_string(options.mode)});
-      screen.message(fmt::format("  operator page: http://{}:{}/ — command token ({}): {}", page_options.address,
-                                 page->port(), token.origin, token.origin == "generated" ? token.token : "as given"));
+      page = std::make_unique<web::OperatorPage>(page_options, cell, access);
+      screen.message(fmt::format("  operator page: http://{}:{}/ — command token ({}): {}",
+                                 page_options.address, page->port(), token.origin,
+                                 token.origin == "generated" ? token.token : "as given"));
     }
     run.on_journal_line([&narrator, &link, &page](const nlohmann::json& line) {
       narrator(line);
@@ -214,7 +214,8 @@ void add_run_command(CLI::App& app, Commands& commands) {
                   "or on 127.0.0.1:PORT given a port alone; commands need the token (--http-token-file,\n"
                   "else CELLCTL_HTTP_TOKEN, else a random one printed at the start)")
       ->check(listen_validator(args->http));
-  sub->add_option("--http-token-file", args->http_token_file, "File whose first line is the operator page's token");
+  sub->add_option("--http-token-file", args->http_token_file,
+                  "File whose first line is the operator page's token");
   commands.on(sub, [&commands, args] { return run_recipe(commands.global, *args); });
 }
 

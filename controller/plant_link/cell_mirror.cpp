@@ -55,20 +55,25 @@ Changed CellMirror::apply(const RunEvent& e) {
       break;
     case Kind::step_failed:
       ++steps_failed_;
-      stop_reason_ = {{"t", e.t}, {"step", e.step}, {"text", "step " + std::to_string(e.step) + " (" +
-                                                                 str(e.name) + ") failed: " + str(e.text)}};
+      stop_reason_ = {
+          {"t", e.t},
+          {"step", e.step},
+          {"text", "step " + std::to_string(e.step) + " (" + str(e.name) + ") failed: " + str(e.text)}};
       c.admin = true;
       break;
     case Kind::command:
       if (e.name.view() == "stop" || e.name.view() == "abort" || e.name.view() == "hold") {
-        stop_reason_ = {{"t", e.t}, {"command", str(e.name)}, {"source", str(e.other)},
+        stop_reason_ = {{"t", e.t},
+                        {"command", str(e.name)},
+                        {"source", str(e.other)},
                         {"text", str(e.name) + " commanded by " + str(e.other)}};
         c.admin = true;
       }
       break;
     case Kind::fault:
       ++faults_;
-      active_faults_.push_back({{"rule", str(e.name)}, {"category", e.category}, {"text", str(e.text)}, {"t", e.t}});
+      active_faults_.push_back(
+          {{"rule", str(e.name)}, {"category", e.category}, {"text", str(e.text)}, {"t", e.t}});
       stop_reason_ = {{"t", e.t},
                       {"fault", str(e.name)},
                       {"category", e.category},
@@ -121,7 +126,9 @@ nlohmann::json CellMirror::status_tag(const LiveStatus& live) const {
   // The fraction of steps done: the current one counts once it is over (all of them at Complete).
   const auto steps = live.known ? live.steps : steps_;
   const auto step = live.known ? live.step : step_;
-  j["progress"] = state_ == "Complete" ? 1.0 : steps ? static_cast<double>(step > 0 ? step - 1 : 0) / steps : 0.0;
+  j["progress"] = state_ == "Complete" ? 1.0
+                  : steps              ? static_cast<double>(step > 0 ? step - 1 : 0) / steps
+                                       : 0.0;
   nlohmann::json axes = nlohmann::json::array();
   for (std::size_t i = 0; i < axes_.size(); ++i) {
     nlohmann::json a{{"name", axes_[i]}};

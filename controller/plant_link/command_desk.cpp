@@ -30,11 +30,13 @@ nlohmann::json answer(std::string_view command, const nlohmann::json& id, bool o
 }
 
 CommandDesk::CommandDesk(const config::CellCore& cell, std::filesystem::path recipes,
-                         std::function<void(supervisor::Command)> request, std::chrono::milliseconds answer_timeout)
+                         std::function<void(supervisor::Command)> request,
+                         std::chrono::milliseconds answer_timeout)
     : cell_(cell), recipes_(std::move(recipes)), request_(std::move(request)), timeout_(answer_timeout) {}
 
 std::optional<nlohmann::json> CommandDesk::submit(std::string_view word, std::string_view payload,
-                                                  std::string_view source, std::string_view state, SteadyTime now) {
+                                                  std::string_view source, std::string_view state,
+                                                  SteadyTime now) {
   nlohmann::json body = nlohmann::json::object();
   if (!payload.empty()) {
     body = nlohmann::json::parse(payload, nullptr, false);
@@ -44,7 +46,8 @@ std::optional<nlohmann::json> CommandDesk::submit(std::string_view word, std::st
   const nlohmann::json id = body.contains("id") ? body["id"] : nlohmann::json();
   using supervisor::Command;
   std::optional<Command> cmd;
-  for (const auto c : {Command::start, Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset})
+  for (const auto c :
+       {Command::start, Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset})
     if (supervisor::to_string(c) == word) cmd = c;
   if (!cmd)
     return answer(word, id, false,
@@ -78,9 +81,10 @@ nlohmann::json CommandDesk::validate_start(const nlohmann::json& id, const std::
     errors.push_back(e.what());
   }
   if (!errors.empty()) {
-    auto a = answer("start", id, false,
-                    fmt::format("recipe '{}' is not valid for cell '{}': {} problem{} (exit 3); nothing moved",
-                                name, cell_.name, errors.size(), errors.size() == 1 ? "" : "s"));
+    auto a =
+        answer("start", id, false,
+               fmt::format("recipe '{}' is not valid for cell '{}': {} problem{} (exit 3); nothing moved",
+                           name, cell_.name, errors.size(), errors.size() == 1 ? "" : "s"));
     a["exit"] = 3;
     a["errors"] = errors;
     return a;

@@ -36,7 +36,8 @@ class CommandDesk {
   // {"id":…, "recipe":…}; `source` says who sent it (for the answer). Returns the answer when it is
   // known at once (a refusal, a start's validation), nullopt when the run will answer (on_event).
   [[nodiscard]] std::optional<nlohmann::json> submit(std::string_view word, std::string_view payload,
-                                                     std::string_view source, std::string_view state, SteadyTime now);
+                                                     std::string_view source, std::string_view state,
+                                                     SteadyTime now);
   // The answers this run event completes.
   [[nodiscard]] std::vector<nlohmann::json> on_event(const RunEvent& e);
   // Answers for commands the run has not answered within the time-out.
@@ -61,6 +62,7 @@ class CommandDesk {
 };
 
 // An answer: {"command", "id" (when given), "ok", "outcome" or "reason", more fields as given}.
-[[nodiscard]] nlohmann::json answer(std::string_view command, const nlohmann::json& id, bool ok, std::string text);
+[[nodiscard]] nlohmann::json answer(std::string_view command, const nlohmann::json& id, bool ok,
+                                    std::string text);
 
 }  // namespace cellctl::plant_link

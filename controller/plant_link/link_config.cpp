@@ -16,7 +16,8 @@ void check_topic_text(const config::YamlNode& n, const std::string& text, bool a
     if (c == '+' || c == '#' || c == '\0' || (!allow_slash && c == '/'))
       n.fail(fmt::format("'{}' may not hold '+', '#'{}", text, allow_slash ? "" : " or '/'"));
   }
-  if (text.front() == '/' || text.back() == '/') n.fail(fmt::format("'{}' may not begin or end with '/'", text));
+  if (text.front() == '/' || text.back() == '/')
+    n.fail(fmt::format("'{}' may not begin or end with '/'", text));
 }
 
 std::filesystem::path beside(const std::filesystem::path& config_file, const std::string& path) {
@@ -53,28 +54,32 @@ std::string read_password(const config::YamlNode& section, const std::filesystem
 }  // namespace
 
 LinkConfig parse_link_config(const config::YamlNode& s, const config::CellCore& cell) {
-  s.only_keys({"host", "port", "client_id", "username", "password_file", "password_env", "tls", "topic_prefix",
-               "status_ms", "keepalive_s", "reconnect_min_ms", "reconnect_max_ms", "recipes", "answer_timeout_ms"});
+  s.only_keys({"host", "port", "client_id", "username", "password_file", "password_env", "tls",
+               "topic_prefix", "status_ms", "keepalive_s", "reconnect_min_ms", "reconnect_max_ms", "recipes",
+               "answer_timeout_ms"});
   LinkConfig c;
   c.cell = cell.name;
   c.host = s.string_or("host", c.host);
   c.port = s.int_in_or<int>("port", 1, 65535, c.port);
   c.client_id = s.string_or("client_id", "cellctl-" + cell.name);
-  if (c.client_id.empty() || c.client_id.size() > 23) s.at("client_id").fail("must be 1 to 23 characters (MQTT 3.1.1)");
+  if (c.client_id.empty() || c.client_id.size() > 23)
+    s.at("client_id").fail("must be 1 to 23 characters (MQTT 3.1.1)");
   if (s.has("password_file") && s.has("password_env"))
     s.at("password_env").fail("give password_file or password_env, not both");
   if (const auto u = s.maybe("username")) {
     c.username = u->as_string();
     c.password = read_password(s, cell.source);
   } else if (s.has("password_file") || s.has("password_env")) {
-    (s.has("password_file") ? s.at("password_file") : s.at("password_env")).fail("a password needs a username");
+    (s.has("password_file") ? s.at("password_file") : s.at("password_env"))
+        .fail("a password needs a username");
   }
   if (const auto t = s.maybe("tls")) {
     t->only_keys({"ca_file", "cert_file", "key_file"});
     TlsConfig tls;
     tls.ca_file = existing_file(t->at("ca_file"), cell.source);
     if (t->has("cert_file") != t->has("key_file"))
-      (t->has("cert_file") ? t->at("cert_file") : t->at("key_file")).fail("cert_file and key_file go together");
+      (t->has("cert_file") ? t->at("cert_file") : t->at("key_file"))
+          .fail("cert_file and key_file go together");
     if (const auto n = t->maybe("cert_file")) tls.cert_file = existing_file(*n, cell.source);
     if (const auto n = t->maybe("key_file")) tls.key_file = existing_file(*n, cell.source);
     c.tls = tls;

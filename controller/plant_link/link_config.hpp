@@ -33,12 +33,15 @@ struct LinkConfig {
   std::string cell;  // the cell's name: topics are <topic_prefix>/<cell>/…
   std::chrono::milliseconds status_period{100};
   int keepalive_s = 10;
-  std::chrono::milliseconds reconnect_min{100};  // back-off doubles from this …
+  std::chrono::milliseconds reconnect_min{100};   // back-off doubles from this …
   std::chrono::milliseconds reconnect_max{5000};  // … up to this
-  std::filesystem::path recipes = "recipes";  // `start` names a recipe <recipes>/<name>.yaml
-  std::chrono::milliseconds answer_timeout{2000};  // a command the run has not answered by then is reported so
+  std::filesystem::path recipes = "recipes";      // `start` names a recipe <recipes>/<name>.yaml
+  std::chrono::milliseconds answer_timeout{
+      2000};  // a command the run has not answered by then is reported so
 
-  [[nodiscard]] std::string topic(std::string_view tag) const { return topic_prefix + "/" + cell + "/" + std::string(tag); }
+  [[nodiscard]] std::string topic(std::string_view tag) const {
+    return topic_prefix + "/" + cell + "/" + std::string(tag);
+  }
 };
 
 // Throws config::ConfigError (file:line:column: field: rule). Relative paths are read from the

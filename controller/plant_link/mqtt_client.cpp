@@ -25,17 +25,21 @@ const char* or_null(const std::string& s) {
 MqttClient::MqttClient(const MqttOptions& options) : options_(options) {
   init_library();
   mosq_ = mosquitto_new(options_.client_id.c_str(), true, this);
-  if (!mosq_) throw std::runtime_error("MQTT: the client could not be created: " + error_text(MOSQ_ERR_ERRNO));
+  if (!mosq_)
+    throw std::runtime_error("MQTT: the client could not be created: " + error_text(MOSQ_ERR_ERRNO));
   mosquitto_int_option(mosq_, MOSQ_OPT_PROTOCOL_VERSION, MQTT_PROTOCOL_V311);
   const auto must = [](int rc, const char* what) {
-    if (rc != MOSQ_ERR_SUCCESS) throw std::runtime_error(std::string("MQTT: ") + what + ": " + error_text(rc));
+    if (rc != MOSQ_ERR_SUCCESS)
+      throw std::runtime_error(std::string("MQTT: ") + what + ": " + error_text(rc));
   };
   if (!options_.username.empty())
-    must(mosquitto_username_pw_set(mosq_, options_.username.c_str(), or_null(options_.password)), "credentials");
+    must(mosquitto_username_pw_set(mosq_, options_.username.c_str(), or_null(options_.password)),
+         "credentials");
   if (!options_.will_topic.empty())
-    must(mosquitto_will_set(mosq_, options_.will_topic.c_str(), static_cast<int>(options_.will_payload.size()),
-                            options_.will_payload.data(), 1, true),
-         "last will");
+    must(
+        mosquitto_will_set(mosq_, options_.will_topic.c_str(), static_cast<int>(options_.will_payload.size()),
+                           options_.will_payload.data(), 1, true),
+        "last will");
   if (!options_.tls_ca_file.empty())
     must(mosquitto_tls_set(mosq_, options_.tls_ca_file.c_str(), nullptr, or_null(options_.tls_cert_file),
                            or_null(options_.tls_key_file), nullptr),
@@ -64,7 +68,8 @@ int MqttClient::loop(int timeout_ms) {
 
 int MqttClient::publish(std::string_view topic, std::string_view payload, int qos, bool retain) {
   const std::string t(topic);
-  return mosquitto_publish(mosq_, nullptr, t.c_str(), static_cast<int>(payload.size()), payload.data(), qos, retain);
+  return mosquitto_publish(mosq_, nullptr, t.c_str(), static_cast<int>(payload.size()), payload.data(), qos,
+                           retain);
 }
 
 int MqttClient::subscribe(std::string_view pattern, int qos) {

@@ -33,7 +33,8 @@ UnitMode unit_mode(std::string_view run_mode) noexcept {
 
 std::optional<supervisor::Command> command_of_topic_word(std::string_view w) noexcept {
   using supervisor::Command;
-  for (const auto c : {Command::start, Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset})
+  for (const auto c :
+       {Command::start, Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset})
     if (supervisor::to_string(c) == w) return c;
   return std::nullopt;
 }

@@ -30,7 +30,8 @@ struct UnitMode {
   int number = 0;
   std::string_view name;  // "production", "dry-run emulated", "dry-run virtual time", "none"
 };
-[[nodiscard]] UnitMode unit_mode(std::string_view run_mode) noexcept;  // "hardware", "emulated", "virtual-time"
+[[nodiscard]] UnitMode unit_mode(
+    std::string_view run_mode) noexcept;  // "hardware", "emulated", "virtual-time"
 
 // A command word of a cmd/<word> topic: start or one of the operator's commands; nullopt otherwise.
 [[nodiscard]] std::optional<supervisor::Command> command_of_topic_word(std::string_view word) noexcept;

@@ -34,9 +34,10 @@ MqttOptions options_of(const LinkConfig& c) {
   }
   o.keepalive_s = c.keepalive_s;
   o.will_topic = c.topic("online");
-  o.will_payload =
-      nlohmann::json{{"online", false}, {"client_id", c.client_id}, {"reason", "connection lost (the broker's last will)"}}
-          .dump();
+  o.will_payload = nlohmann::json{{"online", false},
+                                  {"client_id", c.client_id},
+                                  {"reason", "connection lost (the broker's last will)"}}
+                       .dump();
   return o;
 }
 
@@ -66,7 +67,7 @@ void PlantLink::on_journal_line(const nlohmann::json& line) noexcept {
 }
 
 LinkCounters PlantLink::counters() const noexcept {
-  return {connected_.load(),      connects_.load(), losses_.load(),   refused_connects_.load(),
+  return {connected_.load(),      connects_.load(),       losses_.load(),   refused_connects_.load(),
           dropped_events_.load(), dropped_status_.load(), commands_.load(), refused_commands_.load()};
 }
 
@@ -84,7 +85,8 @@ void PlantLink::run_thread() {
     if (connected_.load()) (void)client.publish(config_.topic(tag), j.dump(), qos, retain);
   };
   const auto publish_retained = [&] {
-    publish_json("online", {{"online", true}, {"client_id", config_.client_id}, {"cell", cell_.name}}, 1, true);
+    publish_json("online", {{"online", true}, {"client_id", config_.client_id}, {"cell", cell_.name}}, 1,
+                 true);
     publish_json("state", mirror.state_tag(), 1, true);
     publish_json("mode", mirror.mode_tag(), 1, true);
     publish_json("admin", mirror.admin_tag(), 1, true);
@@ -178,8 +180,8 @@ void PlantLink::run_thread() {
   for (const auto& a : desk.expire(Clock::time_point::max())) respond(a);
   if (connected_.load()) {
     publish_json("status", status(), 0, false);
-    publish_json("online", {{"online", false}, {"client_id", config_.client_id}, {"reason", "cellctl ended"}}, 1,
-                 true);
+    publish_json("online", {{"online", false}, {"client_id", config_.client_id}, {"reason", "cellctl ended"}},
+                 1, true);
     const auto until = Clock::now() + std::chrono::milliseconds(500);
     while (client.want_write() && Clock::now() < until && client.loop(5) == 0) {
     }

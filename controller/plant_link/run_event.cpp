@@ -40,7 +40,9 @@ std::optional<RunEvent> run_event_of(const nlohmann::json& j) {
     e.other = text_of(j, "from");
     e.text = text_of(j, "reason");
   } else if (ev == "step_started" || ev == "step_done" || ev == "step_failed") {
-    e.kind = ev == "step_started" ? Kind::step_started : ev == "step_done" ? Kind::step_done : Kind::step_failed;
+    e.kind = ev == "step_started" ? Kind::step_started
+             : ev == "step_done"  ? Kind::step_done
+                                  : Kind::step_failed;
     e.step = j.value("step", 0u);
     e.name = text_of(j, "label");
     e.text = text_of(j, "detail");

@@ -210,7 +210,8 @@ void CellRun::publish_status(double t) {
   for (std::size_t b = 0; b < loop::LatencyHistogram::kBins; ++b) {
     const double upper_us =
         std::chrono::duration<double, std::micro>(loop::LatencyHistogram::upper_edge(b)).count();
-    while (bucket < kJitterBucketsUs.size() && upper_us > kJitterBucketsUs[bucket]) v.jitter_le[bucket++] = running;
+    while (bucket < kJitterBucketsUs.size() && upper_us > kJitterBucketsUs[bucket])
+      v.jitter_le[bucket++] = running;
     running += stats.jitter.bin_count(b);
   }
   while (bucket < v.jitter_le.size()) v.jitter_le[bucket++] = running;

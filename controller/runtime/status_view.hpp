@@ -33,7 +33,7 @@ struct StatusView {
   std::array<std::uint64_t, kJitterBucketsUs.size() + 1> jitter_le{};  // cumulative; the last is every cycle
   double jitter_sum_s = 0.0;
   std::uint64_t overruns = 0;
-  std::array<bool, cell::kDevices> link_fault{};        // a device's session gave up on its link
+  std::array<bool, cell::kDevices> link_fault{};       // a device's session gave up on its link
   std::array<double, cell::kDevices> link_silent_s{};  // since its last good reply
   bool fault = false;
   monitor::Rule first_fault = monitor::Rule::operator_stop;

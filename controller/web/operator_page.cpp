@@ -81,29 +81,29 @@ OperatorPage::OperatorPage(PageOptions options, const config::CellCore& cell, pl
     res.set_header("Cache-Control", "no-cache");
     auto last_admin = std::make_shared<std::uint64_t>(UINT64_MAX);
     auto first = std::make_shared<bool>(true);
-    res.set_chunked_content_provider("text/event-stream", [this, last_admin, first](std::size_t,
-                                                                                     httplib::DataSink& sink) {
-      if (stop_.load()) return false;
-      std::string out;
-      if (*first) {
-        out += sse("cell", {{"cell", cell_.name}});
-        std::lock_guard lock(mutex_);
-        out += sse("mode", mirror_.mode_tag());
-        *first = false;
-      } else {
-        std::this_thread::sleep_for(200ms);  // the page's refresh period; a server thread, never the loop
-      }
-      out += sse("status", status_json());
-      {
-        std::lock_guard lock(mutex_);
-        if (*last_admin != admin_version_) {
-          *last_admin = admin_version_;
-          out += sse("admin", admin_json());
-          out += sse("mode", mirror_.mode_tag());
-        }
-      }
-      return sink.write(out.data(), out.size());
-    });
+    res.set_chunked_content_provider(
+        "text/event-stream", [this, last_admin, first](std::size_t, httplib::DataSink& sink) {
+          if (stop_.load()) return false;
+          std::string out;
+          if (*first) {
+            out += sse("cell", {{"cell", cell_.name}});
+            std::lock_guard lock(mutex_);
+            out += sse("mode", mirror_.mode_tag());
+            *first = false;
+          } else {
+            std::this_thread::sleep_for(200ms);  // the page's refresh period; a server thread, never the loop
+          }
+          out += sse("status", status_json());
+          {
+            std::lock_guard lock(mutex_);
+            if (*last_admin != admin_version_) {
+              *last_admin = admin_version_;
+              out += sse("admin", admin_json());
+              out += sse("mode", mirror_.mode_tag());
+            }
+          }
+          return sink.write(out.data(), out.size());
+        });
   });
   s.Post(R"(/cmd/([a-z-]+))", [this](const httplib::Request& req, httplib::Response& res) {
     const std::string word = req.matches[1];
@@ -113,8 +113,9 @@ OperatorPage::OperatorPage(PageOptions options, const config::CellCore& cell, pl
         ++unauthorised_;
       }
       res.status = 401;
-      res.set_content(plant_link::answer(word, nullptr, false, "a valid token is required for any command").dump(),
-                      "application/json");
+      res.set_content(
+          plant_link::answer(word, nullptr, false, "a valid token is required for any command").dump(),
+          "application/json");
       return;
     }
     res.set_content(command(word).dump(), "application/json");
@@ -128,7 +129,8 @@ OperatorPage::OperatorPage(PageOptions options, const config::CellCore& cell, pl
     port_ = s.bind_to_port(options_.address, options_.port) ? options_.port : -1;
   }
   if (port_ <= 0)
-    throw std::runtime_error(fmt::format("the operator page cannot listen on {}:{}", options_.address, options_.port));
+    throw std::runtime_error(
+        fmt::format("the operator page cannot listen on {}:{}", options_.address, options_.port));
   server_thread_ = std::thread([this] { server_->listen_after_bind(); });
   pump_thread_ = std::thread([this] { pump(); });
 }
@@ -217,8 +219,8 @@ std::string OperatorPage::metrics_text() {
     const auto v = run_.board->read();
     add("cellctl_loop_jitter_seconds", "histogram", "Control loop wake-up minus deadline.");
     for (std::size_t b = 0; b < runtime::kJitterBucketsUs.size(); ++b)
-      out += fmt::format("cellctl_loop_jitter_seconds_bucket{{le=\"{:g}\"}} {}\n", runtime::kJitterBucketsUs[b] * 1e-6,
-                         v.jitter_le[b]);
+      out += fmt::format("cellctl_loop_jitter_seconds_bucket{{le=\"{:g}\"}} {}\n",
+                         runtime::kJitterBucketsUs[b] * 1e-6, v.jitter_le[b]);
     out += fmt::format("cellctl_loop_jitter_seconds_bucket{{le=\"+Inf\"}} {}\n", v.jitter_le.back());
     out += fmt::format("cellctl_loop_jitter_seconds_sum {:.9f}\ncellctl_loop_jitter_seconds_count {}\n",
                        v.jitter_sum_s, v.jitter_le.back());
@@ -227,10 +229,12 @@ std::string OperatorPage::metrics_text() {
     static constexpr const char* kDevices[] = {"scu", "spindle", "encoder"};
     add("cellctl_device_link_fault", "gauge", "1 when the device's session gave up on its link.");
     for (std::size_t d = 0; d < v.link_fault.size(); ++d)
-      out += fmt::format("cellctl_device_link_fault{{device=\"{}\"}} {}\n", kDevices[d], v.link_fault[d] ? 1 : 0);
+      out += fmt::format("cellctl_device_link_fault{{device=\"{}\"}} {}\n", kDevices[d],
+                         v.link_fault[d] ? 1 : 0);
     add("cellctl_device_silent_seconds", "gauge", "Time since the device's last good reply.");
     for (std::size_t d = 0; d < v.link_silent_s.size(); ++d)
-      out += fmt::format("cellctl_device_silent_seconds{{device=\"{}\"}} {:.6f}\n", kDevices[d], v.link_silent_s[d]);
+      out += fmt::format("cellctl_device_silent_seconds{{device=\"{}\"}} {:.6f}\n", kDevices[d],
+                         v.link_silent_s[d]);
     add("cellctl_run_seconds", "gauge", "Time since the run started (the run's clock).");
     out += fmt::format("cellctl_run_seconds {:.6f}\n", v.t);
   }
@@ -238,18 +242,23 @@ std::string OperatorPage::metrics_text() {
   const auto a = mirror_.admin_tag();
   for (const auto& [key, help] :
        {std::pair{"runs", "Runs started."}, std::pair{"steps_done", "Recipe steps completed."},
-        std::pair{"steps_failed", "Recipe steps failed."}, std::pair{"faults", "Safety monitor faults latched."},
+        std::pair{"steps_failed", "Recipe steps failed."},
+        std::pair{"faults", "Safety monitor faults latched."},
         std::pair{"ProdProcessedCount", "Runs completed (PackML Admin.ProdProcessedCount)."}}) {
-    const auto name = fmt::format("cellctl_{}_total", key == std::string_view("ProdProcessedCount") ? "processed" : key);
+    const auto name =
+        fmt::format("cellctl_{}_total", key == std::string_view("ProdProcessedCount") ? "processed" : key);
     add(name, "counter", help);
     out += fmt::format("{} {}\n", name, a[key].get<std::uint64_t>());
   }
   add("cellctl_state", "gauge", "PackML StateCurrent of the cell.");
-  out += fmt::format("cellctl_state{{state=\"{}\"}} {}\n", mirror_.state(), mirror_.state_tag()["StateCurrent"].get<int>());
-  add("cellctl_web_commands_total", "counter", "Commands received by the page, refused ones, and ones without a valid token.");
-  out += fmt::format("cellctl_web_commands_total {}\ncellctl_web_commands_refused_total {}\n"
-                     "cellctl_web_commands_unauthorised_total {}\n",
-                     commands_, refused_, unauthorised_);
+  out += fmt::format("cellctl_state{{state=\"{}\"}} {}\n", mirror_.state(),
+                     mirror_.state_tag()["StateCurrent"].get<int>());
+  add("cellctl_web_commands_total", "counter",
+      "Commands received by the page, refused ones, and ones without a valid token.");
+  out += fmt::format(
+      "cellctl_web_commands_total {}\ncellctl_web_commands_refused_total {}\n"
+      "cellctl_web_commands_unauthorised_total {}\n",
+      commands_, refused_, unauthorised_);
   add("cellctl_web_dropped_events_total", "counter", "Run events the page's queue had no room for.");
   out += fmt::format("cellctl_web_dropped_events_total {}\n", dropped_events_.load());
   return out;

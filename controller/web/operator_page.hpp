@@ -12,12 +12,12 @@
 
 #include <atomic>
 #include <condition_variable>
-#include <vector>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "config/cell_core.hpp"
 #include "plant_link/cell_mirror.hpp"

@@ -13,9 +13,11 @@ PageToken page_token(const std::filesystem::path& token_file) {
   if (!token_file.empty()) {
     std::ifstream in(token_file);
     std::string line;
-    if (!in || !std::getline(in, line)) throw std::runtime_error(fmt::format("{}: cannot be read", token_file.string()));
+    if (!in || !std::getline(in, line))
+      throw std::runtime_error(fmt::format("{}: cannot be read", token_file.string()));
     while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-    if (line.empty()) throw std::runtime_error(fmt::format("{}: holds no token on its first line", token_file.string()));
+    if (line.empty())
+      throw std::runtime_error(fmt::format("{}: holds no token on its first line", token_file.string()));
     return {line, "file " + token_file.string()};
   }
   if (const char* env = std::getenv("CELLCTL_HTTP_TOKEN"); env && *env) return {env, "CELLCTL_HTTP_TOKEN"};

@@ -19,7 +19,8 @@ namespace {
 using namespace std::chrono_literals;
 
 TEST(PlantLinkDeath, AKilledCellctlLeavesItsLastWillOnTheBroker) {
-  const auto dir = std::filesystem::temp_directory_path() / ("cellctl-plant-death-" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("cellctl-plant-death-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   MqttBroker broker(dir / "broker");
@@ -34,9 +35,10 @@ TEST(PlantLinkDeath, AKilledCellctlLeavesItsLastWillOnTheBroker) {
   ASSERT_NE(at, std::string::npos) << "config/cell.yaml has no encoder state_file to move";
   cell.replace(at, cell.find('\n', at + 1) - at, "\n    state_file: " + (dir / "encoder.eeprom").string());
   std::ofstream(dir / "password") << "cell-secret\n";
-  cell += "\nplant_link:\n  port: " + std::to_string(broker.port()) +
-          "\n  client_id: cellctl-dying\n  username: cellctl\n  password_file: " + (dir / "password").string() +
-          "\n  topic_prefix: " + MqttBroker::kPrefix + "\n  status_ms: 100\n";
+  cell +=
+      "\nplant_link:\n  port: " + std::to_string(broker.port()) +
+      "\n  client_id: cellctl-dying\n  username: cellctl\n  password_file: " + (dir / "password").string() +
+      "\n  topic_prefix: " + MqttBroker::kPrefix + "\n  status_ms: 100\n";
   std::ofstream(dir / "cell.yaml") << cell;
   std::ofstream(dir / "slow.yaml") << R"(recipe: {name: slow, version: "1", cell: demo-cell}
 limits:
@@ -48,20 +50,22 @@ steps:
   - dwell: 60
 )";
 
-  MqttProbe plant(broker.port(), "viewer", "view-secret", std::string(MqttBroker::kPrefix) + "/demo-cell/online");
+  MqttProbe plant(broker.port(), "viewer", "view-secret",
+                  std::string(MqttBroker::kPrefix) + "/demo-cell/online");
   ASSERT_EQ(plant.wait_connack(), 0);
   const pid_t pid = ::fork();
   if (pid == 0) {
     const auto cfg = (dir / "cell.yaml").string();
     const auto recipe = (dir / "slow.yaml").string();
     const auto journal = (dir / "run").string();
-    if (!::freopen("/dev/null", "r", stdin) || !::freopen((dir / "cellctl.out").c_str(), "w", stdout)) ::_exit(126);
-    ::execl(CELLCTL_BINARY, CELLCTL_BINARY, "-c", cfg.c_str(), "run", recipe.c_str(), "--emulate", "--journal",
-            journal.c_str(), static_cast<char*>(nullptr));
+    if (!::freopen("/dev/null", "r", stdin) || !::freopen((dir / "cellctl.out").c_str(), "w", stdout))
+      ::_exit(126);
+    ::execl(CELLCTL_BINARY, CELLCTL_BINARY, "-c", cfg.c_str(), "run", recipe.c_str(), "--emulate",
+            "--journal", journal.c_str(), static_cast<char*>(nullptr));
     ::_exit(127);
   }
-  const auto birth = plant.wait_for([](const MqttProbe::Message& m) { return MqttProbe::body(m)["online"] == true; },
-                                    0, 30s);
+  const auto birth = plant.wait_for(
+      [](const MqttProbe::Message& m) { return MqttProbe::body(m)["online"] == true; }, 0, 30s);
   ::kill(pid, SIGKILL);
   int status = 0;
   ::waitpid(pid, &status, 0);

@@ -67,7 +67,8 @@ class MqttBroker {
                                 << "user viewer\ntopic read " << kPrefix << "/#\n";
     std::ofstream conf(dir_ / "mosquitto.conf");
     conf << "listener " << port_ << " 127.0.0.1\nallow_anonymous false\npassword_file " << passwd.string()
-         << "\nacl_file " << (dir_ / "acl").string() << "\npersistence false\nlog_dest stderr\nlog_type error\n";
+         << "\nacl_file " << (dir_ / "acl").string()
+         << "\npersistence false\nlog_dest stderr\nlog_type error\n";
     if (::geteuid() == 0) conf << "user root\n";
   }
   ~MqttBroker() { kill(); }

@@ -3,6 +3,8 @@
 // while they go on are paced to real time (a cycle hook holds virtual time back to the wall clock), so
 // that "within one status period" means what it says; every wait is on a condition with a time-out.
 
+#include "plant_link/plant_link.hpp"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -10,7 +12,6 @@
 
 #include "../integration/run_fixture.hpp"
 #include "plant_link/link_config.hpp"
-#include "plant_link/plant_link.hpp"
 #include "plant_test_support.hpp"
 
 namespace cellctl::testing {
@@ -44,7 +45,8 @@ class PlantLinkTest : public RunFixture {
     auto& run = make_run();
     link_ = std::make_unique<plant_link::PlantLink>(
         link_config_, cell_,
-        plant_link::RunAccess{[&run](supervisor::Command c) { run.request(c); }, &run.status(), "virtual-time"});
+        plant_link::RunAccess{[&run](supervisor::Command c) { run.request(c); }, &run.status(),
+                              "virtual-time"});
     run.on_journal_line([this](const nlohmann::json& j) { link_->on_journal_line(j); });
     ASSERT_TRUE(wait_until([&] { return link_->counters().connected; }, 10s)) << "the link never connected";
   }
@@ -97,7 +99,8 @@ TEST_F(PlantLinkTest, AVirtualTimeRunPublishesStateStatusAndAdmin) {
   EXPECT_EQ(MqttProbe::body(*complete)["StateCurrent"], 17);
   const auto status = plant.wait_for([](const Message& m) {
     const auto j = MqttProbe::body(m);
-    return MqttProbe::on(m, "/status") && j.contains("spindle") && j["spindle"]["actual_hz"].get<double>() > 250.0;
+    return MqttProbe::on(m, "/status") && j.contains("spindle") &&
+           j["spindle"]["actual_hz"].get<double>() > 250.0;
   });
   ASSERT_TRUE(status) << "no status with the spindle at speed";
   const auto s = MqttProbe::body(*status);
@@ -115,7 +118,8 @@ TEST_F(PlantLinkTest, AVirtualTimeRunPublishesStateStatusAndAdmin) {
   const auto mode = plant.wait_for([](const Message& m) { return MqttProbe::on(m, "/mode"); });
   ASSERT_TRUE(mode);
   EXPECT_EQ(MqttProbe::body(*mode)["mode"], "dry-run virtual time");
-  const auto bye = plant.wait_for([](const Message& m) { return MqttProbe::on(m, "/online") && MqttProbe::body(m)["online"] == false; });
+  const auto bye = plant.wait_for(
+      [](const Message& m) { return MqttProbe::on(m, "/online") && MqttProbe::body(m)["online"] == false; });
   ASSERT_TRUE(bye);
   EXPECT_EQ(MqttProbe::body(*bye)["reason"], "cellctl ended");
 }
@@ -201,7 +205,8 @@ TEST_F(PlantLinkTest, CommandsFromUnauthenticatedOrUnauthorisedClientsAreRefused
     }));
     viewer.publish(topic("cmd/hold"), R"({"id":"viewer"})");
     anonymous.publish(topic("cmd/hold"), R"({"id":"anonymous"})");
-    ASSERT_TRUE(viewer.wait_for([](const Message& m) { return MqttProbe::on(m, "/status"); }, viewer.count()));
+    ASSERT_TRUE(
+        viewer.wait_for([](const Message& m) { return MqttProbe::on(m, "/status"); }, viewer.count()));
     op.publish(topic("cmd/stop"), R"({"id":"operator"})");
     const auto a = op.wait_for([](const Message& m) { return MqttProbe::on(m, "/response"); });
     ASSERT_TRUE(a);
@@ -237,7 +242,8 @@ steps:
   std::uint64_t dropped = 0;
   const auto r = go_in_background_and_wait([&] {
     ASSERT_TRUE(watcher.wait_for([](const Message& m) {
-      return MqttProbe::on(m, "/status") && MqttProbe::body(m)["label"].get<std::string>().rfind("long dwell", 0) == 0;
+      return MqttProbe::on(m, "/status") &&
+             MqttProbe::body(m)["label"].get<std::string>().rfind("long dwell", 0) == 0;
     }));
     broker_->kill();
     ASSERT_TRUE(wait_until([&] { return !link_->counters().connected; }, 10s));
