@@ -14,8 +14,9 @@ std::string str(const journal::Text& t) {
 
 }  // namespace
 
-CellMirror::CellMirror(std::vector<std::string> axes, std::string run_mode)
-    : axes_(std::move(axes)), run_mode_(std::move(run_mode)) {}
+CellMirror::CellMirror(const config::CellCore& cell, std::string run_mode) : run_mode_(std::move(run_mode)) {
+  for (const auto& a : cell.axes) axes_.push_back(a.name);
+}
 
 Changed CellMirror::apply(const RunEvent& e) {
   using Kind = RunEvent::Kind;

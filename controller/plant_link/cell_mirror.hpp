@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "config/cell_core.hpp"
 #include "plant_link/run_event.hpp"
 
 namespace cellctl::plant_link {
@@ -31,9 +32,9 @@ struct LiveStatus {
 
 class CellMirror {
  public:
-  // The axes' names, in the cell's order; `run_mode` is "hardware", "emulated", "virtual-time" or ""
+  // The cell's axes, in its order; `run_mode` is "hardware", "emulated", "virtual-time" or ""
   // when there is no run (cellctl emulate alone).
-  CellMirror(std::vector<std::string> axes, std::string run_mode);
+  CellMirror(const config::CellCore& cell, std::string run_mode);
 
   Changed apply(const RunEvent& e);
 

@@ -14,12 +14,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::vector<std::string> axis_names(const config::CellCore& cell) {
-  std::vector<std::string> out;
-  for (const auto& a : cell.axes) out.push_back(a.name);
-  return out;
-}
-
 MqttOptions options_of(const LinkConfig& c) {
   MqttOptions o;
   o.host = c.host;
@@ -44,10 +38,7 @@ MqttOptions options_of(const LinkConfig& c) {
 }  // namespace
 
 PlantLink::PlantLink(LinkConfig config, const config::CellCore& cell, RunAccess run)
-    : config_(std::move(config)),
-      cell_(cell),
-      run_(std::move(run)),
-      events_(std::make_unique<wire::SpscQueue<RunEvent, 1024>>()) {
+    : config_(std::move(config)), cell_(cell), run_(std::move(run)) {
   (void)MqttClient(options_of(config_));  // options the library refuses fail here, on the caller's thread
   thread_ = std::thread([this] { run_thread(); });
 }
@@ -58,22 +49,17 @@ PlantLink::~PlantLink() {
 }
 
 void PlantLink::on_journal_line(const nlohmann::json& line) noexcept {
-  try {
-    const auto e = run_event_of(line);
-    if (e && !events_->push(*e)) dropped_events_.fetch_add(1);
-  } catch (const std::exception&) {
-    dropped_events_.fetch_add(1);  // a line of an unexpected shape: not the run's business
-  }
+  events_.push(line);
 }
 
 LinkCounters PlantLink::counters() const noexcept {
-  return {connected_.load(),      connects_.load(),       losses_.load(),   refused_connects_.load(),
-          dropped_events_.load(), dropped_status_.load(), commands_.load(), refused_commands_.load()};
+  return {connected_.load(), connects_.load(),       losses_.load(),   refused_connects_.load(),
+          events_.dropped(), dropped_status_.load(), commands_.load(), refused_commands_.load()};
 }
 
 void PlantLink::run_thread() {
   MqttClient client(options_of(config_));
-  CellMirror mirror(axis_names(cell_), run_.mode);
+  CellMirror mirror(cell_, run_.mode);
   CommandDesk desk(cell_, config_.recipes, run_.request, config_.answer_timeout);
   bool socket = false;
   auto backoff = config_.reconnect_min;
@@ -128,7 +114,7 @@ void PlantLink::run_thread() {
   };
 
   const auto take_events = [&] {
-    while (const auto e = events_->pop()) {
+    while (const auto e = events_.pop()) {
       const auto changed = mirror.apply(*e);
       if (changed.state) publish_json("state", mirror.state_tag(), 1, true);
       if (changed.mode) publish_json("mode", mirror.mode_tag(), 1, true);
@@ -145,7 +131,7 @@ void PlantLink::run_thread() {
     auto j = mirror.status_tag(live);
     j["link"] = {{"reconnects", connects_.load() > 0 ? connects_.load() - 1 : 0},
                  {"dropped_status", dropped_status_.load()},
-                 {"dropped_events", dropped_events_.load()}};
+                 {"dropped_events", events_.dropped()}};
     return j;
   };
 

@@ -20,10 +20,9 @@
 #include <vector>
 
 #include "plant_link/link_config.hpp"
-#include "plant_link/run_event.hpp"
+#include "plant_link/run_event_feed.hpp"
 #include "runtime/status_view.hpp"
 #include "supervisor/packml.hpp"
-#include "wire/spsc_queue.hpp"
 
 namespace cellctl::plant_link {
 
@@ -67,11 +66,11 @@ class PlantLink {
   LinkConfig config_;
   const config::CellCore& cell_;
   RunAccess run_;
-  std::unique_ptr<wire::SpscQueue<RunEvent, 1024>> events_;
+  RunEventFeed events_;
   std::atomic<bool> stop_{false};
   std::atomic<bool> connected_{false};
-  std::atomic<std::uint64_t> connects_{0}, losses_{0}, refused_connects_{0}, dropped_events_{0},
-      dropped_status_{0}, commands_{0}, refused_commands_{0};
+  std::atomic<std::uint64_t> connects_{0}, losses_{0}, refused_connects_{0}, dropped_status_{0}, commands_{0},
+      refused_commands_{0};
   std::thread thread_;
 };
 

@@ -15,12 +15,6 @@ namespace {
 
 using namespace std::chrono_literals;
 
-std::vector<std::string> axis_names(const config::CellCore& cell) {
-  std::vector<std::string> out;
-  for (const auto& a : cell.axes) out.push_back(a.name);
-  return out;
-}
-
 // Compares without stopping at the first difference, so the time taken tells nothing of the token.
 bool same_token(std::string_view given, std::string_view token) {
   unsigned diff = given.size() == token.size() ? 0u : 1u;
@@ -68,8 +62,7 @@ OperatorPage::OperatorPage(PageOptions options, const config::CellCore& cell, pl
     : options_(std::move(options)),
       cell_(cell),
       run_(std::move(run)),
-      events_(std::make_unique<wire::SpscQueue<plant_link::RunEvent, 1024>>()),
-      mirror_(axis_names(cell), run_.mode),
+      mirror_(cell, run_.mode),
       desk_(cell, options_.recipes, run_.request, std::chrono::milliseconds(2000)),
       server_(std::make_unique<httplib::Server>()) {
   if (options_.token.empty()) throw std::invalid_argument("the operator page needs a token for commands");
@@ -143,12 +136,7 @@ OperatorPage::~OperatorPage() {
 }
 
 void OperatorPage::on_journal_line(const nlohmann::json& line) noexcept {
-  try {
-    const auto e = plant_link::run_event_of(line);
-    if (e && !events_->push(*e)) dropped_events_.fetch_add(1);
-  } catch (const std::exception&) {
-    dropped_events_.fetch_add(1);
-  }
+  events_.push(line);
 }
 
 void OperatorPage::pump() {
@@ -156,7 +144,7 @@ void OperatorPage::pump() {
     bool any = false;
     {
       std::lock_guard lock(mutex_);
-      while (const auto e = events_->pop()) {
+      while (const auto e = events_.pop()) {
         any = true;
         const auto changed = mirror_.apply(*e);
         if (changed.admin || changed.state) ++admin_version_;
@@ -260,7 +248,7 @@ std::string OperatorPage::metrics_text() {
       "cellctl_web_commands_unauthorised_total {}\n",
       commands_, refused_, unauthorised_);
   add("cellctl_web_dropped_events_total", "counter", "Run events the page's queue had no room for.");
-  out += fmt::format("cellctl_web_dropped_events_total {}\n", dropped_events_.load());
+  out += fmt::format("cellctl_web_dropped_events_total {}\n", events_.dropped());
   return out;
 }
 

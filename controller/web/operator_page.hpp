@@ -23,8 +23,7 @@
 #include "plant_link/cell_mirror.hpp"
 #include "plant_link/command_desk.hpp"
 #include "plant_link/plant_link.hpp"
-#include "plant_link/run_event.hpp"
-#include "wire/spsc_queue.hpp"
+#include "plant_link/run_event_feed.hpp"
 
 namespace httplib {
 class Server;
@@ -65,8 +64,7 @@ class OperatorPage {
   PageOptions options_;
   const config::CellCore& cell_;
   plant_link::RunAccess run_;
-  std::unique_ptr<wire::SpscQueue<plant_link::RunEvent, 1024>> events_;
-  std::atomic<std::uint64_t> dropped_events_{0};
+  plant_link::RunEventFeed events_;
   std::mutex mutex_;  // mirror, desk, answers: the pump and the server's threads
   std::condition_variable answered_;
   plant_link::CellMirror mirror_;

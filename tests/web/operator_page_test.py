@@ -1,10 +1,12 @@
 #!/usr/bin/python3
 """The web operator page in a real browser (Debian's chromium, headless, driven by chromium-driver and
-python3-selenium) against `cellctl run --emulate --http`.
+python3-selenium) against `cellctl run --virtual-time --http`: a dry run on the emulators (over
+simulated lines, so a loaded machine cannot stall them as it stalls pseudo-terminals — README, "Dry runs
+on a loaded machine"), a recipe long enough in virtual time to be watched and commanded.
 
 usage: operator_page_test.py CELLCTL CONFIG OUT_DIR
 
-Runs a slow recipe on the emulators in real time with the page on a free loopback port and a token
+Runs the recipe with the page on a free loopback port and a token
 file; checks that the page shows the live state (Execute, the step, the axes), that a command without
 the token is refused (401) and changes nothing, that the Hold button (token typed, confirmation
 accepted) holds the cell, that /metrics is Prometheus text with the loop's jitter histogram; saves a
@@ -39,9 +41,13 @@ limits:
     x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
   timeouts: {move_s: 60}
 steps:
+  - name: long dwell
+    repeat:
+      times: 10
+      steps:
+        - {name: an hour, dwell: 3600}
   - name: slow move
     move: {to: {x: 40}, speed_mm_s: 2}
-  - dwell: 30
 """)
 s = socket.socket()
 s.bind(("127.0.0.1", 0))
@@ -49,14 +55,12 @@ port = s.getsockname()[1]
 s.close()
 base = f"http://127.0.0.1:{port}/"
 
-log = open(os.path.join(out, "cellctl.out"), "w")
-proc = subprocess.Popen([cellctl, "-c", config, "run", recipe, "--emulate", "--journal", os.path.join(out, "run"),
-                         "--http", f"127.0.0.1:{port}", "--http-token-file", os.path.join(out, "token")],
-                        stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT)
-
-
 def fail(msg):
     proc.kill()
+    try:
+        driver.quit()
+    except Exception:
+        pass
     print("FAIL:", msg, "— cellctl's output:", open(os.path.join(out, "cellctl.out")).read(), sep="\n")
     sys.exit(1)
 
@@ -86,18 +90,27 @@ def post(cmd, tok=None):
         return e.code, json.loads(e.read())
 
 
-until(lambda: urllib.request.urlopen(base, timeout=2).status == 200, "the page to be served")
+# The browser first: its start-up is the heavy part.
 options = webdriver.ChromeOptions()
 for a in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1200,900"):
     options.add_argument(a)
 driver = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
+driver.get("about:blank")
+
+log = open(os.path.join(out, "cellctl.out"), "w")
+proc = subprocess.Popen([cellctl, "-c", config, "run", recipe, "--virtual-time", "--journal", os.path.join(out, "run"),
+                         "--http", f"127.0.0.1:{port}", "--http-token-file", os.path.join(out, "token")],
+                        stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT)
+
+
+until(lambda: urllib.request.urlopen(base, timeout=2).status == 200, "the page to be served")
 try:
     driver.get(base)
     wait = WebDriverWait(driver, 30)
     wait.until(EC.text_to_be_present_in_element((By.ID, "state"), "Execute"))
-    wait.until(EC.text_to_be_present_in_element((By.ID, "label"), "slow move"))
+    wait.until(EC.text_to_be_present_in_element((By.ID, "label"), "long dwell"))
     wait.until(lambda d: len(d.find_elements(By.CSS_SELECTOR, "#axes tr")) == 2)
-    assert driver.find_element(By.ID, "steps").text == "2", driver.find_element(By.ID, "steps").text
+    assert driver.find_element(By.ID, "steps").text == "11", driver.find_element(By.ID, "steps").text
 
     # Without the token, or with a wrong one: 401, and the cell goes on.
     for tok in (None, "wrong"):
