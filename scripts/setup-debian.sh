@@ -10,6 +10,8 @@ packages=(
   libeigen3-dev libyaml-cpp-dev libspdlog-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   socat python3 librsvg2-bin
+  libmosquitto-dev mosquitto libcpp-httplib-dev
+  chromium chromium-driver python3-selenium
 )
 if [ "${1:-}" = "--fuzz" ]; then packages+=(clang libclang-rt-14-dev); fi
 

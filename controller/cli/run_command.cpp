@@ -19,10 +19,14 @@
 #include "config/cell_config.hpp"
 #include "journal/record_header.hpp"
 #include "journal/run_record.hpp"
+#include "plant_link/link_config.hpp"
+#include "plant_link/plant_link.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "runtime/cell_run.hpp"
 #include "runtime/fault_rehearsal.hpp"
 #include "runtime/fault_spec.hpp"
+#include "web/operator_page.hpp"
+#include "web/page_token.hpp"
 
 namespace cellctl::cli {
 namespace {
@@ -34,7 +38,21 @@ struct RunArgs {
   std::string journal_dir;
   std::vector<std::string> faults_text;
   std::vector<runtime::FaultSpec> faults;  // parsed (and so checked) by the option's validator
+  std::string http_text;
+  std::optional<web::PageOptions> http;  // --http, parsed by its validator
+  std::string http_token_file;
 };
+
+// --http's validator: ADDR:PORT or PORT (loopback).
+CLI::Validator listen_validator(std::optional<web::PageOptions>& out) {
+  return CLI::Validator(
+      [&out](std::string& text) -> std::string {
+        std::string why;
+        out = web::parse_listen_address(text, why);
+        return out ? std::string() : "'" + text + "': " + why;
+      },
+      "ADDR:PORT");
+}
 
 // --fault's validator: the text becomes a FaultSpec here, or the reason is CLI11's error (exit 2).
 CLI::Validator fault_spec_validator(std::vector<runtime::FaultSpec>& out) {
@@ -90,6 +108,8 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
       args.journal_dir.empty() ? default_run_dir(args.recipe) : std::filesystem::path(args.journal_dir);
   options.trace = global.trace;
   options.faults = args.faults;
+  // The plant link's section is read (and so checked) before anything opens: a bad one is exit 3.
+  const auto plant_link = plant_link::load_link_config(cell);
   const auto info = record_info(cell, global.config, recipe, recipe::unroll(recipe), options.mode);
   options.record_header = journal::record_header(info);
 
@@ -106,7 +126,31 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   {
     TerminalScreen screen;
     RunNarrator narrator(screen);
-    run.on_journal_line([&narrator](const nlohmann::json& line) { narrator(line); });
+    // The plant link and the web page command through the operator's path, as the console does.
+    const plant_link::RunAccess access{[&run](supervisor::Command c) { run.request(c); }, &run.status(),
+                                       to_string(options.mode)};
+    std::unique_ptr<plant_link::PlantLink> link;  // before the run ends, gone before the run is
+    if (plant_link) {
+      link = std::make_unique<plant_link::PlantLink>(*plant_link, cell, access);
+      screen.message(fmt::format("  plant link: MQTT {}:{} as '{}', tags under {}", plant_link->host,
+                                 plant_link->port, plant_link->client_id, plant_link->topic("")));
+    }
+    std::unique_ptr<web::OperatorPage> page;
+    if (args.http) {
+      auto page_options = *args.http;
+      const auto token = web::page_token(args.http_token_file);
+      page_options.token = token.token;
+      page_options.recipes = plant_link ? plant_link->recipes : std::filesystem::path("recipes");
+      page = std::make_unique<web::OperatorPage>(page_options, cell, access);
+      screen.message(fmt::format("  operator page: http://{}:{}/ — command token ({}): {}",
+                                 page_options.address, page->port(), token.origin,
+                                 token.origin == "generated" ? token.token : "as given"));
+    }
+    run.on_journal_line([&narrator, &link, &page](const nlohmann::json& line) {
+      narrator(line);
+      if (link) link->on_journal_line(line);
+      if (page) page->on_journal_line(line);
+    });
     fmt::print("  {}\n", ctrl_c_hint(cell.stops.operator_stop));
     std::vector<std::optional<double>> planned;
     for (const auto& st : info.steps) planned.push_back(st.planned_s);
@@ -116,6 +160,8 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
       screen.message("  type hold, unhold, stop, abort or reset (h, u, s, a, r) and Enter");
     result = run.run(g_interrupted, &g_terminated);
     run.on_journal_line({});
+    link.reset();  // its last tags out (the run's end), then a clean goodbye
+    page.reset();
   }
   for (const auto& w : run.realtime_warnings()) spdlog::warn("real-time: {}", w);
   fmt::print("\n{}", result.summary_text);
@@ -163,6 +209,13 @@ void add_run_command(CLI::App& app, Commands& commands) {
                   "MS ms late), error (the device's own fault: SCU actuator faults, spindle over-\n"
                   "temperature 31, encoder position alarm). The journal records each fault's start and end.")
       ->check(fault_spec_validator(args->faults));
+  sub->add_option("--http", args->http_text,
+                  "Serve the operator page (live state, hold/unhold/stop/reset, /metrics) on ADDR:PORT,\n"
+                  "or on 127.0.0.1:PORT given a port alone; commands need the token (--http-token-file,\n"
+                  "else CELLCTL_HTTP_TOKEN, else a random one printed at the start)")
+      ->check(listen_validator(args->http));
+  sub->add_option("--http-token-file", args->http_token_file,
+                  "File whose first line is the operator page's token");
   commands.on(sub, [&commands, args] { return run_recipe(commands.global, *args); });
 }
 

@@ -200,6 +200,25 @@ void CellRun::publish_status(double t) {
   }
   v.spindle_hz = state_.spindle.actual_hz;
   v.spindle_set_hz = supervisor_->intents().spindle.run ? supervisor_->intents().spindle.frequency_hz : 0.0;
+  const auto& stats = loop_->stats();
+  v.jitter_max_us = std::chrono::duration<double, std::micro>(stats.jitter.max()).count();
+  v.jitter_sum_s = link::to_seconds(stats.jitter.total());
+  v.overruns = stats.overrun_cycles;
+  // Cumulative counts per bucket: a histogram bin counts where its upper edge lies (never under).
+  std::size_t bucket = 0;
+  std::uint64_t running = 0;
+  for (std::size_t b = 0; b < loop::LatencyHistogram::kBins; ++b) {
+    const double upper_us =
+        std::chrono::duration<double, std::micro>(loop::LatencyHistogram::upper_edge(b)).count();
+    while (bucket < kJitterBucketsUs.size() && upper_us > kJitterBucketsUs[bucket])
+      v.jitter_le[bucket++] = running;
+    running += stats.jitter.bin_count(b);
+  }
+  while (bucket < v.jitter_le.size()) v.jitter_le[bucket++] = running;
+  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+    v.link_fault[d] = state_.links[d].fault;
+    v.link_silent_s[d] = link::to_seconds(state_.links[d].silent_for);
+  }
   for (std::size_t r = 0; r < monitor::kRuleCount; ++r) {
     if (!monitor_.latch(static_cast<monitor::Rule>(r)).active) continue;
     v.fault = true;

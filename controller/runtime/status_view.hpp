@@ -14,6 +14,10 @@
 
 namespace cellctl::runtime {
 
+// The loop's wake-up jitter as cumulative counts at these upper bounds (µs) and one for all, for the
+// web page's /metrics (Prometheus histogram buckets).
+inline constexpr std::array<double, 9> kJitterBucketsUs = {10, 20, 50, 100, 200, 500, 1000, 2000, 5000};
+
 struct StatusView {
   double t = 0.0;
   supervisor::State state = supervisor::State::idle;
@@ -25,6 +29,12 @@ struct StatusView {
   std::array<bool, cell::kMaxAxes> position_known{};  // the SCU has reported the actuator
   double spindle_hz = 0.0;
   double spindle_set_hz = 0.0;
+  double jitter_max_us = 0.0;  // the loop's largest wake-up jitter so far
+  std::array<std::uint64_t, kJitterBucketsUs.size() + 1> jitter_le{};  // cumulative; the last is every cycle
+  double jitter_sum_s = 0.0;
+  std::uint64_t overruns = 0;
+  std::array<bool, cell::kDevices> link_fault{};       // a device's session gave up on its link
+  std::array<double, cell::kDevices> link_silent_s{};  // since its last good reply
   bool fault = false;
   monitor::Rule first_fault = monitor::Rule::operator_stop;
 };

@@ -1,0 +1,151 @@
+#include "plant_link/command_desk.hpp"
+
+#include <fmt/format.h>
+
+#include "recipe/program.hpp"
+#include "recipe/recipe_loader.hpp"
+
+namespace cellctl::plant_link {
+namespace {
+
+bool contains(std::string_view s, std::string_view part) {
+  return s.find(part) != std::string_view::npos;
+}
+
+// A recipe is named, not pathed: letters, digits, '-', '_', '.', no leading dot.
+bool plain_name(const std::string& n) {
+  if (n.empty() || n.size() > 100 || n.front() == '.') return false;
+  for (const char c : n)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') return false;
+  return true;
+}
+
+}  // namespace
+
+nlohmann::json answer(std::string_view command, const nlohmann::json& id, bool ok, std::string text) {
+  nlohmann::json j{{"command", command}, {"ok", ok}};
+  if (!id.is_null()) j["id"] = id;
+  j[ok ? "outcome" : "reason"] = std::move(text);
+  return j;
+}
+
+CommandDesk::CommandDesk(const config::CellCore& cell, std::filesystem::path recipes,
+                         std::function<void(supervisor::Command)> request,
+                         std::chrono::milliseconds answer_timeout)
+    : cell_(cell), recipes_(std::move(recipes)), request_(std::move(request)), timeout_(answer_timeout) {}
+
+std::optional<nlohmann::json> CommandDesk::submit(std::string_view word, std::string_view payload,
+                                                  std::string_view source, std::string_view state,
+                                                  SteadyTime now) {
+  nlohmann::json body = nlohmann::json::object();
+  if (!payload.empty()) {
+    body = nlohmann::json::parse(payload, nullptr, false);
+    if (body.is_discarded() || !body.is_object())
+      return answer(word, nullptr, false, "the payload is no JSON object (expected {\"id\":…} or nothing)");
+  }
+  const nlohmann::json id = body.contains("id") ? body["id"] : nlohmann::json();
+  using supervisor::Command;
+  std::optional<Command> cmd;
+  for (const auto c :
+       {Command::start, Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset})
+    if (supervisor::to_string(c) == word) cmd = c;
+  if (!cmd)
+    return answer(word, id, false,
+                  fmt::format("'{}' is not a command: hold, unhold, stop, abort, reset or start", word));
+  if (*cmd == Command::start) {
+    const auto it = body.find("recipe");
+    if (it == body.end() || !it->is_string())
+      return answer(word, id, false, "start needs the recipe's name: {\"recipe\":\"demo\"}");
+    return validate_start(id, it->get<std::string>(), state);
+  }
+  if (!request_) return answer(word, id, false, "no run is in progress: there is nothing to command");
+  request_(*cmd);
+  pending_.push_back({*cmd, id, std::string(source), now + timeout_});
+  return std::nullopt;
+}
+
+nlohmann::json CommandDesk::validate_start(const nlohmann::json& id, const std::string& name,
+                                           std::string_view state) const {
+  if (!plain_name(name))
+    return answer("start", id, false,
+                  fmt::format("'{}' is no recipe name (letters, digits, '-', '_', '.'; no path)", name));
+  auto path = recipes_ / name;
+  if (path.extension() != ".yaml") path += ".yaml";
+  nlohmann::json errors = nlohmann::json::array();
+  std::size_t steps = 0;
+  try {
+    steps = recipe::unroll(recipe::load_recipe(path, cell_)).instructions.size();
+  } catch (const recipe::RecipeErrors& e) {
+    for (const auto& err : e.errors()) errors.push_back(err.what());
+  } catch (const config::ConfigError& e) {
+    errors.push_back(e.what());
+  }
+  if (!errors.empty()) {
+    auto a =
+        answer("start", id, false,
+               fmt::format("recipe '{}' is not valid for cell '{}': {} problem{} (exit 3); nothing moved",
+                           name, cell_.name, errors.size(), errors.size() == 1 ? "" : "s"));
+    a["exit"] = 3;
+    a["errors"] = errors;
+    return a;
+  }
+  // cellctl run drives the one recipe it was started with; a plant-started run needs a new process.
+  auto a = answer("start", id, false,
+                  fmt::format("recipe '{}' is valid ({} steps), but this cellctl drives one run and it is in "
+                              "state {}: start it with `cellctl run {}`",
+                              name, steps, state, path.string()));
+  a["valid"] = true;
+  return a;
+}
+
+std::vector<nlohmann::json> CommandDesk::on_event(const RunEvent& e) {
+  std::vector<nlohmann::json> out;
+  using Kind = RunEvent::Kind;
+  using supervisor::Command;
+  for (auto it = pending_.begin(); it != pending_.end();) {
+    const auto name = supervisor::to_string(it->command);
+    std::optional<nlohmann::json> a;
+    const auto text = e.text.view();
+    if (e.kind == Kind::note && contains(text, fmt::format("{} is not possible", name))) {
+      a = answer(name, it->id, false, std::string(text));
+    } else if (it->command == Command::unhold) {
+      // An unhold is judged after it is journaled: Unholding follows, or a latched fault refuses it.
+      if (e.kind == Kind::state && e.name.view() == "Unholding")
+        a = answer(name, it->id, true, "unholding: the interrupted step resumes");
+      else if (e.kind == Kind::note && contains(text, "unhold refused"))
+        a = answer(name, it->id, false, std::string(text));
+    } else if (it->command == Command::reset) {
+      if (e.kind == Kind::note && contains(text, "reset refused"))
+        a = answer(name, it->id, false, std::string(text));
+      else if ((e.kind == Kind::note && contains(text, "faults reset")) ||
+               (e.kind == Kind::command && e.name.view() == name))
+        a = answer(name, it->id, true, "faults reset");
+    } else if (e.kind == Kind::command && e.name.view() == name) {
+      a = answer(name, it->id, true, fmt::format("accepted at t = {:.3f} s", e.t));
+    }
+    if (a) {
+      (*a)["t"] = e.t;
+      (*a)["source"] = it->source;
+      out.push_back(std::move(*a));
+      it = pending_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  return out;
+}
+
+std::vector<nlohmann::json> CommandDesk::expire(SteadyTime now) {
+  std::vector<nlohmann::json> out;
+  while (!pending_.empty() && pending_.front().deadline <= now) {
+    const auto& p = pending_.front();
+    out.push_back(answer(supervisor::to_string(p.command), p.id, false,
+                         fmt::format("the run gave no answer within {} ms: the outcome is unknown; see the "
+                                     "state tag",
+                                     timeout_.count())));
+    pending_.pop_front();
+  }
+  return out;
+}
+
+}  // namespace cellctl::plant_link

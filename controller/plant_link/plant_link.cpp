@@ -1,0 +1,180 @@
+#include "plant_link/plant_link.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+#include "plant_link/cell_mirror.hpp"
+#include "plant_link/command_desk.hpp"
+#include "plant_link/mqtt_client.hpp"
+
+namespace cellctl::plant_link {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+MqttOptions options_of(const LinkConfig& c) {
+  MqttOptions o;
+  o.host = c.host;
+  o.port = c.port;
+  o.client_id = c.client_id;
+  o.username = c.username;
+  o.password = c.password;
+  if (c.tls) {
+    o.tls_ca_file = c.tls->ca_file;
+    o.tls_cert_file = c.tls->cert_file;
+    o.tls_key_file = c.tls->key_file;
+  }
+  o.keepalive_s = c.keepalive_s;
+  o.will_topic = c.topic("online");
+  o.will_payload = nlohmann::json{{"online", false},
+                                  {"client_id", c.client_id},
+                                  {"reason", "connection lost (the broker's last will)"}}
+                       .dump();
+  return o;
+}
+
+}  // namespace
+
+PlantLink::PlantLink(LinkConfig config, const config::CellCore& cell, RunAccess run)
+    : config_(std::move(config)), cell_(cell), run_(std::move(run)) {
+  (void)MqttClient(options_of(config_));  // options the library refuses fail here, on the caller's thread
+  thread_ = std::thread([this] { run_thread(); });
+}
+
+PlantLink::~PlantLink() {
+  stop_.store(true);
+  if (thread_.joinable()) thread_.join();
+}
+
+void PlantLink::on_journal_line(const nlohmann::json& line) noexcept {
+  events_.push(line);
+}
+
+LinkCounters PlantLink::counters() const noexcept {
+  return {connected_.load(), connects_.load(),       losses_.load(),   refused_connects_.load(),
+          events_.dropped(), dropped_status_.load(), commands_.load(), refused_commands_.load()};
+}
+
+void PlantLink::run_thread() {
+  MqttClient client(options_of(config_));
+  CellMirror mirror(cell_, run_.mode);
+  CommandDesk desk(cell_, config_.recipes, run_.request, config_.answer_timeout);
+  bool socket = false;
+  auto backoff = config_.reconnect_min;
+  auto next_attempt = Clock::now();
+  auto next_status = Clock::now();
+  const std::string cmd_prefix = config_.topic("cmd/");
+
+  const auto publish_json = [&](std::string_view tag, const nlohmann::json& j, int qos, bool retain) {
+    if (connected_.load()) (void)client.publish(config_.topic(tag), j.dump(), qos, retain);
+  };
+  const auto publish_retained = [&] {
+    publish_json("online", {{"online", true}, {"client_id", config_.client_id}, {"cell", cell_.name}}, 1,
+                 true);
+    publish_json("state", mirror.state_tag(), 1, true);
+    publish_json("mode", mirror.mode_tag(), 1, true);
+    publish_json("admin", mirror.admin_tag(), 1, true);
+  };
+  const auto respond = [&](const nlohmann::json& a) {
+    if (!a.value("ok", false)) refused_commands_.fetch_add(1);
+    publish_json("response", a, 1, false);
+  };
+  const auto lost = [&](Clock::time_point now) {
+    socket = false;
+    if (connected_.exchange(false)) losses_.fetch_add(1);
+    spdlog::debug("plant link: no connection to {}:{}; next attempt in {} ms", config_.host, config_.port,
+                  backoff.count());
+    next_attempt = now + backoff;
+    backoff = std::min(backoff * 2, config_.reconnect_max);
+  };
+
+  client.on_connect = [&](int rc) {
+    if (rc != 0) {
+      refused_connects_.fetch_add(1);
+      spdlog::warn("plant link: the broker {}:{} refused the connection: {}", config_.host, config_.port,
+                   MqttClient::connack_text(rc));
+      return;  // the library closes the socket; loop() reports it and the back-off applies
+    }
+    connected_.store(true);
+    connects_.fetch_add(1);
+    backoff = config_.reconnect_min;
+    (void)client.subscribe(config_.topic("cmd/+"), 1);
+    publish_retained();
+  };
+  client.on_disconnect = [&](int) {
+    if (connected_.exchange(false)) losses_.fetch_add(1);
+  };
+  client.on_message = [&](const MqttMessage& m) {
+    if (m.topic.rfind(cmd_prefix, 0) != 0) return;
+    commands_.fetch_add(1);
+    const auto word = std::string_view(m.topic).substr(cmd_prefix.size());
+    if (auto a = desk.submit(word, m.payload, "plant", mirror.state(), Clock::now())) respond(*a);
+  };
+
+  const auto take_events = [&] {
+    while (const auto e = events_.pop()) {
+      const auto changed = mirror.apply(*e);
+      if (changed.state) publish_json("state", mirror.state_tag(), 1, true);
+      if (changed.mode) publish_json("mode", mirror.mode_tag(), 1, true);
+      if (changed.admin) publish_json("admin", mirror.admin_tag(), 1, true);
+      for (const auto& a : desk.on_event(*e)) respond(a);
+    }
+  };
+  const auto status = [&] {
+    LiveStatus live;
+    if (run_.board) {
+      const auto v = run_.board->read();
+      live = {true, v.t, v.step, v.steps, std::string(v.label), v.jitter_max_us};
+    }
+    auto j = mirror.status_tag(live);
+    j["link"] = {{"reconnects", connects_.load() > 0 ? connects_.load() - 1 : 0},
+                 {"dropped_status", dropped_status_.load()},
+                 {"dropped_events", events_.dropped()}};
+    return j;
+  };
+
+  while (!stop_.load()) {
+    const auto now = Clock::now();
+    take_events();
+    for (const auto& a : desk.expire(now)) respond(a);
+    if (!socket && now >= next_attempt) {
+      const int rc = client.connect();
+      if (rc == 0) {
+        socket = true;
+      } else {
+        next_attempt = now + backoff;
+        backoff = std::min(backoff * 2, config_.reconnect_max);
+      }
+    }
+    if (now >= next_status) {
+      next_status = std::max(next_status + config_.status_period, now);
+      if (connected_.load())
+        publish_json("status", status(), 0, false);
+      else
+        dropped_status_.fetch_add(1);
+    }
+    if (socket) {
+      if (client.loop(5) != 0) lost(now);
+    } else {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));  // no socket to wait on until next_attempt
+    }
+  }
+  // The end: what the run said last, then a clean goodbye (the broker discards the will).
+  take_events();
+  for (const auto& a : desk.expire(Clock::time_point::max())) respond(a);
+  if (connected_.load()) {
+    publish_json("status", status(), 0, false);
+    publish_json("online", {{"online", false}, {"client_id", config_.client_id}, {"reason", "cellctl ended"}},
+                 1, true);
+    const auto until = Clock::now() + std::chrono::milliseconds(500);
+    while (client.want_write() && Clock::now() < until && client.loop(5) == 0) {
+    }
+    client.disconnect();
+    (void)client.loop(5);
+  }
+  connected_.store(false);
+}
+
+}  // namespace cellctl::plant_link

@@ -1,0 +1,60 @@
+// The command desk's own answers, the ones no run has to give: a start's validation (exit-3 reasons
+// with file:line:column), names that are no recipe names, words that are no commands, no run at all.
+
+#include "plant_link/command_desk.hpp"
+
+#include <gtest/gtest.h>
+
+#include "config/cell_config.hpp"
+
+namespace cellctl::plant_link {
+namespace {
+
+class CommandDeskTest : public ::testing::Test {
+ protected:
+  config::CellConfig cell_ =
+      config::load_cell_config(std::filesystem::path(CELLCTL_SOURCE_DIR) / "config/cell.yaml");
+  CommandDesk desk_{
+      cell_, std::filesystem::path(CELLCTL_SOURCE_DIR) / "tests/cli", {}, std::chrono::seconds(1)};
+  nlohmann::json submit(std::string_view word, std::string_view payload) {
+    auto a = desk_.submit(word, payload, "test", "Execute", std::chrono::steady_clock::now());
+    EXPECT_TRUE(a.has_value());
+    return a.value_or(nlohmann::json());
+  }
+};
+
+TEST_F(CommandDeskTest, AStartOfAnInvalidRecipeGivesItsProblemsAsCheckDoes) {
+  const auto a = submit("start", R"({"recipe":"bad-recipe","id":7})");
+  EXPECT_EQ(a["ok"], false);
+  EXPECT_EQ(a["id"], 7);
+  EXPECT_EQ(a["exit"], 3);
+  ASSERT_FALSE(a["errors"].empty());
+  EXPECT_NE(a["errors"][0].get<std::string>().find(
+                "bad-recipe.yaml:13:15: steps[0].move.to.x: 250 is out of range"),
+            std::string::npos)
+      << a.dump();
+}
+
+TEST_F(CommandDeskTest, AValidStartIsRefusedWhileThisCellctlHasItsRun) {
+  const auto a = submit("start", R"({"recipe":"short"})");
+  EXPECT_EQ(a["ok"], false);
+  EXPECT_EQ(a["valid"], true);
+  EXPECT_NE(a["reason"].get<std::string>().find("is valid (6 steps)"), std::string::npos) << a.dump();
+  EXPECT_NE(a["reason"].get<std::string>().find("state Execute"), std::string::npos) << a.dump();
+}
+
+TEST_F(CommandDeskTest, NamesWordsAndPayloadsThatAreNotCommandsAreRefused) {
+  EXPECT_NE(
+      submit("start", R"({"recipe":"../config/cell"})")["reason"].get<std::string>().find("no recipe name"),
+      std::string::npos);
+  EXPECT_NE(submit("start", R"({})")["reason"].get<std::string>().find("needs the recipe's name"),
+            std::string::npos);
+  EXPECT_NE(submit("jump", "")["reason"].get<std::string>().find("is not a command"), std::string::npos);
+  EXPECT_NE(submit("hold", "not json")["reason"].get<std::string>().find("no JSON object"),
+            std::string::npos);
+  // No run to command (the desk was given no request path).
+  EXPECT_EQ(submit("hold", "")["reason"], "no run is in progress: there is nothing to command");
+}
+
+}  // namespace
+}  // namespace cellctl::plant_link

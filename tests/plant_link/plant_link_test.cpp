@@ -1,0 +1,268 @@
+// The plant link against Debian's mosquitto on a free loopback port, with users and an ACL
+// (mqtt_broker.hpp), around whole virtual-time runs of the default cell. Runs that the test talks to
+// while they go on are paced to real time (a cycle hook holds virtual time back to the wall clock), so
+// that "within one status period" means what it says; every wait is on a condition with a time-out.
+
+#include "plant_link/plant_link.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "../integration/run_fixture.hpp"
+#include "plant_link/link_config.hpp"
+#include "plant_test_support.hpp"
+
+namespace cellctl::testing {
+namespace {
+
+using namespace std::chrono_literals;
+using Message = MqttProbe::Message;
+
+class PlantLinkTest : public RunFixture {
+ protected:
+  void SetUp() override {
+    RunFixture::SetUp();
+    broker_ = std::make_unique<MqttBroker>(dir_ / "broker");
+    broker_->start();
+    link_config_.port = broker_->port();
+    link_config_.cell = cell_.name;
+    link_config_.client_id = "cellctl-under-test";
+    link_config_.username = "cellctl";
+    link_config_.password = "cell-secret";
+    link_config_.topic_prefix = MqttBroker::kPrefix;
+    link_config_.status_period = 100ms;
+    link_config_.reconnect_min = 20ms;
+    link_config_.reconnect_max = 200ms;
+    link_config_.recipes = source_dir() / "recipes";
+  }
+
+  std::string topic(const std::string& tag) const { return link_config_.topic(tag); }
+
+  // The run with the link fed by its journal; the link connected before the run starts.
+  void attach_link() {
+    auto& run = make_run();
+    link_ = std::make_unique<plant_link::PlantLink>(
+        link_config_, cell_,
+        plant_link::RunAccess{[&run](supervisor::Command c) { run.request(c); }, &run.status(),
+                              "virtual-time"});
+    run.on_journal_line([this](const nlohmann::json& j) { link_->on_journal_line(j); });
+    ASSERT_TRUE(wait_until([&] { return link_->counters().connected; }, 10s)) << "the link never connected";
+  }
+
+  // Virtual time never runs ahead of the wall clock from here on (until pace_ is cleared).
+  void pace() {
+    pace_.store(true);
+    run_->on_cycle([this, start = std::chrono::steady_clock::now()](double t, runtime::CellRun&) {
+      if (pace_.load()) std::this_thread::sleep_until(start + std::chrono::duration<double>(t));
+    });
+  }
+
+  runtime::RunResult go_in_background_and_wait(std::function<void()> during) {
+    runtime::RunResult result;
+    std::thread runner([&] { result = go(); });
+    during();
+    pace_.store(false);
+    runner.join();
+    return result;
+  }
+
+  static bool is(const Message& m, const std::string& tag, const char* key, const std::string& value) {
+    if (!MqttProbe::on(m, "/" + tag)) return false;
+    const auto j = MqttProbe::body(m);
+    return j.is_object() && j.contains(key) && j[key].is_string() && j[key] == value;
+  }
+
+  std::unique_ptr<MqttBroker> broker_;
+  plant_link::LinkConfig link_config_;
+  std::unique_ptr<plant_link::PlantLink> link_;
+  std::atomic<bool> pace_{false};
+};
+
+TEST_F(PlantLinkTest, AVirtualTimeRunPublishesStateStatusAndAdmin) {
+  load_recipe(source_dir() / "tests/cli/short.yaml");
+  MqttProbe plant(broker_->port(), "viewer", "view-secret", std::string(MqttBroker::kPrefix) + "/#");
+  ASSERT_EQ(plant.wait_connack(), 0);
+  attach_link();
+  ASSERT_TRUE(plant.wait_for([](const Message& m) { return MqttProbe::on(m, "/online"); }));
+  pace();  // status goes out every 100 ms of wall time: paced, the run has some 60 of them
+  const auto r = go_in_background_and_wait([&] {
+    ASSERT_TRUE(plant.wait_for([&](const Message& m) { return is(m, "state", "state", "Complete"); }));
+  });
+  EXPECT_EQ(r.final_state, supervisor::State::complete);
+  link_.reset();  // the last tags out
+
+  EXPECT_TRUE(plant.wait_for([&](const Message& m) { return is(m, "state", "state", "Execute"); }));
+  const auto complete = plant.wait_for([&](const Message& m) { return is(m, "state", "state", "Complete"); });
+  ASSERT_TRUE(complete);
+  EXPECT_EQ(MqttProbe::body(*complete)["StateCurrent"], 17);
+  const auto status = plant.wait_for([](const Message& m) {
+    const auto j = MqttProbe::body(m);
+    return MqttProbe::on(m, "/status") && j.contains("spindle") &&
+           j["spindle"]["actual_hz"].get<double>() > 250.0;
+  });
+  ASSERT_TRUE(status) << "no status with the spindle at speed";
+  const auto s = MqttProbe::body(*status);
+  EXPECT_EQ(s["axes"].size(), 2u);
+  EXPECT_TRUE(s["axes"][0].contains("planned_mm"));
+  EXPECT_TRUE(s["axes"][0].contains("measured_mm"));
+  EXPECT_EQ(s["steps"], 6);
+  EXPECT_TRUE(s.contains("jitter_max_us"));
+  const auto admin = plant.wait_for([](const Message& m) {
+    return MqttProbe::on(m, "/admin") && MqttProbe::body(m)["ProdProcessedCount"] == 1;
+  });
+  ASSERT_TRUE(admin);
+  EXPECT_EQ(MqttProbe::body(*admin)["runs"], 1);
+  EXPECT_EQ(MqttProbe::body(*admin)["steps_done"], 6);
+  const auto mode = plant.wait_for([](const Message& m) { return MqttProbe::on(m, "/mode"); });
+  ASSERT_TRUE(mode);
+  EXPECT_EQ(MqttProbe::body(*mode)["mode"], "dry-run virtual time");
+  const auto bye = plant.wait_for(
+      [](const Message& m) { return MqttProbe::on(m, "/online") && MqttProbe::body(m)["online"] == false; });
+  ASSERT_TRUE(bye);
+  EXPECT_EQ(MqttProbe::body(*bye)["reason"], "cellctl ended");
+}
+
+TEST_F(PlantLinkTest, HoldAndStopByMqttActWithinOneStatusPeriod) {
+  load_recipe(source_dir() / "tests/cli/short.yaml");
+  MqttProbe op(broker_->port(), "operator", "op-secret", std::string(MqttBroker::kPrefix) + "/#");
+  ASSERT_EQ(op.wait_connack(), 0);
+  attach_link();
+  pace();
+  double sent_after_t = -1.0;  // the cell time of the last status seen before the hold was sent
+  const auto r = go_in_background_and_wait([&] {
+    const auto seen = op.wait_for([](const Message& m) {
+      return MqttProbe::on(m, "/status") && MqttProbe::body(m)["step"].get<int>() >= 2 &&
+             MqttProbe::body(m)["state"] == "Execute";
+    });
+    ASSERT_TRUE(seen);
+    sent_after_t = MqttProbe::body(*seen)["t"].get<double>();
+    auto from = op.count();
+    op.publish(topic("cmd/hold"), R"({"id":"h1"})");
+    const auto held = op.wait_for([](const Message& m) { return MqttProbe::on(m, "/response"); }, from);
+    ASSERT_TRUE(held);
+    auto a = MqttProbe::body(*held);
+    EXPECT_EQ(a["id"], "h1");
+    ASSERT_EQ(a["ok"], true) << held->payload;
+    // The next status after the answer already shows the hold.
+    from = op.count();
+    auto next = op.wait_for([](const Message& m) { return MqttProbe::on(m, "/status"); }, from, 2s);
+    ASSERT_TRUE(next);
+    const auto st = MqttProbe::body(*next)["state"].get<std::string>();
+    EXPECT_TRUE(st == "Holding" || st == "Held") << st;
+    ASSERT_TRUE(op.wait_for([&](const Message& m) { return is(m, "state", "state", "Held"); }));
+
+    from = op.count();
+    op.publish(topic("cmd/hold"), R"({"id":"h2"})");  // not allowed in Held: refused with the reason
+    const auto again = op.wait_for([](const Message& m) { return MqttProbe::on(m, "/response"); }, from);
+    ASSERT_TRUE(again);
+    EXPECT_EQ(MqttProbe::body(*again)["ok"], false);
+    EXPECT_EQ(MqttProbe::body(*again)["reason"], "hold is not possible in state Held") << again->payload;
+
+    from = op.count();
+    op.publish(topic("cmd/stop"), R"({"id":"s1"})");
+    const auto stopped = op.wait_for([](const Message& m) { return MqttProbe::on(m, "/response"); }, from);
+    ASSERT_TRUE(stopped);
+    EXPECT_EQ(MqttProbe::body(*stopped)["ok"], true) << stopped->payload;
+    next = op.wait_for([](const Message& m) { return MqttProbe::on(m, "/status"); }, op.count(), 2s);
+    ASSERT_TRUE(next);
+    const auto st2 = MqttProbe::body(*next)["state"].get<std::string>();
+    EXPECT_TRUE(st2 == "Stopping" || st2 == "Stopped") << st2;
+  });
+  EXPECT_EQ(r.final_state, supervisor::State::stopped);
+  const auto commands = events("command");
+  ASSERT_GE(commands.size(), 3u);  // start, hold, stop
+  EXPECT_EQ(commands[1]["command"], "hold");
+  EXPECT_EQ(commands[2]["command"], "stop");
+  // The hold acted within one status period (100 ms) of the status the operator saw before sending it:
+  // the run is paced to the wall clock, so this is the real round trip probe → broker → link → cycle.
+  double holding_t = -1.0;
+  for (const auto& s : events("state"))
+    if (s["to"] == "Holding") holding_t = s["t"];
+  EXPECT_GT(holding_t, sent_after_t);
+  EXPECT_LE(holding_t - sent_after_t, 0.1);
+}
+
+TEST_F(PlantLinkTest, CommandsFromUnauthenticatedOrUnauthorisedClientsAreRefused) {
+  load_recipe(source_dir() / "tests/cli/short.yaml");
+  // Without credentials: the broker refuses the connection (CONNACK 5, not authorised).
+  MqttProbe anonymous(broker_->port(), "", "", "");
+  EXPECT_EQ(anonymous.wait_connack(), 5);
+  MqttProbe wrong(broker_->port(), "operator", "guess", "");
+  EXPECT_EQ(wrong.wait_connack(), 5);
+  // A viewer is authenticated but may not command: the ACL drops its hold. The operator's hold sent
+  // after it arrives and is answered, so the viewer's was not merely late: the link saw one command.
+  MqttProbe viewer(broker_->port(), "viewer", "view-secret", std::string(MqttBroker::kPrefix) + "/#");
+  ASSERT_EQ(viewer.wait_connack(), 0);
+  MqttProbe op(broker_->port(), "operator", "op-secret", topic("response"));
+  ASSERT_EQ(op.wait_connack(), 0);
+  attach_link();
+  pace();
+  const auto r = go_in_background_and_wait([&] {
+    ASSERT_TRUE(viewer.wait_for([](const Message& m) {
+      return MqttProbe::on(m, "/status") && MqttProbe::body(m)["step"].get<int>() >= 2;
+    }));
+    viewer.publish(topic("cmd/hold"), R"({"id":"viewer"})");
+    anonymous.publish(topic("cmd/hold"), R"({"id":"anonymous"})");
+    ASSERT_TRUE(
+        viewer.wait_for([](const Message& m) { return MqttProbe::on(m, "/status"); }, viewer.count()));
+    op.publish(topic("cmd/stop"), R"({"id":"operator"})");
+    const auto a = op.wait_for([](const Message& m) { return MqttProbe::on(m, "/response"); });
+    ASSERT_TRUE(a);
+    EXPECT_EQ(MqttProbe::body(*a)["id"], "operator");
+  });
+  EXPECT_EQ(r.final_state, supervisor::State::stopped);
+  EXPECT_EQ(link_->counters().commands, 1u);
+  for (const auto& m : viewer.messages()) {
+    if (MqttProbe::on(m, "/response")) {
+      EXPECT_EQ(MqttProbe::body(m)["id"], "operator") << m.payload;
+    }
+  }
+  for (const auto& c : events("command")) EXPECT_NE(c["command"], "hold");
+}
+
+TEST_F(PlantLinkTest, ABrokerKilledAndRestartedMidRunChangesNothingInTheRun) {
+  load_recipe_text(R"(
+recipe: {name: long-dwell, version: "1", cell: demo-cell}
+limits:
+  axes:
+    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
+  timeouts: {move_s: 30}
+steps:
+  - move: {to: {x: 10}, speed_mm_s: 10}
+  - name: long dwell
+    dwell: 6
+  - move: {to: {x: 2}, speed_mm_s: 10}
+)");
+  MqttProbe watcher(broker_->port(), "viewer", "view-secret", std::string(MqttBroker::kPrefix) + "/#");
+  ASSERT_EQ(watcher.wait_connack(), 0);
+  attach_link();
+  pace();
+  std::uint64_t dropped = 0;
+  const auto r = go_in_background_and_wait([&] {
+    ASSERT_TRUE(watcher.wait_for([](const Message& m) {
+      return MqttProbe::on(m, "/status") &&
+             MqttProbe::body(m)["label"].get<std::string>().rfind("long dwell", 0) == 0;
+    }));
+    broker_->kill();
+    ASSERT_TRUE(wait_until([&] { return !link_->counters().connected; }, 10s));
+    ASSERT_TRUE(wait_until([&] { return link_->counters().dropped_status > 0; }, 10s));
+    broker_->start();
+    ASSERT_TRUE(wait_until([&] { return link_->counters().connects >= 2; }, 10s)) << "no reconnect";
+    dropped = link_->counters().dropped_status;
+    // A client new to the restarted broker (which kept nothing) gets the current state, retained.
+    MqttProbe fresh(broker_->port(), "viewer", "view-secret", topic("state"));
+    ASSERT_EQ(fresh.wait_connack(), 0);
+    const auto state = fresh.wait_for([](const Message& m) { return m.retain; });
+    ASSERT_TRUE(state);
+    EXPECT_EQ(MqttProbe::body(*state)["state"], std::string(to_string(run_->status().read().state)));
+  });
+  EXPECT_EQ(r.final_state, supervisor::State::complete);
+  EXPECT_TRUE(events("fault").empty());
+  EXPECT_GT(dropped, 0u);
+  EXPECT_EQ(link_->counters().connection_losses, 1u);
+}
+
+}  // namespace
+}  // namespace cellctl::testing
