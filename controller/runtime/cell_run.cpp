@@ -92,7 +92,7 @@ void CellRun::take_commands(double t, std::atomic<bool>& interrupt) {
     interrupted_ = true;
     request(supervisor::Command::stop);  // SIGTERM: a controlled stop, whatever stops.operator says
   }
-  while (const auto text = operator_notes_.pop()) journal_.post(t, journal::Note{*text});
+  while (const auto note = operator_notes_.pop()) journal_.post(t, *note);
   const unsigned pending = requested_.exchange(0);
   // Strongest first, so that a stop typed right after a hold is never lost behind it.
   using supervisor::Command;
@@ -145,7 +145,7 @@ void CellRun::report_devices(double t, RunResult& r) {
   // What the sessions know that the cell state could not carry (it holds no text): after the loop,
   // so composing it allocates nowhere near the cycle.
   const auto note = [&](std::string text) {
-    journal_.post(t, journal::Note{journal::Text::format("{}", text)});
+    journal::post_note(journal_, t, text);  // never cut
     r.device_notes.push_back(std::move(text));
   };
   static constexpr const char* kNames[cell::kDevices] = {"SCU", "spindle", "encoder"};
@@ -160,6 +160,25 @@ void CellRun::report_devices(double t, RunResult& r) {
     note("encoder: DP start-up begun again: " + enc->restart_reason());
 }
 
+CellRun::FirstFault CellRun::first_fault(monitor::Rule rule, double t, const journal::Text& detail) const noexcept {
+  FirstFault f{rule, t, detail, std::nullopt, 0.0};
+  // The link that failed: of the lost or silent ones, the longest silent; the encoder when it left
+  // data exchange.
+  link::Duration longest{};
+  const auto limit = std::chrono::duration<double, std::milli>(cell_.limits.link_silence_ms);
+  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+    const auto& l = state_.links[d];
+    const bool failed = l.fault || !l.active || l.silent_for > limit ||
+                        (static_cast<cell::Device>(d) == cell::Device::encoder && cell_.encoder &&
+                         !state_.encoder.data_exchange);
+    if (!failed || (f.link && l.silent_for <= longest)) continue;
+    f.link = static_cast<cell::Device>(d);
+    longest = l.silent_for;
+  }
+  if (f.link) f.link_since = t - link::to_seconds(longest);
+  return f;
+}
+
 void CellRun::report_safety(RunResult& r, nlohmann::json& extra) const {
   r.safety = safe_stop_->verdicts();
   nlohmann::json devices = nlohmann::json::object();
@@ -172,24 +191,19 @@ void CellRun::report_safety(RunResult& r, nlohmann::json& extra) const {
   if (!first_fault_ || supervisor_->state() == supervisor::State::complete) return;
   // A link that failed is named as the link (device, symptom, since when), whatever rule latched.
   const auto& f = *first_fault_;
-  std::optional<cell::Device> lost;
-  double since = 0.0;
-  for (std::size_t d = 0; d < cell::kDevices; ++d) {
-    const auto dev = static_cast<cell::Device>(d);
-    const auto at = safe_stop_->lost_at_s(dev);
-    if (at && *at <= f.t && (!lost || *at < since)) {
-      lost = dev;
-      since = *at;
-    }
-  }
   nlohmann::json ended{{"t", journal::round_ms(f.t)}, {"rule", monitor::to_string(f.rule)}};
-  if (lost) {
+  if (f.link) {
+    // The session's own words when it gave up on the link; else what the monitor saw of it.
+    const auto& reason = safe_stop_->lost_reason(*f.link);
+    std::string symptom = reason.empty() ? std::string(f.detail.view()) : reason;
+    if (auto* enc = devices_->encoder(); *f.link == cell::Device::encoder && enc && !enc->restart_reason().empty())
+      symptom += "; DP start-up begun again: " + enc->restart_reason();
     ended["kind"] = "link";
-    ended["device"] = cell::to_string(*lost);
-    ended["symptom"] = safe_stop_->lost_reason(*lost);
-    ended["since_s"] = journal::round_ms(since);
-    r.ended_by = fmt::format("{} link fault since {:.3f} s: {}", cell::to_string(*lost), since,
-                             safe_stop_->lost_reason(*lost));
+    ended["device"] = cell::to_string(*f.link);
+    ended["symptom"] = symptom;
+    ended["since_s"] = journal::round_ms(f.link_since);
+    r.ended_by = fmt::format("{} link fault, no good reply since {:.3f} s: {}", cell::to_string(*f.link),
+                             f.link_since, symptom);
   } else {
     const bool by_operator = f.rule == monitor::Rule::operator_stop || f.rule == monitor::Rule::emergency_stop;
     ended["kind"] = by_operator ? "operator" : "monitor";
@@ -249,7 +263,7 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
       const auto& latch = monitor_.latch(rule);
       journal_.post(t, journal::Fault{monitor::to_string(rule), static_cast<std::uint8_t>(latch.category),
                                       latch.detail});
-      if (!first_fault_ && !shutdown_since_) first_fault_.emplace(FirstFault{rule, t, latch.detail});
+      if (!first_fault_ && !shutdown_since_) first_fault_ = first_fault(rule, t, latch.detail);
     }
 
     stages.begin(index(ControlStage::supervisor));
@@ -266,10 +280,10 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
       monitor_.disarm();       // the devices go down on purpose now
       shutdown_since_ = now;
     }
-    if (shutdown_since_)
-      safe_stop_->step(now);  // lost devices: port reopened, stop sent again until confirmed or bounded
-    else
-      devices_->apply(supervisor_->intents());
+    // Lost devices: port reopened, the stop sent again until confirmed or bounded.
+    const auto demanded = monitor_.demanded_stop();
+    safe_stop_->step(now, demanded && *demanded != monitor::StopCategory::controlled_hold);
+    if (!shutdown_since_) devices_->apply(supervisor_->intents());
     devices_->transmit(now);  // what this cycle decided goes out in this cycle
   }
   if (shutdown_since_ && safe_stop_->done()) loop_stop_.store(true);

@@ -18,6 +18,7 @@
 
 #include "cell/cell_state.hpp"
 #include "config/cell_config.hpp"
+#include "journal/event_sink.hpp"
 #include "journal/journal.hpp"
 #include "link/clock.hpp"
 #include "loop/cycle_waiter.hpp"
@@ -92,8 +93,14 @@ class CellRun {
   // An operator command from any thread; carried out at the next cycle.
   void request(supervisor::Command c) noexcept { requested_.fetch_or(bit(c)); }
 
-  // Text the operator typed that is no command: journaled at the next cycle. One thread may call it.
-  void note_from_operator(const journal::Text& text) noexcept { (void)operator_notes_.push(text); }
+  // Text the operator typed that is no command: journaled at the next cycle, whole (in parts of a
+  // journal::Note; this thread waits while the loop has not taken the earlier ones). One thread may
+  // call it.
+  void note_from_operator(std::string_view text) noexcept {
+    NoteQueueWriter w{operator_notes_, loop_stop_};
+    journal::NoteWriter notes(w, 0.0);
+    for (const char c : text) notes.put(c);
+  }
   // Every journal line as it is written, on the journal's thread (journal::Journal::on_line).
   void on_journal_line(std::function<void(const nlohmann::json&)> listener) {
     journal_.on_line(std::move(listener));
@@ -146,7 +153,17 @@ class CellRun {
   cell::CellState state_;
   StatusBoard board_;
   std::atomic<unsigned> requested_{0};  // one bit per supervisor::Command
-  wire::SpscQueue<journal::Text, 16> operator_notes_;
+  wire::SpscQueue<journal::Note, 64> operator_notes_;
+  // Feeds a note's parts into operator_notes_, waiting for room (not once the loop has ended).
+  struct NoteQueueWriter final : journal::EventSink {
+    NoteQueueWriter(wire::SpscQueue<journal::Note, 64>& q, const std::atomic<bool>& stop) : queue(q), stopped(stop) {}
+    void post(double, const journal::Payload& p) noexcept override {
+      const auto& note = std::get<journal::Note>(p);
+      while (!queue.push(note) && !stopped.load()) std::this_thread::yield();
+    }
+    wire::SpscQueue<journal::Note, 64>& queue;
+    const std::atomic<bool>& stopped;
+  };
   std::atomic<bool>* terminate_ = nullptr;
   bool interrupted_ = false;
   link::TimePoint start_{};
@@ -162,7 +179,10 @@ class CellRun {
     monitor::Rule rule;
     double t;
     journal::Text detail;
+    std::optional<cell::Device> link;  // a device link that had failed then: the fault is named after it
+    double link_since = 0.0;           // its last good reply, s from the start
   };
+  [[nodiscard]] FirstFault first_fault(monitor::Rule rule, double t, const journal::Text& detail) const noexcept;
   std::optional<FirstFault> first_fault_;
   std::atomic<bool> loop_stop_{false};
 };

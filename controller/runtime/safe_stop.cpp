@@ -99,8 +99,14 @@ void SafeStop::recover(cell::Device d, link::DeviceSession& s, link::TimePoint n
   s.activate(now);
 }
 
-void SafeStop::step(link::TimePoint now) {
-  if (!begun_at_) return;
+void SafeStop::step(link::TimePoint now, bool stopping) {
+  if (!begun_at_) {
+    // Before the end, only a lost SCU or spindle, and only when the run is being stopped.
+    if (!stopping) return;
+    if (track_[slot(cell::Device::scu)].lost_at) step_scu(now);
+    if (track_[slot(cell::Device::spindle)].lost_at) step_spindle(now);
+    return;
+  }
   step_scu(now);
   step_spindle(now);
   step_encoder(now);
@@ -137,7 +143,7 @@ void SafeStop::step_scu(link::TimePoint now) {
       return;
     case link::Lifecycle::deactivating:
       if (all_at_rest(*s) && (!t.lost_at || scu_.refreshes_at_f20)) scu_.rest_seen_at = now;
-      if (now >= *begun_at_ + confirm_within_ && !t.lost_at)
+      if (begun_at_ && now >= *begun_at_ + confirm_within_ && !t.lost_at)
         resolve(t, scu_.rest_seen_at ? Safe::observed : Safe::unknown, now);
       return;
     case link::Lifecycle::inactive:
@@ -156,7 +162,7 @@ void SafeStop::step_spindle(link::TimePoint now) {
   auto* s = devices_.spindle();
   auto& t = track_[slot(cell::Device::spindle)];
   if (!s || t.resolved) return;
-  const bool out_of_time = now >= *begun_at_ + confirm_within_;
+  const bool out_of_time = now >= begun_at_.value_or(t.lost_at.value_or(now)) + confirm_within_;
   // Unconfirmed: at rest as last seen and never started since is bounded; else it may still turn.
   const Safe unconfirmed = spindle_.run_sent || !spindle_.last_at_rest ? Safe::unknown : Safe::bounded;
   switch (s->lifecycle()) {
@@ -183,12 +189,14 @@ void SafeStop::step_encoder(link::TimePoint now) {
   auto* s = devices_.encoder();
   auto& t = track_[slot(cell::Device::encoder)];
   if (!s || t.resolved) return;
-  const bool scu_resolved = !track_[slot(cell::Device::scu)].present || track_[slot(cell::Device::scu)].resolved;
+  const auto& scu = track_[slot(cell::Device::scu)];
   if (t.lost_at || s->lifecycle() == link::Lifecycle::fault) return resolve(t, Safe::bounded, now);
-  if (!scu_resolved) return;  // watching the axes until the SCU is resolved
+  if (scu.present && !scu.resolved) return;  // watching the axes until the SCU is resolved
+  // In data exchange up to now (this cycle's exchange may still be on the line): watched to the end.
+  const bool watching = encoder_.last_seen && now - *encoder_.last_seen <= kRetry;
   if (s->lifecycle() == link::Lifecycle::active || s->lifecycle() == link::Lifecycle::activating)
     s->deactivate(now);
-  if (s->quiet() || now >= *begun_at_ + confirm_within_) resolve(t, Safe::observed, now);
+  resolve(t, watching ? Safe::observed : Safe::bounded, now);
 }
 
 bool SafeStop::done() const noexcept {
@@ -271,9 +279,12 @@ std::string SafeStop::encoder_evidence() const {
                                             "{:.3f} s",
                                             axis, encoder_.mm, t_of(*encoder_.last_seen))
                               : std::string("moves nothing of its own; closed in order");
+  std::string why = t.lost_reason;
+  if (const auto* s = devices_.encoder(); why.empty() && s && !s->restart_reason().empty())
+    why = "left data exchange: " + s->restart_reason();
   return fmt::format("moves nothing of its own; positions unwatched since {} ({})",
                      encoder_.last_seen ? fmt::format("{:.3f} s", t_of(*encoder_.last_seen)) : "the start",
-                     t.lost_reason.empty() ? "link lost" : t.lost_reason);
+                     why.empty() ? "left data exchange" : why);
 }
 
 std::array<std::optional<DeviceSafety>, cell::kDevices> SafeStop::verdicts() const {

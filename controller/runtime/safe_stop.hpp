@@ -59,8 +59,11 @@ class SafeStop {
   // The run is over: the orderly shutdown begins (the encoder is kept to watch the axes).
   void begin(link::TimePoint now);
   [[nodiscard]] bool begun() const noexcept { return begun_at_.has_value(); }
-  // Every cycle from begin() on, before the sessions' transmit().
-  void step(link::TimePoint now);
+  // Every cycle, before the sessions' transmit(). `stopping`: the monitor demands a stop of category
+  // 0 or 1 — a device lost meanwhile is recovered and stopped at once, not only once the run is over
+  // (under a category-2 hold nothing is recovered: the hold keeps the spindle turning on purpose).
+  // From begin() on every device is brought to rest.
+  void step(link::TimePoint now, bool stopping);
   // Every device present is resolved.
   [[nodiscard]] bool done() const noexcept;
 
