@@ -135,7 +135,7 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
              fmt::format("{:.2f}", result.duration_s), result.wall_s);
   if (options.mode == runtime::RunMode::virtual_time)
     fmt::print(" ({:.0f}× real time)", result.duration_s / result.wall_s);
-  fmt::print("\n{}\n", result.loop_summary);
+  fmt::print("\n{}{}\n", result.loop_summary, result.link_summary);
   fmt::print("run record: {}\n", options.journal_dir.string());
 
   if (result.any_unknown()) return kExitSafeStateUnknown;
@@ -149,7 +149,7 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
 
 void add_run_command(CLI::App& app, Commands& commands) {
   auto* sub = app.add_subcommand(
-      "run", "Run a recipe on the cell (hardware, emulators on pseudo-terminals, or virtual time)");
+      "run", "Run a recipe on the cell (hardware, emulators in real time, or virtual time)");
   sub->footer(
       "Devices whose port is 'emulated' in the cell config run as emulators inside cellctl.\n"
       "Exit status: 0 complete, 1 stopped or aborted by a fault or a failed step, 2 bad command line (a bad\n"
@@ -163,7 +163,7 @@ void add_run_command(CLI::App& app, Commands& commands) {
   auto args = std::make_shared<RunArgs>();
   sub->add_option("recipe", args->recipe, "Recipe file (YAML)")->required();  // unreadable: exit 3
   auto* emulate = sub->add_flag("--emulate", args->emulate,
-                                "Every device on its emulator, on pseudo-terminals, in real time");
+                                "Every device on its emulator (in this process), in real time");
   sub->add_flag("--virtual-time", args->virtual_time,
                 "Every device on its emulator over simulated lines, on a virtual clock, as fast as possible")
       ->excludes(emulate);

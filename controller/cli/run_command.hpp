@@ -1,5 +1,5 @@
 #pragma once
-// `cellctl run RECIPE`: runs a recipe on the cell — hardware, emulators on pseudo-terminals, or
+// `cellctl run RECIPE`: runs a recipe on the cell — hardware, emulators in real time, or
 // emulators in virtual time — with live status, a run record and a summary at the end.
 
 #include "cli/commands.hpp"

@@ -34,7 +34,7 @@ struct StepKind {
 
 std::string mode_label(const config::CellConfig& cell, runtime::RunMode mode) {
   if (mode == runtime::RunMode::virtual_time) return "virtual time (every device emulated, simulated lines)";
-  if (mode == runtime::RunMode::emulated) return "emulated (every device on its emulator, pseudo-terminals)";
+  if (mode == runtime::RunMode::emulated) return "emulated (every device on its emulator, in this process)";
   std::vector<std::string> emulated;
   const auto all = devices(cell);
   for (const auto& d : all)

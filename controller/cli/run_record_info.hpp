@@ -13,7 +13,7 @@
 
 namespace cellctl::cli {
 
-// "emulated (every device on its emulator, pseudo-terminals)", "hardware", "hardware (spindle
+// "emulated (every device on its emulator, in this process)", "hardware", "hardware (spindle
 // emulated in-process)", "virtual time": what the banner and the record say the run was.
 [[nodiscard]] std::string mode_label(const config::CellConfig& cell, runtime::RunMode mode);
 

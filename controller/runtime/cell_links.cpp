@@ -2,7 +2,21 @@
 
 #include <fmt/format.h>
 
+#include "link/link_error.hpp"
+
 namespace cellctl::runtime {
+
+namespace {
+// An open failure names the device first: with three ports, a path alone does not say which is missing.
+std::unique_ptr<link::SerialLink> open_serial(const std::string& device, const std::string& path,
+                                              const link::LineFormat& line) {
+  try {
+    return link::SerialLink::open(path, line);
+  } catch (const link::LinkError& e) {
+    throw link::LinkError(fmt::format("{}: {}", device, e.what()), e.cause());
+  }
+}
+}  // namespace
 
 CellLinks::CellLinks(const config::CellConfig& cell, RunMode mode, const link::Clock& clock, bool trace,
                      std::bitset<cell::kDevices> fault_lines)
@@ -26,13 +40,14 @@ link::Link* CellLinks::open(cell::Device device, const config::PortConfig& port,
     descriptions_.push_back(
         fmt::format("{}: emulator on a simulated {} line (virtual time)", name, port.line.describe()));
   } else if (mode_ == RunMode::emulated || port.emulated()) {
-    // A pty of our own (not the published one: `cellctl emulate` may be running beside us).
-    auto& pty = *ptys_.emplace_back(std::make_unique<link::PtyPair>(name));
-    device_side = &pty.device();
-    master = owned_.emplace_back(link::SerialLink::open(pty.peer_path(), port.line)).get();
-    descriptions_.push_back(fmt::format("{}: emulator on pseudo-terminal {}", name, pty.peer_path()));
+    // Our own line (not the published pty: `cellctl emulate` may be running beside us), and no tty:
+    // a socket delivers at write() what a pty leaves to a kernel worker the load can starve.
+    auto& pair = *socket_pairs_.emplace_back(std::make_unique<link::SocketPair>(name));
+    device_side = &pair.device();
+    master = &pair.master();
+    descriptions_.push_back(fmt::format("{}: emulator in this process, over a socket pair", name));
   } else {
-    master = owned_.emplace_back(link::SerialLink::open(port.port, port.line)).get();
+    master = owned_.emplace_back(open_serial(name, port.port, port.line)).get();
     descriptions_.push_back(fmt::format("{}: {}", name, master->describe()));
   }
   if (const auto d = static_cast<std::size_t>(device); fault_lines_.test(d)) {

@@ -1,8 +1,9 @@
 #pragma once
 // The byte links of a run, by mode: in virtual time every device is an emulator on a SimLink; in an
-// emulated run every device is an emulator on a pseudo-terminal that the sessions open through
-// SerialLink (the same code path as hardware); on hardware each device's configured port is opened,
-// and a device whose port is "emulated" gets its emulator on a pseudo-terminal. A device named in
+// emulated run every device is an emulator in this process on a SocketPair (no tty layer: a pty's
+// bytes wait for a normal-priority kernel worker that a loaded machine starves — socket_pair.hpp);
+// on hardware each device's configured port is opened, and a device whose port is "emulated" gets
+// its emulator on a SocketPair too. A device named in
 // `fault_lines` gets a FaultInjectingLink on the session's end, for a fault rehearsal (below the
 // trace, so the trace shows what the session sent and received).
 
@@ -16,9 +17,9 @@
 #include "config/cell_config.hpp"
 #include "link/clock.hpp"
 #include "link/fault_injecting_link.hpp"
-#include "link/pty_pair.hpp"
 #include "link/serial_link.hpp"
 #include "link/sim_link.hpp"
+#include "link/socket_pair.hpp"
 #include "link/tracing_link.hpp"
 #include "runtime/cell_devices.hpp"
 #include "runtime/emulated_cell.hpp"
@@ -63,7 +64,7 @@ class CellLinks {
   std::array<link::FaultInjectingLink*, cell::kDevices> fault_links_{};
   link::LogTraceSink sink_;  // in virtual time it waits for its writer: nothing real-time to protect
   std::vector<std::unique_ptr<link::SimLink>> sims_;
-  std::vector<std::unique_ptr<link::PtyPair>> ptys_;
+  std::vector<std::unique_ptr<link::SocketPair>> socket_pairs_;
   std::vector<std::unique_ptr<link::Link>> owned_;
   std::vector<std::string> descriptions_;
   DeviceLinks master_;

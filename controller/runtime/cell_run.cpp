@@ -25,6 +25,29 @@ supervisor::SupervisorSettings settings_for(const config::CellConfig& cell, cons
   return s;
 }
 
+// How each device's link did, from its session's health: the worst round trip and the longest
+// silence between good replies say how close the run came to a link fault (an emulated run
+// beside a load shows whether the emulators kept up).
+std::string link_figures(const CellDevices& devices, nlohmann::json& out) {
+  std::string text;
+  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+    const auto* s = devices.sessions()[d];
+    if (!s) continue;
+    const char* name = cell::to_string(static_cast<cell::Device>(d));
+    const link::LinkHealth& h = s->health();
+    const double round_trip_ms = link::to_milliseconds(h.max_round_trip);
+    const double silence_ms = link::to_milliseconds(h.max_silence);
+    out[name] = {{"replies", h.good_replies},    {"max_round_trip_ms", round_trip_ms},
+                 {"max_silence_ms", silence_ms}, {"timeouts", h.timeouts},
+                 {"retries", h.retries},         {"bad_frames", h.bad_frames}};
+    text += fmt::format(
+        "link {:<8} {} replies, worst round trip {:.1f} ms, longest silence {:.1f} ms, {} time-outs, {} "
+        "retries, {} bad frames\n",
+        name, h.good_replies, round_trip_ms, silence_ms, h.timeouts, h.retries, h.bad_frames);
+  }
+  return text;
+}
+
 }  // namespace
 
 CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, RunOptions options)
@@ -73,7 +96,7 @@ CellRun::~CellRun() {
 }
 
 void CellRun::run_emulator_thread() {
-  // Emulated devices behind pseudo-terminals answer like hardware, on their own time.
+  // Emulated devices behind their links answer like hardware, on their own time.
   while (!emulators_stop_.load()) {
     const auto now = real_clock_.now();
     if (rehearsal_) rehearsal_->drive_emulators(now, *emulated_);
@@ -301,6 +324,8 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   start_ = clock_.now();
   links_->start_trace_clock(start_);
   if (rehearsal_) rehearsal_->start(start_, links_->fault_links());
+  // Started after apply_realtime, so it inherits the loop's SCHED_FIFO priority and memory lock: an
+  // emulator the load keeps off the CPU would look like a device that stops answering.
   if (emulated_ && options_.mode != RunMode::virtual_time)
     emulator_thread_ = std::thread([this] { run_emulator_thread(); });
 
@@ -326,6 +351,7 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   r.cycles = loop_->stats().cycles;
   r.loop_summary = loop_->summary();
   nlohmann::json extra;
+  r.link_summary = link_figures(*devices_, extra["links"]);
   extra["cycles"] = r.cycles;
   extra["overrun_cycles"] = loop_->stats().overrun_cycles;
   extra["missed_deadlines"] = loop_->stats().missed_deadlines;

@@ -3,7 +3,8 @@
 // the device sessions, the monitor, the supervisor and the journal, stepped by the control loop.
 // In virtual time everything — emulators included — is stepped by the loop on a virtual clock, as
 // fast as the machine allows; otherwise the loop runs on the monotonic clock and the emulators (if
-// any) on a thread of their own, behind pseudo-terminals, like real devices.
+// any) on a thread of their own at the loop's real-time priority, behind their links, like real
+// devices.
 
 #include <atomic>
 #include <bitset>
@@ -64,6 +65,7 @@ struct RunResult {
   double wall_s = 0.0;                    // real time it took
   std::uint64_t cycles = 0;
   std::string loop_summary;
+  std::string link_summary;  // per device: replies, worst round trip, longest silence, time-outs
   std::string summary_text;  // the journal's summary for the terminal
   // The safe state each device was left in (nullopt: the cell has no such device).
   std::array<std::optional<DeviceSafety>, cell::kDevices> safety;

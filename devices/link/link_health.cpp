@@ -8,6 +8,7 @@ void LinkHealth::record_reply(TimePoint sent, TimePoint received) noexcept {
   ++good_replies;
   last_round_trip = received - sent;
   max_round_trip = std::max(max_round_trip, last_round_trip);
+  if (last_good) max_silence = std::max(max_silence, received - *last_good);
   last_good = received;
 }
 

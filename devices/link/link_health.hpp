@@ -17,6 +17,9 @@ struct LinkHealth {
   std::uint64_t error_replies = 0;  // well-formed replies that say the device refused
   Duration last_round_trip{};
   Duration max_round_trip{};
+  // The longest time between two good replies: what a silence limit (the DP master's
+  // lost_slave_time, the monitor's link_silence_ms) is judged against, seen from below it.
+  Duration max_silence{};
   std::optional<TimePoint> last_good;  // when the last well-formed reply arrived
 
   void record_reply(TimePoint sent, TimePoint received) noexcept;

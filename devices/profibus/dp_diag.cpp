@@ -107,7 +107,9 @@ std::optional<DpDiagnosis> decode_diagnosis(std::span<const std::uint8_t> bytes)
   if (!standard) return std::nullopt;
   DpDiagnosis d;
   d.standard = *standard;
-  (void)d.extended.assign(bytes.subspan(kStandardDiagSize));
+  // More extended octets than a DP data unit carries is not a diagnosis a slave can send: refuse
+  // it whole rather than keep a cut-off part that would read as a complete one.
+  if (!d.extended.assign(bytes.subspan(kStandardDiagSize))) return std::nullopt;
   return d;
 }
 

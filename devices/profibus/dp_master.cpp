@@ -386,7 +386,7 @@ void DpMaster::on_diag(const FdlFrame& reply, link::TimePoint now) {
   }
   const auto diag = decode_diagnosis(reply.data.view());
   if (!diag) {
-    restart_with_bad_reply(now, "Slave_Diag", reply.data.size(), kStandardDiagSize);
+    restart_with_bad_reply(now, "Slave_Diag", reply.data.size(), kStandardDiagSize, kMaxData);
     return;
   }
   diagnosis_ = *diag;
@@ -435,7 +435,8 @@ void DpMaster::on_data(const FdlFrame& reply, link::TimePoint now) {
   if (reply.data.size() != setup_.input_length) {
     // Not our inputs: a slave that answers with another shape is not in the exchange we configured.
     ++stats_.bad_inputs;
-    restart_with_bad_reply(now, "Data_Exchange", reply.data.size(), setup_.input_length);
+    restart_with_bad_reply(now, "Data_Exchange", reply.data.size(), setup_.input_length,
+                           setup_.input_length);
     return;
   }
   (void)inputs_.assign(reply.data.view());
@@ -496,12 +497,17 @@ void DpMaster::restart(link::TimePoint now, std::string_view why) {
 }
 
 void DpMaster::restart_with_bad_reply(link::TimePoint now, std::string_view service, std::size_t octets,
-                                      std::size_t expected) {
+                                      std::size_t fewest, std::size_t most) {
   ++health_.error_replies;
   if (lifecycle_ != link::Lifecycle::fault) lifecycle_ = link::Lifecycle::activating;
-  link::assign_formatted(restart_reason_,
-                         "{} reply of {} octets, {} expected: not taken, start-up begun again", service,
-                         octets, expected);
+  if (fewest == most)
+    link::assign_formatted(restart_reason_,
+                           "{} reply of {} octets, {} expected: not taken, start-up begun again", service,
+                           octets, fewest);
+  else
+    link::assign_formatted(restart_reason_,
+                           "{} reply of {} octets, {} to {} expected: not taken, start-up begun again",
+                           service, octets, fewest, most);
   enter(DpState::restart_wait, now);
 }
 

@@ -184,8 +184,9 @@ class DpMaster {
   void enter(DpState s, link::TimePoint now);
   void restart(link::TimePoint now, std::string_view why);
   void refuse(StartupFault::Kind kind);
+  // A reply whose length is outside [fewest, most] octets is not taken; start-up begins again.
   void restart_with_bad_reply(link::TimePoint now, std::string_view service, std::size_t octets,
-                              std::size_t expected);
+                              std::size_t fewest, std::size_t most);
   [[nodiscard]] bool has_request(link::TimePoint now) const noexcept;
   [[nodiscard]] std::uint8_t next_fc(std::uint8_t function) noexcept;
   [[nodiscard]] FdlFrame sap_request(std::uint8_t dsap, std::span<const std::uint8_t> data) noexcept;

@@ -197,5 +197,28 @@ TEST_F(RefusedEmergencyStop, EveryAxisStillGetsAFastStopOfItsOwn) {
   EXPECT_LT(travelled, 0.5) << "stopped fast, not ramped down";
 }
 
+// Category 0 is the boundary's to enforce, whatever else the intents still say: an axis whose move is
+// still asked for gets its fast stop all the same (here with F20 refused, so only that stop can act).
+// Within 100 ms: the fast stop's round trips take well under 50 ms; without it the axis would run on
+// until the SCU's own watchdog (0.5 s without a keep-alive, which the repeated F20s crowd out).
+TEST_F(RefusedEmergencyStop, CategoryZeroStopsAnAxisWhoseMoveIsStillAskedFor) {
+  start_x();
+  emulated_.scu()->refuse_next_requests(1000, scu::Status::permission_error, scu::Command::execute);
+  intents_.halt = cell::Halt::immediate;  // the move intent stays
+  EXPECT_TRUE(cycle_until([&] { return !emulated_.scu()->actuator(1).moving(); }, 100))
+      << "category 0 left the axis running because its intent still said move";
+  EXPECT_FALSE(emulated_.scu()->watchdog_lapsed()) << "stopped by our stop, not by the SCU's watchdog";
+}
+
+TEST_F(Boundary, CategoryZeroStopsTheSpindleWhileItsRunIsStillAskedFor) {
+  devices_.activate(clock_.now());
+  ASSERT_TRUE(cycle_until([&] { return state_.links[1].active; }));
+  intents_.spindle = {.run = true, .frequency_hz = 400.0, .clockwise = true, .reset = false};
+  ASSERT_TRUE(cycle_until([&] { return state_.spindle.at_speed; }));
+  intents_.halt = cell::Halt::immediate;  // the run intent stays
+  EXPECT_TRUE(cycle_until([&] { return state_.spindle.at_rest; }, 5000))
+      << "category 0 left the spindle turning because its intent still said run";
+}
+
 }  // namespace
 }  // namespace cellctl::testing

@@ -29,6 +29,7 @@ struct TestBehaviour final : SlaveBehaviour {
   std::vector<std::uint8_t> last_outputs;
   std::vector<std::uint8_t> ext{0x05, 0xaa, 0xbb, 0xcc, 0xdd};
   bool pending = false;
+  bool not_ready = false;        // Stat_Diag: the device cannot exchange data yet
   std::size_t input_length = 8;  // what exchange() answers: 8 is the configured length
   int exchanges = 0;
   int entered = 0;
@@ -55,6 +56,7 @@ struct TestBehaviour final : SlaveBehaviour {
     return input_length;
   }
   bool diag_pending() override { return pending; }
+  bool static_diag() override { return not_ready; }
   void on_data_exchange_entered() override { ++entered; }
   void on_data_exchange_left(LeaveReason r) override { left.push_back(r); }
   void on_watchdog_expired() override { ++watchdog; }

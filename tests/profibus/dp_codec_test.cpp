@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <vector>
 
 #include "profibus/dp_diag.hpp"
 #include "profibus/dp_services.hpp"
@@ -51,6 +52,15 @@ TEST(DpDiag, ExtendedPartStaysRawAndShortRepliesAreRefused) {
   EXPECT_TRUE(d->standard.ready_for_data_exchange());
   EXPECT_EQ(wire::to_hex(d->extended.view()), "0a 01 02 03");
   EXPECT_FALSE(decode_diagnosis(std::span<const std::uint8_t>(bytes).first(5)));
+}
+
+TEST(DpDiag, ADiagnosisLongerThanADataUnitIsRefusedNotCut) {
+  std::vector<std::uint8_t> bytes(kMaxData, 0x00);
+  bytes[1] = 0x0c;
+  ASSERT_TRUE(decode_diagnosis(bytes)) << "244 octets is the most a DP data unit carries";
+  EXPECT_EQ(decode_diagnosis(bytes)->extended.size(), kMaxData - kStandardDiagSize);
+  bytes.push_back(0x00);
+  EXPECT_FALSE(decode_diagnosis(bytes)) << "245 octets cannot be a whole Slave_Diag: cut, it would read as one";
 }
 
 TEST(DpServices, PrmStandardOctets) {

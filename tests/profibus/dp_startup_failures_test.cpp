@@ -129,6 +129,29 @@ TEST(DpStartup, FreezeRequestedOfASlaveWithoutFreezeIsNotSupported) {
   EXPECT_EQ(bus.behaviour.exchanges, 0);
 }
 
+// A slave whose diagnosis says it cannot exchange data yet (Stat_Diag) is asked again, not taken into
+// data exchange; once it is ready the start-up completes. Not ready for longer than lost_slave_time
+// (20 ms here) begins the start-up again with that reason.
+TEST(DpStartup, ASlaveNotReadyYetIsNotTakenIntoDataExchange) {
+  Bus bus;
+  bus.behaviour.not_ready = true;
+  bus.master.activate(bus.now());
+  bus.run_for(milliseconds(15));
+  EXPECT_NE(bus.master.lifecycle(), link::Lifecycle::active);
+  EXPECT_NE(bus.master.dp_state(), DpState::data_exchange);
+  EXPECT_EQ(bus.master.stats().data_exchanges, 0u);
+  bus.behaviour.not_ready = false;
+  ASSERT_TRUE(bus.run_until([&] { return bus.in_data_exchange(); }, milliseconds(50)));
+
+  Bus late;
+  late.behaviour.not_ready = true;
+  late.master.activate(late.now());
+  ASSERT_TRUE(
+      late.run_until([&] { return has(late.master.restart_reason(), "not ready"); }, milliseconds(100)))
+      << late.master.restart_reason();
+  EXPECT_EQ(late.master.stats().data_exchanges, 0u);
+}
+
 TEST(DpStartup, WrongIdentIsOurMastersRefusalNotTheSlaves) {
   auto setup = slave_setup();
   setup.ident = 0x0BAD;
@@ -224,7 +247,7 @@ TEST(DpStartup, MalformedDiagnosisIsCountedAndTheStartUpBegunAgain) {
   EXPECT_GE(bus.master.stats().startups, 3u);
   EXPECT_GE(bus.master.health().error_replies, 2u);
   EXPECT_EQ(bus.master.restart_reason(),
-            "Slave_Diag reply of 3 octets, 6 expected: not taken, start-up begun again");
+            "Slave_Diag reply of 3 octets, 6 to 244 expected: not taken, start-up begun again");
 }
 
 TEST(DpStartup, DataExchangeReplyOfTheWrongLengthIsNotTakenAsInputs) {

@@ -61,6 +61,22 @@ TEST(ScuSessionRefusal, ARefusedKeepAliveIsAFaultSayingRemoteModeWasLost) {
   EXPECT_NE(rig.session.fault_reason().find("PE"), std::string::npos) << rig.session.fault_reason();
 }
 
+// An SCU that refuses RO (wrong Safety_ID, or not parameterized for remote mode) never lets the session
+// become active: a fault that says why, not a retry loop and never "active".
+TEST(ScuSessionRefusal, ARefusedRemoteOpenIsAFaultNamingTheSettingsToCheck) {
+  Rig rig(1);
+  rig.emulator.refuse_next_requests(1, Status::permission_error, Command::open);
+  rig.session.activate(rig.clock.now());
+  ASSERT_TRUE(rig.run_until(1s, [&] { return rig.session.lifecycle() == Lifecycle::fault; }));
+  EXPECT_NE(rig.session.fault_reason().find("refused with PE"), std::string::npos)
+      << rig.session.fault_reason();
+  EXPECT_NE(rig.session.fault_reason().find("entering remote mode"), std::string::npos)
+      << rig.session.fault_reason();
+  EXPECT_FALSE(rig.session.snapshot().remote_open);
+  rig.run_until(500ms, [] { return false; });
+  EXPECT_EQ(rig.session.lifecycle(), Lifecycle::fault) << "stays in fault until activated again";
+}
+
 TEST(ScuSessionRefusal, ARefusedReadIsReportedInvalidWithItsStatus) {
   Rig rig(1);
   ASSERT_TRUE(rig.activate());

@@ -217,6 +217,20 @@ TEST_F(SupervisorTest, StopThenResetReturnsToIdle) {
   ASSERT_TRUE(run_to(State::idle, 1.0));
 }
 
+// A recipe that ends with the spindle on is complete only when the spindle has run down (0.5 s at the
+// fake's 800 Hz/s): "complete" is a cell at rest, the next process may reach in.
+TEST_F(SupervisorTest, CompleteWaitsForTheSpindleToRunDown) {
+  load(R"(  - spindle: {start_hz: 400}
+  - move: {to: {x: 20}, speed_mm_s: 15}
+)");
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run_to(State::completing, 30.0));
+  EXPECT_GT(std::abs(now().spindle.actual_hz), 300.0) << "the recipe left the spindle on";
+  ASSERT_TRUE(run_to(State::complete, 5.0));
+  EXPECT_TRUE(now().spindle.at_rest);
+  EXPECT_FALSE(now().axes[0].moving);
+}
+
 TEST_F(SupervisorTest, MonitorCategoryZeroAbortsWithAnImmediateHalt) {
   load(R"(  - spindle: {start_hz: 400}
   - move: {to: {x: 150}, speed_mm_s: 15}
