@@ -153,7 +153,8 @@ void add_run_command(CLI::App& app, Commands& commands) {
   sub->footer(
       "Devices whose port is 'emulated' in the cell config run as emulators inside cellctl.\n"
       "Exit status: 0 complete, 1 stopped or aborted by a fault or a failed step, 2 bad command line (a bad\n"
-      "--fault says why), 3 bad config or recipe (nothing moved), 4 a port could not be opened, 5 a device's\n"
+      "--fault says why), 3 bad config or recipe (nothing moved), 4 a port could not be opened, 5 a "
+      "device's\n"
       "safe state is unknown (its stop was never confirmed and nothing bounds it: a spindle that may still\n"
       "turn; look at the cell), 130 ended by the operator (typed stop or abort, Ctrl-C, SIGTERM).\n"
       "After the end, cellctl stays until every device's stop is confirmed or bounded (the SCU: its 0.5 s\n"

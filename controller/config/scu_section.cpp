@@ -54,9 +54,10 @@ void parse_functions(const YamlNode& list, ScuSection& out) {
 }  // namespace
 
 ScuSection parse_scu_section(const YamlNode& section) {
-  section.only_keys({"safety_id", "keepalive_ms", "reply_timeout_ms", "retries", "link_fault_after_ms",
-                     "stopping_time_ms", "arrival_tolerance_edges", "default_speed_percent", "actuators", "functions"},
-                    kPortKeys);
+  section.only_keys(
+      {"safety_id", "keepalive_ms", "reply_timeout_ms", "retries", "link_fault_after_ms", "stopping_time_ms",
+       "arrival_tolerance_edges", "default_speed_percent", "actuators", "functions"},
+      kPortKeys);
   ScuSection out;
   out.port = parse_port(section, "scu", link::line_8n1(38400));
   auto& s = out.session;

@@ -51,11 +51,11 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
     const double silent_ms = link::to_milliseconds(l.silent_for);
     fresh[d] = l.active && !l.fault && silent_ms <= cell_.limits.link_silence_ms;
     if (l.fault || !l.active)
-      causes[idx(Rule::link_silent)] = Text::format("{} link lost (session {}), no good reply for {:.0f} ms", name,
-                                                    l.fault ? "fault" : "inactive", silent_ms);
+      causes[idx(Rule::link_silent)] = Text::format("{} link lost (session {}), no good reply for {:.0f} ms",
+                                                    name, l.fault ? "fault" : "inactive", silent_ms);
     else if (silent_ms > cell_.limits.link_silence_ms)
-      causes[idx(Rule::link_silent)] = Text::format("{} silent for {:.0f} ms (limit {:.0f} ms)", name, silent_ms,
-                                                    cell_.limits.link_silence_ms);
+      causes[idx(Rule::link_silent)] = Text::format("{} silent for {:.0f} ms (limit {:.0f} ms)", name,
+                                                    silent_ms, cell_.limits.link_silence_ms);
   }
   const bool scu_fresh = fresh[static_cast<std::size_t>(cell::Device::scu)];
   const bool encoder_fresh =

@@ -183,7 +183,8 @@ void CellRun::report_devices(double t, RunResult& r) {
     note("encoder: DP start-up begun again: " + enc->restart_reason());
 }
 
-CellRun::FirstFault CellRun::first_fault(monitor::Rule rule, double t, const journal::Text& detail) const noexcept {
+CellRun::FirstFault CellRun::first_fault(monitor::Rule rule, double t,
+                                         const journal::Text& detail) const noexcept {
   FirstFault f{rule, t, detail, std::nullopt, 0.0};
   // The link that failed: of the lost or silent ones, the longest silent; the encoder when it left
   // data exchange.
@@ -208,7 +209,7 @@ void CellRun::report_safety(RunResult& r, nlohmann::json& extra) const {
   for (std::size_t d = 0; d < cell::kDevices; ++d) {
     if (!r.safety[d]) continue;
     devices[cell::to_string(static_cast<cell::Device>(d))] = {{"safe", to_string(r.safety[d]->safe)},
-                                                               {"evidence", r.safety[d]->evidence}};
+                                                              {"evidence", r.safety[d]->evidence}};
   }
   extra["devices"] = devices;
   if (!first_fault_ || supervisor_->state() == supervisor::State::complete) return;
@@ -219,7 +220,8 @@ void CellRun::report_safety(RunResult& r, nlohmann::json& extra) const {
     // The session's own words when it gave up on the link; else what the monitor saw of it.
     const auto& reason = safe_stop_->lost_reason(*f.link);
     std::string symptom = reason.empty() ? std::string(f.detail.view()) : reason;
-    if (auto* enc = devices_->encoder(); *f.link == cell::Device::encoder && enc && !enc->restart_reason().empty())
+    if (auto* enc = devices_->encoder();
+        *f.link == cell::Device::encoder && enc && !enc->restart_reason().empty())
       symptom += "; DP start-up begun again: " + enc->restart_reason();
     ended["kind"] = "link";
     ended["device"] = cell::to_string(*f.link);
@@ -228,7 +230,8 @@ void CellRun::report_safety(RunResult& r, nlohmann::json& extra) const {
     r.ended_by = fmt::format("{} link fault, no good reply since {:.3f} s: {}", cell::to_string(*f.link),
                              f.link_since, symptom);
   } else {
-    const bool by_operator = f.rule == monitor::Rule::operator_stop || f.rule == monitor::Rule::emergency_stop;
+    const bool by_operator =
+        f.rule == monitor::Rule::operator_stop || f.rule == monitor::Rule::emergency_stop;
     ended["kind"] = by_operator ? "operator" : "monitor";
     ended["detail"] = std::string(f.detail.view());
     r.ended_by = fmt::format("{} at {:.3f} s: {}", monitor::to_string(f.rule), f.t, f.detail.view());
@@ -329,10 +332,10 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   if (emulated_ && options_.mode != RunMode::virtual_time)
     emulator_thread_ = std::thread([this] { run_emulator_thread(); });
 
-  safe_stop_ = std::make_unique<SafeStop>(cell_, *devices_, *links_,
-                                          std::chrono::duration_cast<link::Duration>(
-                                              std::chrono::duration<double>(options_.shutdown_timeout_s)),
-                                          start_);
+  safe_stop_ = std::make_unique<SafeStop>(
+      cell_, *devices_, *links_,
+      std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.shutdown_timeout_s)),
+      start_);
   devices_->activate(start_);
   (void)supervisor_->command(supervisor::Command::start, "cellctl run", 0.0);
   loop_->run([this, &interrupt](link::TimePoint now, std::uint64_t) { cycle(now, interrupt); }, loop_stop_);

@@ -49,7 +49,7 @@ struct RunOptions {
   // protection of its own to bound it (the spindle converter); the SCU is bounded by its own
   // communication time-out and the actuators' stopping time (runtime/safe_stop.hpp).
   double shutdown_timeout_s = 5.0;
-  std::vector<FaultSpec> faults;              // to rehearse (emulated and virtual-time runs only)
+  std::vector<FaultSpec> faults;  // to rehearse (emulated and virtual-time runs only)
   // The emulated devices' set-up; read from the cell's file (cell.source) when emulators are needed
   // and none is given here.
   std::optional<EmulatorSetup> emulators;
@@ -158,7 +158,8 @@ class CellRun {
   wire::SpscQueue<journal::Note, 64> operator_notes_;
   // Feeds a note's parts into operator_notes_, waiting for room (not once the loop has ended).
   struct NoteQueueWriter final : journal::EventSink {
-    NoteQueueWriter(wire::SpscQueue<journal::Note, 64>& q, const std::atomic<bool>& stop) : queue(q), stopped(stop) {}
+    NoteQueueWriter(wire::SpscQueue<journal::Note, 64>& q, const std::atomic<bool>& stop)
+        : queue(q), stopped(stop) {}
     void post(double, const journal::Payload& p) noexcept override {
       const auto& note = std::get<journal::Note>(p);
       while (!queue.push(note) && !stopped.load()) std::this_thread::yield();
@@ -184,7 +185,8 @@ class CellRun {
     std::optional<cell::Device> link;  // a device link that had failed then: the fault is named after it
     double link_since = 0.0;           // its last good reply, s from the start
   };
-  [[nodiscard]] FirstFault first_fault(monitor::Rule rule, double t, const journal::Text& detail) const noexcept;
+  [[nodiscard]] FirstFault first_fault(monitor::Rule rule, double t,
+                                       const journal::Text& detail) const noexcept;
   std::optional<FirstFault> first_fault_;
   std::atomic<bool> loop_stop_{false};
 };

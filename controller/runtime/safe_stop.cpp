@@ -207,26 +207,30 @@ std::string SafeStop::scu_evidence() const {
   const auto& t = track_[slot(cell::Device::scu)];
   std::string positions;
   for (std::size_t i = 0; i < cell_.axes.size() && i < cell::kMaxAxes; ++i)
-    positions += fmt::format("{}{} {:.2f} mm", positions.empty() ? "" : ", ", cell_.axes[i].name, scu_.last_mm[i]);
+    positions +=
+        fmt::format("{}{} {:.2f} mm", positions.empty() ? "" : ", ", cell_.axes[i].name, scu_.last_mm[i]);
   std::string out;
-  if (t.lost_at)
-    out = fmt::format("SCU lost at {:.3f} s ({}); ", t_of(*t.lost_at), t.lost_reason);
+  if (t.lost_at) out = fmt::format("SCU lost at {:.3f} s ({}); ", t_of(*t.lost_at), t.lost_reason);
   if (t.recoveries > 0 || t.reopen_failures > 0)
-    out += fmt::format("port opened again {} time(s), {} attempt(s) refused; ", t.recoveries, t.reopen_failures);
+    out +=
+        fmt::format("port opened again {} time(s), {} attempt(s) refused; ", t.recoveries, t.reopen_failures);
   switch (t.resolved.value_or(Safe::unknown)) {
     case Safe::observed:
-      out += t.lost_at ? fmt::format("F20 sent after it came back; every actuator reported at rest at {:.3f} s",
-                                     t_of(scu_.rest_seen_at.value_or(t.resolved_at)))
-                       : fmt::format("every actuator reported at rest, remote mode closed at {:.3f} s",
-                                     t_of(scu_.closed_at.value_or(t.resolved_at)));
+      out += t.lost_at
+                 ? fmt::format("F20 sent after it came back; every actuator reported at rest at {:.3f} s",
+                               t_of(scu_.rest_seen_at.value_or(t.resolved_at)))
+                 : fmt::format("every actuator reported at rest, remote mode closed at {:.3f} s",
+                               t_of(scu_.closed_at.value_or(t.resolved_at)));
       break;
     case Safe::bounded:
       out += scu_.closed_at
-                 ? fmt::format("remote mode closed at {:.3f} s while an actuator still moved; at rest by {:.3f} s "
-                               "(stopping time)",
-                               t_of(*scu_.closed_at), t_of(t.resolved_at))
+                 ? fmt::format(
+                       "remote mode closed at {:.3f} s while an actuator still moved; at rest by {:.3f} s "
+                       "(stopping time)",
+                       t_of(*scu_.closed_at), t_of(t.resolved_at))
                  : fmt::format(
-                       "stop not confirmed; the SCU's communication time-out ({:.1f} s after the last request) and "
+                       "stop not confirmed; the SCU's communication time-out ({:.1f} s after the last "
+                       "request) and "
                        "the actuators' stopping time had passed at {:.3f} s: its own protection stopped them",
                        link::to_seconds(kScuCommunicationTimeout), t_of(scu_.bound_at));
       break;
@@ -248,20 +252,25 @@ std::string SafeStop::spindle_evidence() const {
   std::string out;
   if (t.lost_at) out = fmt::format("converter lost at {:.3f} s ({}); ", t_of(*t.lost_at), t.lost_reason);
   if (t.recoveries > 0 || t.reopen_failures > 0)
-    out += fmt::format("port opened again {} time(s), {} attempt(s) refused; ", t.recoveries, t.reopen_failures);
-  const std::string last = spindle_.last_status ? fmt::format("{:.3f} s", t_of(*spindle_.last_status)) : "never";
+    out +=
+        fmt::format("port opened again {} time(s), {} attempt(s) refused; ", t.recoveries, t.reopen_failures);
+  const std::string last =
+      spindle_.last_status ? fmt::format("{:.3f} s", t_of(*spindle_.last_status)) : "never";
   switch (t.resolved.value_or(Safe::unknown)) {
     case Safe::observed:
-      out += fmt::format("CMD System Stopp acknowledged and STILLSTAND reported at {:.3f} s", t_of(t.resolved_at));
+      out += fmt::format("CMD System Stopp acknowledged and STILLSTAND reported at {:.3f} s",
+                         t_of(t.resolved_at));
       break;
     case Safe::bounded:
-      out += fmt::format("stop unconfirmed, but the converter reported STILLSTAND last (at {}) and no start was "
-                         "sent since",
-                         last);
+      out += fmt::format(
+          "stop unconfirmed, but the converter reported STILLSTAND last (at {}) and no start was "
+          "sent since",
+          last);
       break;
     case Safe::unknown:
       out += fmt::format(
-          "CMD System Stopp unconfirmed after {:.1f} s of trying (last status {}): the spindle may still be turning "
+          "CMD System Stopp unconfirmed after {:.1f} s of trying (last status {}): the spindle may still be "
+          "turning "
           "at {:.0f} Hz, the last set frequency",
           link::to_seconds(confirm_within_), last, spindle_.last_set_hz);
       break;
@@ -275,9 +284,10 @@ std::string SafeStop::encoder_evidence() const {
   for (const auto& a : cell_.axes)
     if (a.encoder) axis = a.name;
   if (t.resolved == Safe::observed)
-    return encoder_.last_seen ? fmt::format("moves nothing of its own; positions watched to the end: {} {:.2f} mm at "
-                                            "{:.3f} s",
-                                            axis, encoder_.mm, t_of(*encoder_.last_seen))
+    return encoder_.last_seen ? fmt::format(
+                                    "moves nothing of its own; positions watched to the end: {} {:.2f} mm at "
+                                    "{:.3f} s",
+                                    axis, encoder_.mm, t_of(*encoder_.last_seen))
                               : std::string("moves nothing of its own; closed in order");
   std::string why = t.lost_reason;
   if (const auto* s = devices_.encoder(); why.empty() && s && !s->restart_reason().empty())

@@ -76,6 +76,9 @@ TEST_F(SafeStop, ScuPortLostForGoodIsBoundedByItsOwnTimeOutAndWatchedMeanwhile) 
   EXPECT_LT(r.duration_s, kAt + 0.5 + link::to_seconds(cell_.scu->session.stopping_time) + 0.2);
   expect_axes_at_rest();  // the emulated SCU's watchdog stopped them, as the manual says
   EXPECT_NE(evidence("scu").find("communication time-out"), std::string::npos) << evidence("scu");
+  // The SCU's positions stopped arriving: named as the link, never as a disagreement with the encoder.
+  EXPECT_TRUE(fault("disagreement").is_null()) << fault("disagreement").dump();
+  EXPECT_EQ(summary()["ended_by"]["kind"], "link");
   EXPECT_NE(evidence("scu").find("attempt(s) refused"), std::string::npos) << "reopening never tried";
   // The encoder was watched to the end, after the axes had stopped.
   EXPECT_EQ(safe("encoder"), "observed") << evidence("encoder");
@@ -101,7 +104,8 @@ TEST_F(SafeStop, SpindleNeverBackIsUnknownWithItsLastSetFrequency) {
   const auto r = run_faults({"spindle:silent@1.5"});
   EXPECT_EQ(safe("spindle"), "unknown") << evidence("spindle");
   EXPECT_TRUE(r.any_unknown());
-  EXPECT_NE(evidence("spindle").find("may still be turning at 400 Hz"), std::string::npos) << evidence("spindle");
+  EXPECT_NE(evidence("spindle").find("may still be turning at 400 Hz"), std::string::npos)
+      << evidence("spindle");
   // The converter has no watchdog: it is still turning, which is why this must be said.
   EXPECT_GT(run_->emulators()->spindle()->motor().frequency_hz(), 300.0);
   EXPECT_EQ(safe("scu"), "observed") << evidence("scu");
@@ -127,7 +131,8 @@ TEST_F(SafeStop, HealthyRunEndsWithEveryDeviceObserved) {
   make_run();
   const auto r = go();
   ASSERT_EQ(r.final_state, supervisor::State::complete);
-  for (const auto* d : {"scu", "spindle", "encoder"}) EXPECT_EQ(safe(d), "observed") << d << ": " << evidence(d);
+  for (const auto* d : {"scu", "spindle", "encoder"})
+    EXPECT_EQ(safe(d), "observed") << d << ": " << evidence(d);
   EXPECT_FALSE(summary().contains("ended_by"));
 }
 

@@ -1,7 +1,5 @@
 #include "journal/journal.hpp"
 
-#include "journal/event_sink.hpp"
-
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -10,6 +8,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "journal/event_sink.hpp"
 
 namespace cellctl::journal {
 namespace {
@@ -68,7 +68,8 @@ TEST(Journal, WritesEveryEventAsOneJsonLineThenTheSummary) {
 TEST(Journal, NotesAreNeverCut) {
   const auto dir = fresh_dir("long-notes");
   std::string reason;
-  for (int i = 0; reason.size() < 1000; ++i) reason += "part " + std::to_string(i) + " — ";  // multi-byte dashes
+  for (int i = 0; reason.size() < 1000; ++i)
+    reason += "part " + std::to_string(i) + " — ";    // multi-byte dashes
   const std::string exact(Text{}.chars.size(), 'x');  // exactly one event's worth
   {
     Journal j(dir, WhenFull::wait);

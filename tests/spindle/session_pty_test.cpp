@@ -67,7 +67,8 @@ class Cable final : public link::Link {
 
 TEST(SpindleSessionPty, PortLostWhileTurningIsOpenedAgainAndTheStopConfirmed) {
   // The port as a config names it: a fixed path (udev's symlink) to whatever adapter is plugged in.
-  const auto port = std::filesystem::temp_directory_path() / ("cellctl-spindle-port-" + std::to_string(::getpid()));
+  const auto port =
+      std::filesystem::temp_directory_path() / ("cellctl-spindle-port-" + std::to_string(::getpid()));
   auto adapter = std::make_unique<link::PtyPair>("spindle", port);
   auto serial = link::SerialLink::open(port.string(), link::line_8n1(38400));
   Cable cable;
@@ -91,7 +92,8 @@ TEST(SpindleSessionPty, PortLostWhileTurningIsOpenedAgainAndTheStopConfirmed) {
   };
 
   session.activate(clock.now());
-  ASSERT_TRUE(run_until([&] { return session.lifecycle() == link::Lifecycle::active; })) << session.fault_reason();
+  ASSERT_TRUE(run_until([&] { return session.lifecycle() == link::Lifecycle::active; }))
+      << session.fault_reason();
   ASSERT_TRUE(session.start(400.0));
   ASSERT_TRUE(run_until([&] { return session.snapshot().at_speed; })) << session.fault_reason();
 
@@ -108,10 +110,12 @@ TEST(SpindleSessionPty, PortLostWhileTurningIsOpenedAgainAndTheStopConfirmed) {
   cable.plug(&adapter->device());
   ASSERT_TRUE(serial->reopen().ok());
   session.activate(clock.now());
-  ASSERT_TRUE(run_until([&] { return session.lifecycle() == link::Lifecycle::active; })) << session.fault_reason();
+  ASSERT_TRUE(run_until([&] { return session.lifecycle() == link::Lifecycle::active; }))
+      << session.fault_reason();
   session.deactivate(clock.now());
   // Inactive only once a statusout after the stop's ACK reports STILLSTAND.
-  ASSERT_TRUE(run_until([&] { return session.lifecycle() == link::Lifecycle::inactive; })) << session.fault_reason();
+  ASSERT_TRUE(run_until([&] { return session.lifecycle() == link::Lifecycle::inactive; }))
+      << session.fault_reason();
   EXPECT_TRUE(converter.motor().at_rest()) << converter.motor().frequency_hz() << " Hz";
   EXPECT_TRUE(session.snapshot().at_rest);
   cable.plug(nullptr);
