@@ -61,7 +61,7 @@ void OperatorConsole::handle(const std::string& line) {
   const auto cmd = parse(line);
   if (!cmd) {
     screen_.message(fmt::format("'{}' is not a command: {}", line, kWhatToType));
-    run_.note_from_operator(journal::Text::format("operator typed '{}': not a command, ignored", line));
+    run_.note_from_operator(fmt::format("operator typed '{}': not a command, ignored", line));
     return;
   }
   const auto name = supervisor::to_string(*cmd);

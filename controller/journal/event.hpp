@@ -71,8 +71,11 @@ struct Sample {
   float spindle_set_hz = 0.0f;
   float spindle_actual_hz = 0.0f;
 };
+// Free text of any length: a note longer than a Text travels as several Note events, every one but the
+// last `continued`, and the journal writes them as one note (post_note() in event_sink.hpp).
 struct Note {
   Text text;
+  bool continued = false;
 };
 // A fault put in place on purpose (cellctl run --fault), when it begins and when it ends.
 struct InjectedFault {

@@ -47,7 +47,16 @@ bool Journal::drain() {
   bool any = false;
   while (auto e = queue_->pop()) {
     any = true;
-    const auto j = to_json(*e);
+    // A long note comes in parts: they are written as one line, whole.
+    if (const auto* note = std::get_if<Note>(&e->payload)) {
+      note_parts_ += note->text.view();
+      if (note->continued) continue;
+    }
+    auto j = to_json(*e);
+    if (std::holds_alternative<Note>(e->payload)) {
+      j["text"] = note_parts_;
+      note_parts_.clear();
+    }
     summary_.add(j);
     const auto line = j.dump();
     {

@@ -61,6 +61,7 @@ class Journal final : public EventSink {
   std::atomic<bool> closing_{false};
   std::atomic<std::uint64_t> dropped_{0};
   RunSummary summary_;         // writer thread only until close()
+  std::string note_parts_;     // writer thread: a long note's parts so far
   std::mutex listener_mutex_;  // writer thread and the thread setting it; the cycle never takes it
   std::function<void(const nlohmann::json&)> listener_;
   std::thread writer_;

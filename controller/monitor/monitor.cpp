@@ -42,26 +42,35 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
   if (in.stop) causes[idx(Rule::operator_stop)] = Text::format("operator stop requested");
   if (!armed_) return;
 
+  // A link that failed is named as the link; the measurements it carried are stale and not judged
+  // (no "disagreement" or "following error" of a position that simply stopped arriving).
+  std::array<bool, cell::kDevices> fresh{};
   for (std::size_t d = 0; d < cell::kDevices; ++d) {
     const auto& l = s.links[d];
     const auto name = cell::to_string(static_cast<cell::Device>(d));
+    const double silent_ms = link::to_milliseconds(l.silent_for);
+    fresh[d] = l.active && !l.fault && silent_ms <= cell_.limits.link_silence_ms;
     if (l.fault || !l.active)
-      causes[idx(Rule::link_silent)] =
-          Text::format("{} link lost (session {})", name, l.fault ? "fault" : "inactive");
-    else if (link::to_milliseconds(l.silent_for) > cell_.limits.link_silence_ms)
-      causes[idx(Rule::link_silent)] =
-          Text::format("{} silent for {:.0f} ms (limit {:.0f} ms)", name, link::to_milliseconds(l.silent_for),
-                       cell_.limits.link_silence_ms);
+      causes[idx(Rule::link_silent)] = Text::format("{} link lost (session {}), no good reply for {:.0f} ms",
+                                                    name, l.fault ? "fault" : "inactive", silent_ms);
+    else if (silent_ms > cell_.limits.link_silence_ms)
+      causes[idx(Rule::link_silent)] = Text::format("{} silent for {:.0f} ms (limit {:.0f} ms)", name,
+                                                    silent_ms, cell_.limits.link_silence_ms);
   }
+  const bool scu_fresh = fresh[static_cast<std::size_t>(cell::Device::scu)];
+  const bool encoder_fresh =
+      fresh[static_cast<std::size_t>(cell::Device::encoder)] && s.encoder.data_exchange && s.encoder.ready;
 
   for (std::size_t i = 0; i < s.axis_count && i < cell_.axes.size(); ++i) {
     const auto& a = s.axes[i];
     const auto& c = cell_.axes[i];
     const double p = a.position_mm();
-    if (p < c.min_mm - kPositionMarginMm || p > c.max_mm + kPositionMarginMm)
+    // The position judged is the encoder's where it measures the axis, else the SCU's.
+    const bool position_fresh = a.measured ? encoder_fresh : scu_fresh;
+    if (position_fresh && (p < c.min_mm - kPositionMarginMm || p > c.max_mm + kPositionMarginMm))
       causes[idx(Rule::position_limit)] =
           Text::format("axis {} at {:.2f} mm, outside [{:g}, {:g}] mm", c.name, p, c.min_mm, c.max_mm);
-    if (a.measured) {
+    if (a.measured && encoder_fresh) {
       if (std::abs(a.encoder_mm_s) > cell_.limits.overspeed_mm_s)
         causes[idx(Rule::overspeed)] = Text::format("axis {} at {:.1f} mm/s by the encoder (limit {:g} mm/s)",
                                                     c.name, a.encoder_mm_s, cell_.limits.overspeed_mm_s);
@@ -69,13 +78,13 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
       // fresh: what the axis travelled meanwhile is no disagreement. Right after each reply the
       // allowance is back to nothing, so a real one is caught within a keep-alive period.
       const double travelled = std::abs(a.encoder_mm_s) * link::to_seconds(s.scu_position_age);
-      if (std::abs(a.scu_mm - a.encoder_mm) > cell_.limits.disagreement_mm + travelled)
+      if (scu_fresh && std::abs(a.scu_mm - a.encoder_mm) > cell_.limits.disagreement_mm + travelled)
         causes[idx(Rule::disagreement)] =
             Text::format("axis {}: SCU {:.2f} mm, encoder {:.2f} mm (tolerance {:g} mm)", c.name, a.scu_mm,
                          a.encoder_mm, cell_.limits.disagreement_mm);
     }
     const auto& plan = planned_[i];
-    if (following_ && plan.move) {
+    if (following_ && plan.move && position_fresh) {
       // An axis the encoder does not measure is known by the SCU's position, as old as its last RC
       // reply: what the plan moved on meanwhile is no error.
       const double stale =

@@ -115,7 +115,7 @@ void CellRun::take_commands(double t, std::atomic<bool>& interrupt) {
     interrupted_ = true;
     request(supervisor::Command::stop);  // SIGTERM: a controlled stop, whatever stops.operator says
   }
-  while (const auto text = operator_notes_.pop()) journal_.post(t, journal::Note{*text});
+  while (const auto note = operator_notes_.pop()) journal_.post(t, *note);
   const unsigned pending = requested_.exchange(0);
   // Strongest first, so that a stop typed right after a hold is never lost behind it.
   using supervisor::Command;
@@ -168,7 +168,7 @@ void CellRun::report_devices(double t, RunResult& r) {
   // What the sessions know that the cell state could not carry (it holds no text): after the loop,
   // so composing it allocates nowhere near the cycle.
   const auto note = [&](std::string text) {
-    journal_.post(t, journal::Note{journal::Text::format("{}", text)});
+    journal::post_note(journal_, t, text);  // never cut
     r.device_notes.push_back(std::move(text));
   };
   static constexpr const char* kNames[cell::kDevices] = {"SCU", "spindle", "encoder"};
@@ -181,9 +181,62 @@ void CellRun::report_devices(double t, RunResult& r) {
     note("spindle: " + sp->snapshot().start_refused_reason);
   if (auto* enc = devices_->encoder(); enc && !enc->restart_reason().empty())
     note("encoder: DP start-up begun again: " + enc->restart_reason());
-  if (!devices_->all_inactive())
-    note(fmt::format("the devices were not all closed within {:g} s of the end (remote mode, spindle stop)",
-                     options_.shutdown_timeout_s));
+}
+
+CellRun::FirstFault CellRun::first_fault(monitor::Rule rule, double t,
+                                         const journal::Text& detail) const noexcept {
+  FirstFault f{rule, t, detail, std::nullopt, 0.0};
+  // The link that failed: of the lost or silent ones, the longest silent; the encoder when it left
+  // data exchange.
+  link::Duration longest{};
+  const auto limit = std::chrono::duration<double, std::milli>(cell_.limits.link_silence_ms);
+  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+    const auto& l = state_.links[d];
+    const bool failed = l.fault || !l.active || l.silent_for > limit ||
+                        (static_cast<cell::Device>(d) == cell::Device::encoder && cell_.encoder &&
+                         !state_.encoder.data_exchange);
+    if (!failed || (f.link && l.silent_for <= longest)) continue;
+    f.link = static_cast<cell::Device>(d);
+    longest = l.silent_for;
+  }
+  if (f.link) f.link_since = t - link::to_seconds(longest);
+  return f;
+}
+
+void CellRun::report_safety(RunResult& r, nlohmann::json& extra) const {
+  r.safety = safe_stop_->verdicts();
+  nlohmann::json devices = nlohmann::json::object();
+  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+    if (!r.safety[d]) continue;
+    devices[cell::to_string(static_cast<cell::Device>(d))] = {{"safe", to_string(r.safety[d]->safe)},
+                                                              {"evidence", r.safety[d]->evidence}};
+  }
+  extra["devices"] = devices;
+  if (!first_fault_ || supervisor_->state() == supervisor::State::complete) return;
+  // A link that failed is named as the link (device, symptom, since when), whatever rule latched.
+  const auto& f = *first_fault_;
+  nlohmann::json ended{{"t", journal::round_ms(f.t)}, {"rule", monitor::to_string(f.rule)}};
+  if (f.link) {
+    // The session's own words when it gave up on the link; else what the monitor saw of it.
+    const auto& reason = safe_stop_->lost_reason(*f.link);
+    std::string symptom = reason.empty() ? std::string(f.detail.view()) : reason;
+    if (auto* enc = devices_->encoder();
+        *f.link == cell::Device::encoder && enc && !enc->restart_reason().empty())
+      symptom += "; DP start-up begun again: " + enc->restart_reason();
+    ended["kind"] = "link";
+    ended["device"] = cell::to_string(*f.link);
+    ended["symptom"] = symptom;
+    ended["since_s"] = journal::round_ms(f.link_since);
+    r.ended_by = fmt::format("{} link fault, no good reply since {:.3f} s: {}", cell::to_string(*f.link),
+                             f.link_since, symptom);
+  } else {
+    const bool by_operator =
+        f.rule == monitor::Rule::operator_stop || f.rule == monitor::Rule::emergency_stop;
+    ended["kind"] = by_operator ? "operator" : "monitor";
+    ended["detail"] = std::string(f.detail.view());
+    r.ended_by = fmt::format("{} at {:.3f} s: {}", monitor::to_string(f.rule), f.t, f.detail.view());
+  }
+  extra["ended_by"] = ended;
 }
 
 void CellRun::publish_status(double t) {
@@ -244,6 +297,7 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
 
     stages.begin(index(ControlStage::state));
     devices_->read(now, state_);
+    safe_stop_->observe(now);
 
     stages.begin(index(ControlStage::monitor));
     const auto fresh =
@@ -254,6 +308,7 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
       const auto& latch = monitor_.latch(rule);
       journal_.post(t, journal::Fault{monitor::to_string(rule), static_cast<std::uint8_t>(latch.category),
                                       latch.detail});
+      if (!first_fault_ && !shutdown_since_) first_fault_ = first_fault(rule, t, latch.detail);
     }
 
     stages.begin(index(ControlStage::supervisor));
@@ -266,16 +321,17 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
 
     stages.begin(index(ControlStage::write_sessions));
     if (supervisor::is_final(supervisor_->state()) && !shutdown_since_) {
-      devices_->deactivate(now);  // axes stopped, remote mode closed, spindle stopped
-      monitor_.disarm();          // the devices go down on purpose now
+      safe_stop_->begin(now);  // axes stopped, remote mode closed, spindle stopped — and confirmed
+      monitor_.disarm();       // the devices go down on purpose now
       shutdown_since_ = now;
     }
+    // Lost devices: port reopened, the stop sent again until confirmed or bounded.
+    const auto demanded = monitor_.demanded_stop();
+    safe_stop_->step(now, demanded && *demanded != monitor::StopCategory::controlled_hold);
     if (!shutdown_since_) devices_->apply(supervisor_->intents());
     devices_->transmit(now);  // what this cycle decided goes out in this cycle
   }
-  if (shutdown_since_ &&
-      (devices_->all_inactive() || link::to_seconds(now - *shutdown_since_) > options_.shutdown_timeout_s))
-    loop_stop_.store(true);
+  if (shutdown_since_ && safe_stop_->done()) loop_stop_.store(true);
   publish_status(t);
 }
 
@@ -295,6 +351,10 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   if (emulated_ && options_.mode != RunMode::virtual_time)
     emulator_thread_ = std::thread([this] { run_emulator_thread(); });
 
+  safe_stop_ = std::make_unique<SafeStop>(
+      cell_, *devices_, *links_,
+      std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.shutdown_timeout_s)),
+      start_);
   devices_->activate(start_);
   (void)supervisor_->command(supervisor::Command::start, "cellctl run", 0.0);
   loop_->run([this, &interrupt](link::TimePoint now, std::uint64_t) { cycle(now, interrupt); }, loop_stop_);
@@ -322,6 +382,7 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   extra["wall_s"] = r.wall_s;
   extra["mode"] = to_string(options_.mode);
   extra["corrections"] = supervisor_->corrections();
+  report_safety(r, extra);
   journal_.close(extra);
   r.faults = journal_.summary().faults();
   r.summary_text = journal_.summary().to_text();

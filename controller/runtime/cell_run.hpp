@@ -19,6 +19,7 @@
 
 #include "cell/cell_state.hpp"
 #include "config/cell_config.hpp"
+#include "journal/event_sink.hpp"
 #include "journal/journal.hpp"
 #include "link/clock.hpp"
 #include "loop/cycle_waiter.hpp"
@@ -32,6 +33,7 @@
 #include "runtime/emulator_setup.hpp"
 #include "runtime/fault_rehearsal.hpp"
 #include "runtime/fault_spec.hpp"
+#include "runtime/safe_stop.hpp"
 #include "runtime/status_view.hpp"
 #include "supervisor/supervisor.hpp"
 
@@ -43,8 +45,11 @@ struct RunOptions {
   nlohmann::json record_header;  // the journal's first line (journal/record_header.hpp); none if null
   bool trace = false;
   supervisor::SupervisorSettings supervisor;  // mode and sample period are filled in from the config
-  double shutdown_timeout_s = 5.0;            // for sessions to close (RA, spindle stop) at the end
-  std::vector<FaultSpec> faults;              // to rehearse (emulated and virtual-time runs only)
+  // How long after the end a stop is sent again to a device that has not confirmed it and has no
+  // protection of its own to bound it (the spindle converter); the SCU is bounded by its own
+  // communication time-out and the actuators' stopping time (runtime/safe_stop.hpp).
+  double shutdown_timeout_s = 5.0;
+  std::vector<FaultSpec> faults;  // to rehearse (emulated and virtual-time runs only)
   // The emulated devices' set-up; read from the cell's file (cell.source) when emulators are needed
   // and none is given here.
   std::optional<EmulatorSetup> emulators;
@@ -62,6 +67,15 @@ struct RunResult {
   std::string loop_summary;
   std::string link_summary;  // per device: replies, worst round trip, longest silence, time-outs
   std::string summary_text;  // the journal's summary for the terminal
+  // The safe state each device was left in (nullopt: the cell has no such device).
+  std::array<std::optional<DeviceSafety>, cell::kDevices> safety;
+  // The fault that ended the run, in words ("scu link: … since 1.502 s"); empty when none did.
+  std::string ended_by;
+  [[nodiscard]] bool any_unknown() const noexcept {
+    for (const auto& s : safety)
+      if (s && s->safe == Safe::unknown) return true;
+    return false;
+  }
 };
 
 class CellRun {
@@ -81,8 +95,14 @@ class CellRun {
   // An operator command from any thread; carried out at the next cycle.
   void request(supervisor::Command c) noexcept { requested_.fetch_or(bit(c)); }
 
-  // Text the operator typed that is no command: journaled at the next cycle. One thread may call it.
-  void note_from_operator(const journal::Text& text) noexcept { (void)operator_notes_.push(text); }
+  // Text the operator typed that is no command: journaled at the next cycle, whole (in parts of a
+  // journal::Note; this thread waits while the loop has not taken the earlier ones). One thread may
+  // call it.
+  void note_from_operator(std::string_view text) noexcept {
+    NoteQueueWriter w{operator_notes_, loop_stop_};
+    journal::NoteWriter notes(w, 0.0);
+    for (const char c : text) notes.put(c);
+  }
   // Every journal line as it is written, on the journal's thread (journal::Journal::on_line).
   void on_journal_line(std::function<void(const nlohmann::json&)> listener) {
     journal_.on_line(std::move(listener));
@@ -105,6 +125,8 @@ class CellRun {
   void take_commands(double t, std::atomic<bool>& interrupt);
   void judge_reset(double t);
   void report_devices(double t, RunResult& r);
+  // The summary's "devices" and "ended_by" (journal/README: the summary line).
+  void report_safety(RunResult& r, nlohmann::json& extra) const;
   [[nodiscard]] static constexpr unsigned bit(supervisor::Command c) noexcept {
     return 1u << static_cast<unsigned>(c);
   }
@@ -124,6 +146,7 @@ class CellRun {
   std::unique_ptr<CellLinks> links_;
   std::unique_ptr<EmulatedCell> emulated_;
   std::unique_ptr<CellDevices> devices_;
+  std::unique_ptr<SafeStop> safe_stop_;
   journal::Journal journal_;
   monitor::Monitor monitor_;
   std::unique_ptr<supervisor::Supervisor> supervisor_;
@@ -132,7 +155,18 @@ class CellRun {
   cell::CellState state_;
   StatusBoard board_;
   std::atomic<unsigned> requested_{0};  // one bit per supervisor::Command
-  wire::SpscQueue<journal::Text, 16> operator_notes_;
+  wire::SpscQueue<journal::Note, 64> operator_notes_;
+  // Feeds a note's parts into operator_notes_, waiting for room (not once the loop has ended).
+  struct NoteQueueWriter final : journal::EventSink {
+    NoteQueueWriter(wire::SpscQueue<journal::Note, 64>& q, const std::atomic<bool>& stop)
+        : queue(q), stopped(stop) {}
+    void post(double, const journal::Payload& p) noexcept override {
+      const auto& note = std::get<journal::Note>(p);
+      while (!queue.push(note) && !stopped.load()) std::this_thread::yield();
+    }
+    wire::SpscQueue<journal::Note, 64>& queue;
+    const std::atomic<bool>& stopped;
+  };
   std::atomic<bool>* terminate_ = nullptr;
   bool interrupted_ = false;
   link::TimePoint start_{};
@@ -143,6 +177,17 @@ class CellRun {
   bool operator_stop_ = false;   // Ctrl-C once: the monitor's operator stop
   bool emergency_stop_ = false;  // Ctrl-C twice: the monitor's emergency stop
   std::optional<link::TimePoint> shutdown_since_;
+  // The first monitor fault of the run (the one that ended it, when one did).
+  struct FirstFault {
+    monitor::Rule rule;
+    double t;
+    journal::Text detail;
+    std::optional<cell::Device> link;  // a device link that had failed then: the fault is named after it
+    double link_since = 0.0;           // its last good reply, s from the start
+  };
+  [[nodiscard]] FirstFault first_fault(monitor::Rule rule, double t,
+                                       const journal::Text& detail) const noexcept;
+  std::optional<FirstFault> first_fault_;
   std::atomic<bool> loop_stop_{false};
 };
 

@@ -360,8 +360,10 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
       if (rest || t - state_since_ > settings_.stop_timeout_s) {
         const auto note =
             !rest ? Text::format("not at rest after {:g} s; giving up waiting", settings_.stop_timeout_s)
-            : scu_lost || spindle_lost ? Text::format("cell at rest as far as can be known ({} link lost)",
-                                                      scu_lost ? "SCU" : "spindle")
+            : scu_lost || spindle_lost ? Text::format(
+                                             "{} link lost: its rest is not known yet; the safe-stop "
+                                             "that follows confirms or bounds it",
+                                             scu_lost ? "SCU" : "spindle")
                                        : Text::format("cell at rest");
         enter(abort ? State::aborted : State::stopped, t, note);
         events_.post(t, journal::RunEnded{abort ? "aborted" : "stopped"});

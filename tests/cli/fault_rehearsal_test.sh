@@ -25,6 +25,19 @@ grep -q 'fault encoder:error@20 was not injected: the run ended first' "$journal
   fail "a fault whose time never came is not said"
 tail -1 "$journal" | grep -q '"event":"summary"' || fail "the journal is not closed by its summary"
 
+# The spindle's line goes silent for good while it turns at 400 Hz: the stop is never confirmed, the
+# converter has no watchdog, so the run says the spindle may still be turning and exits 5.
+"$cellctl" -c "$config" run "$recipe" --virtual-time --journal "$work/lost" --fault spindle:silent@8 \
+  >"$work/lost.txt" 2>&1
+rc=$?
+[ "$rc" -eq 5 ] || fail "a spindle whose stop was never confirmed exits 5, got $rc"
+grep -q "WARNING: spindle safe state UNKNOWN: .*may still be turning at 400 Hz" "$work/lost.txt" ||
+  fail "the terminal does not say the spindle may still turn: $(grep -i spindle "$work/lost.txt")"
+tail -1 "$work/lost/journal.jsonl" | grep -q '"spindle":{"evidence":"[^"]*may still be turning at 400 Hz[^"]*","safe":"unknown"}' ||
+  fail "the summary's devices.spindle is not unknown with the last set frequency"
+tail -1 "$work/lost/journal.jsonl" | grep -q '"ended_by":{"device":"spindle","kind":"link"' ||
+  fail "the summary does not name the spindle's link as what ended the run"
+
 "$cellctl" -c "$config" run "$recipe" --virtual-time --journal "$work/bad" --fault 'spindle:delay=fast@1' \
   >"$work/bad.txt" 2>&1
 rc=$?
@@ -36,4 +49,4 @@ grep -q "delay 'fast': MS must be a number of milliseconds" "$work/bad.txt" || f
 rc=$?
 [ "$rc" -eq 2 ] || fail "--fault on the hardware path exits 2, got $rc"
 grep -q "add --emulate or --virtual-time" "$work/hw.txt" || fail "no reason: $(cat "$work/hw.txt")"
-echo "fault rehearsal: journal names the injected faults; bad text and hardware refused with exit 2"
+echo "fault rehearsal: journal names the injected faults; an unconfirmed spindle stop exits 5; bad text and hardware refused with exit 2"

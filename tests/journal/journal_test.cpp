@@ -9,6 +9,8 @@
 #include <thread>
 #include <vector>
 
+#include "journal/event_sink.hpp"
+
 namespace cellctl::journal {
 namespace {
 
@@ -60,6 +62,28 @@ TEST(Journal, WritesEveryEventAsOneJsonLineThenTheSummary) {
   const std::string text((std::istreambuf_iterator<char>(svg)), {});
   EXPECT_NE(text.find("<svg"), std::string::npos);
   EXPECT_NE(text.find("<polyline"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Journal, NotesAreNeverCut) {
+  const auto dir = fresh_dir("long-notes");
+  std::string reason;
+  for (int i = 0; reason.size() < 1000; ++i)
+    reason += "part " + std::to_string(i) + " — ";    // multi-byte dashes
+  const std::string exact(Text{}.chars.size(), 'x');  // exactly one event's worth
+  {
+    Journal j(dir, WhenFull::wait);
+    post_note(j, 0.5, "SCU: {}", reason);
+    post_note(j, 0.6, exact);
+    post_note(j, 0.7, "short");
+    j.close();
+  }
+  const auto lines = read_lines(dir / "journal.jsonl");
+  ASSERT_EQ(lines.size(), 4u);  // three notes, then the summary
+  EXPECT_EQ(lines[0]["text"], "SCU: " + reason);
+  EXPECT_EQ(lines[0]["t"], 0.5);
+  EXPECT_EQ(lines[1]["text"], exact);
+  EXPECT_EQ(lines[2]["text"], "short");
   std::filesystem::remove_all(dir);
 }
 

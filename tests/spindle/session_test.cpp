@@ -90,8 +90,11 @@ TEST(SpindleSession, DeactivateStopsTheSpindleThenGoesInactive) {
   ASSERT_TRUE(rig.session.start(400.0));
   ASSERT_TRUE(rig.run_until(3s, [&] { return rig.session.snapshot().at_speed; }));
   rig.session.deactivate(rig.clock.now());
-  ASSERT_TRUE(rig.run_until(200ms, [&] { return rig.state == Lifecycle::inactive; }));
+  // 400 Hz run down at 800 Hz/s: 0.5 s. Inactive only once a statusout after the stop's ACK reports
+  // STILLSTAND — the converter has no watchdog, so the session must not let go of a turning spindle.
+  ASSERT_TRUE(rig.run_until(1s, [&] { return rig.state == Lifecycle::inactive; }));
   EXPECT_DOUBLE_EQ(rig.emulator.motor().target_hz(), 0.0);
+  EXPECT_TRUE(rig.emulator.motor().at_rest()) << rig.emulator.motor().frequency_hz() << " Hz";
 }
 
 TEST(SpindleSession, StartWithoutStartParametersIsRefusedWithAReason) {
