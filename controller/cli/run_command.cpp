@@ -27,15 +27,6 @@
 namespace cellctl::cli {
 namespace {
 
-struct RunArgs {
-  std::string recipe;
-  bool emulate = false;
-  bool virtual_time = false;
-  std::string journal_dir;
-  std::vector<std::string> faults_text;
-  std::vector<runtime::FaultSpec> faults;  // parsed (and so checked) by the option's validator
-};
-
 // --fault's validator: the text becomes a FaultSpec here, or the reason is CLI11's error (exit 2).
 CLI::Validator fault_spec_validator(std::vector<runtime::FaultSpec>& out) {
   return CLI::Validator(
@@ -62,39 +53,50 @@ std::string ctrl_c_hint(config::StopCategory operator_stop) {
   return "";
 }
 
-int run_recipe(const GlobalOptions& global, const RunArgs& args) {
-  if (!args.faults.empty() && !args.emulate && !args.virtual_time) {
-    spdlog::error("--fault: faults are rehearsed on emulators only: add --emulate or --virtual-time");
-    return kExitUsage;
-  }
+int run_recipe(const GlobalOptions& global, const std::string& recipe_file, const RunArgs& args) {
   const auto cell = config::load_cell_config(global.config);
-  if (auto problem = runtime::FaultRehearsal::problem(args.faults, cell)) {
-    spdlog::error("{}", *problem);
+  if (const auto problem = run_args_problem(args, cell); !problem.empty()) {
+    spdlog::error("{}", problem);
     return kExitUsage;
   }
   recipe::Recipe recipe;
   try {
-    recipe = recipe::load_recipe(args.recipe, cell);
+    recipe = recipe::load_recipe(recipe_file, cell);
   } catch (const recipe::RecipeErrors& e) {
     for (const auto& err : e.errors()) spdlog::error("{}", err.what());
-    spdlog::error("{}: {} problem{}; nothing was moved", args.recipe, e.errors().size(),
+    spdlog::error("{}: {} problem{}; nothing was moved", recipe_file, e.errors().size(),
                   e.errors().size() == 1 ? "" : "s");
     return kExitConfig;
   }
+  return run_loaded_recipe(global, cell, recipe, args,
+                           args.journal_dir.empty() ? default_run_dir(recipe_file)
+                                                    : std::filesystem::path(args.journal_dir));
+}
 
+}  // namespace
+
+std::string run_args_problem(const RunArgs& args, const config::CellConfig& cell) {
+  if (!args.faults.empty() && !args.emulate && !args.virtual_time)
+    return "--fault: faults are rehearsed on emulators only: add --emulate or --virtual-time";
+  if (auto problem = runtime::FaultRehearsal::problem(args.faults, cell)) return *problem;
+  return {};
+}
+
+int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cell, const recipe::Recipe& recipe,
+                      const RunArgs& args, const std::filesystem::path& run_dir) {
   runtime::RunOptions options;
   options.mode = args.virtual_time ? runtime::RunMode::virtual_time
                  : args.emulate    ? runtime::RunMode::emulated
                                    : runtime::RunMode::hardware;
-  options.journal_dir =
-      args.journal_dir.empty() ? default_run_dir(args.recipe) : std::filesystem::path(args.journal_dir);
+  options.journal_dir = run_dir;
+  options.state_dir = args.state_dir;
   options.trace = global.trace;
   options.faults = args.faults;
   const auto info = record_info(cell, global.config, recipe, recipe::unroll(recipe), options.mode);
   options.record_header = journal::record_header(info);
 
   runtime::CellRun run(cell, recipe, options);
-  fmt::print("cellctl: running '{}' {} ({}) on cell '{}' — {}\n", recipe.name, recipe.version, args.recipe,
+  fmt::print("cellctl: running '{}' {} ({}) on cell '{}' — {}\n", recipe.name, recipe.version, recipe.source,
              cell.name, mode_label(cell, options.mode));
   for (const auto& d : run.links().describe()) fmt::print("  {}\n", d);
   for (const auto& f : options.faults)
@@ -127,6 +129,7 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
     fmt::print(" ({:.0f}× real time)", result.duration_s / result.wall_s);
   fmt::print("\n{}\n", result.loop_summary);
   fmt::print("run record: {}\n", options.journal_dir.string());
+  if (!result.home_record.empty()) fmt::print("{}\n", result.home_record);
 
   if (result.final_state == supervisor::State::complete) return kExitOk;
   // Ended by the operator (typed stop/abort, Ctrl-C, SIGTERM) with nothing else gone wrong: 130,
@@ -134,36 +137,43 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   return journal::RunRecord::load(options.journal_dir).ended_by_operator() ? kExitInterrupted : kExitFailed;
 }
 
-}  // namespace
-
-void add_run_command(CLI::App& app, Commands& commands) {
-  auto* sub = app.add_subcommand(
-      "run", "Run a recipe on the cell (hardware, emulators on pseudo-terminals, or virtual time)");
-  sub->footer(
-      "Devices whose port is 'emulated' in the cell config run as emulators inside cellctl.\n"
-      "Exit status: 0 complete, 1 stopped or aborted by a fault or a failed step, 2 bad command line (a bad\n"
-      "--fault says why), 3 bad config or recipe (nothing moved), 4 a port could not be opened, 130 ended\n"
-      "by the operator (typed stop or abort, Ctrl-C, SIGTERM).\n"
-      "Ctrl-C once: operator stop (category from stops.operator; 2 holds the cell); twice: emergency stop.\n"
-      "SIGTERM: a controlled stop (category 1).");
-  auto args = std::make_shared<RunArgs>();
-  sub->add_option("recipe", args->recipe, "Recipe file (YAML)")->required();  // unreadable: exit 3
-  auto* emulate = sub->add_flag("--emulate", args->emulate,
+void add_run_options(CLI::App* sub, RunArgs& args) {
+  auto* emulate = sub->add_flag("--emulate", args.emulate,
                                 "Every device on its emulator, on pseudo-terminals, in real time");
-  sub->add_flag("--virtual-time", args->virtual_time,
+  sub->add_flag("--virtual-time", args.virtual_time,
                 "Every device on its emulator over simulated lines, on a virtual clock, as fast as possible")
       ->excludes(emulate);
-  sub->add_option("--journal", args->journal_dir,
+  sub->add_option("--journal", args.journal_dir,
                   "Directory for the run record (default runs/<recipe file name>-<start time>)");
-  sub->add_option("--fault", args->faults_text,
+  sub->add_option("--state-dir", args.state_dir,
+                  "Folder of the home record home.json (default: the cell config's state_dir, 'state')");
+  sub->add_option("--fault", args.faults_text,
                   "Rehearse a fault (repeatable; --emulate or --virtual-time only): DEVICE:KIND@T[+D] puts\n"
                   "KIND on DEVICE T seconds after the run starts, for D seconds (for ever without +D).\n"
                   "DEVICE: scu, spindle, encoder. KIND: silent (the line carries nothing), disconnect\n"
                   "(the port is lost), corrupt (bits flipped), garbage (random bytes), delay=MS (replies\n"
                   "MS ms late), error (the device's own fault: SCU actuator faults, spindle over-\n"
                   "temperature 31, encoder position alarm). The journal records each fault's start and end.")
-      ->check(fault_spec_validator(args->faults));
-  commands.on(sub, [&commands, args] { return run_recipe(commands.global, *args); });
+      ->check(fault_spec_validator(args.faults));
+}
+
+void add_run_command(CLI::App& app, Commands& commands) {
+  auto* sub = app.add_subcommand(
+      "run", "Run a recipe on the cell (hardware, emulators on pseudo-terminals, or virtual time)");
+  sub->footer(
+      "Devices whose port is 'emulated' in the cell config run as emulators inside cellctl.\n"
+      "A recipe's `require: {homed: [...]}` checks the home record (<state_dir>/home.json) against the\n"
+      "devices before any motion; its `home: [...]` steps home axes and write that record.\n"
+      "Exit status: 0 complete, 1 stopped or aborted by a fault or a failed step, 2 bad command line (a bad\n"
+      "--fault says why), 3 bad config or recipe (nothing moved), 4 a port could not be opened, 130 ended\n"
+      "by the operator (typed stop or abort, Ctrl-C, SIGTERM).\n"
+      "Ctrl-C once: operator stop (category from stops.operator; 2 holds the cell); twice: emergency stop.\n"
+      "SIGTERM: a controlled stop (category 1).");
+  auto args = std::make_shared<RunArgs>();
+  auto recipe_file = std::make_shared<std::string>();
+  sub->add_option("recipe", *recipe_file, "Recipe file (YAML)")->required();  // unreadable: exit 3
+  add_run_options(sub, *args);
+  commands.on(sub, [&commands, args, recipe_file] { return run_recipe(commands.global, *recipe_file, *args); });
 }
 
 }  // namespace cellctl::cli
