@@ -93,8 +93,12 @@ int home(const GlobalOptions& global, const HomeArgs& args) {
   std::vector<std::string> names;
   for (auto i : axes) names.push_back(cell.axes[i].name);
   const auto state_dir = args.run.state_dir.empty() ? cell.state_dir : std::filesystem::path(args.run.state_dir);
-  fmt::print("cellctl home: cell '{}', home record {}\n", cell.name,
-             routines::home_record_path(state_dir).string());
+  const auto mode = args.run.virtual_time ? std::string_view("virtual-time")
+                    : args.run.emulate    ? std::string_view("emulated")
+                                          : std::string_view{};
+  fmt::print("cellctl home: cell '{}', home record {}{}\n", cell.name,
+             routines::home_record_path(state_dir, mode).string(),
+             mode.empty() ? "" : " (a dry run's own: the cell's home.json is left alone)");
   for (auto i : axes)
     fmt::print("  {} (sequence {}): {}\n", cell.axes[i].name, cell.axes[i].homing.sequence, plan(cell.axes[i]));
   fmt::print("  before any motion it refuses when the spindle turns, a device is not ready or a limit is "

@@ -6,13 +6,18 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "config/cell_core.hpp"
 #include "routines/home_record.hpp"
 
 namespace cellctl::routines {
 
-[[nodiscard]] std::filesystem::path home_record_path(const std::filesystem::path& state_dir);
+// <state_dir>/home.json for the cell itself; a dry run on emulators keeps its own record beside it
+// (home.virtual-time.json, home.emulated.json) and never touches the cell's: `dry_run_mode` is the
+// run's mode name, empty for the cell itself.
+[[nodiscard]] std::filesystem::path home_record_path(const std::filesystem::path& state_dir,
+                                                     std::string_view dry_run_mode = {});
 
 // A missing file is an empty record (nothing homed). A file that does not parse is an empty record
 // too, and `problem` says why (the next homing replaces it). config_changed is set when the record

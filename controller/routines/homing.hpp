@@ -9,7 +9,7 @@
 //                     preset_mm there and read it back, then move to home_mm on the encoder;
 //   scu_initialised   the SCU's status 2 "initialised" is the reference: an actuator not initialised
 //                     is driven into its retracted end (our reading of the SCU manual, which does not
-//                     say how it initialises: see docs/protocol-notes.md), and must then report it;
+//                     say how it initialises: README "Homing", devices/scu/emulator.hpp), and must then report it;
 //                     then to home_mm.
 // Motion goes through the supervisor's MoveExecutor (planner profile, closed on the measurement), so
 // an operator stop, a fault or Ctrl-C stops it like any recipe move: the supervisor's halt stops every

@@ -49,8 +49,9 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
                                                       : journal::WhenFull::drop_and_count,
                options_.record_header),
       monitor_(cell) {
-  home_record_file_ =
-      routines::home_record_path(options_.state_dir.empty() ? cell.state_dir : options_.state_dir);
+  home_record_file_ = routines::home_record_path(
+      options_.state_dir.empty() ? cell.state_dir : options_.state_dir,
+      options_.mode == RunMode::hardware ? std::string_view{} : std::string_view{to_string(options_.mode)});
   home_record_ = routines::load_home_record(home_record_file_, cell, config_sha256(cell), &home_record_problem_);
   options_.supervisor.home_record = &home_record_;
   if (options_.mode == RunMode::virtual_time)

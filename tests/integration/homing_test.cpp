@@ -35,7 +35,7 @@ class HomingTest : public RunFixture {
     return go();
   }
   routines::HomeRecord record() const {
-    return routines::load_home_record(routines::home_record_path(dir_ / "state"), cell_,
+    return routines::load_home_record(routines::home_record_path(dir_ / "state", "virtual-time"), cell_,
                                       journal::file_sha256(cell_.source));
   }
   // Notes of the run that contain `text`.
@@ -143,6 +143,8 @@ TEST_F(HomingTest, ARecipeHomesThenRequiresHomedThenMoves) {
   ASSERT_EQ(r.final_state, supervisor::State::complete) << r.failure;
   EXPECT_NEAR(run_->state().axes[0].encoder_mm, 50.0, 0.1);
   EXPECT_NE(r.home_record.find("home record written"), std::string::npos);
+  EXPECT_NE(r.home_record.find("home.virtual-time.json"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "state" / "home.json")) << "a dry run leaves the cell's record alone";
 }
 
 TEST_F(HomingTest, AbortMidHomingStopsEveryMovingAxis) {
