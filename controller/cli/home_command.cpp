@@ -35,15 +35,18 @@ std::string plan(const config::AxisConfig& a) {
     case config::HomingStrategy::absolute_encoder:
       return "absolute encoder — no motion: checks the encoder (ready, inside the travel, as last homed)";
     case config::HomingStrategy::end_position:
-      return a.encoder ? fmt::format("end position — MOVES into the {} end at {:g} mm/s, presets the encoder "
-                                     "to {:g} mm there, then MOVES to {:g} mm",
-                                     end, h.speed_mm_s, h.preset_mm, h.home_mm)
-                       : fmt::format("end position — MOVES into the {} end at {:g} mm/s, then MOVES to {:g} mm",
-                                     end, h.speed_mm_s, h.home_mm);
+      return a.encoder
+                 ? fmt::format(
+                       "end position — MOVES into the {} end at {:g} mm/s, presets the encoder "
+                       "to {:g} mm there, then MOVES to {:g} mm",
+                       end, h.speed_mm_s, h.preset_mm, h.home_mm)
+                 : fmt::format("end position — MOVES into the {} end at {:g} mm/s, then MOVES to {:g} mm",
+                               end, h.speed_mm_s, h.home_mm);
     case config::HomingStrategy::scu_initialised:
-      return fmt::format("SCU initialised — if the SCU has not initialised actuator {}, MOVES into the {} "
-                         "end at {:g} mm/s; then MOVES to {:g} mm",
-                         a.actuator, end, h.speed_mm_s, h.home_mm);
+      return fmt::format(
+          "SCU initialised — if the SCU has not initialised actuator {}, MOVES into the {} "
+          "end at {:g} mm/s; then MOVES to {:g} mm",
+          a.actuator, end, h.speed_mm_s, h.home_mm);
     case config::HomingStrategy::none:
       break;
   }
@@ -92,7 +95,8 @@ int home(const GlobalOptions& global, const HomeArgs& args) {
 
   std::vector<std::string> names;
   for (auto i : axes) names.push_back(cell.axes[i].name);
-  const auto state_dir = args.run.state_dir.empty() ? cell.state_dir : std::filesystem::path(args.run.state_dir);
+  const auto state_dir =
+      args.run.state_dir.empty() ? cell.state_dir : std::filesystem::path(args.run.state_dir);
   const auto mode = args.run.virtual_time ? std::string_view("virtual-time")
                     : args.run.emulate    ? std::string_view("emulated")
                                           : std::string_view{};
@@ -100,9 +104,11 @@ int home(const GlobalOptions& global, const HomeArgs& args) {
              routines::home_record_path(state_dir, mode).string(),
              mode.empty() ? "" : " (a dry run's own: the cell's home.json is left alone)");
   for (auto i : axes)
-    fmt::print("  {} (sequence {}): {}\n", cell.axes[i].name, cell.axes[i].homing.sequence, plan(cell.axes[i]));
-  fmt::print("  before any motion it refuses when the spindle turns, a device is not ready or a limit is "
-             "active;\n  Ctrl-C, a typed stop or a fault stops every moving axis\n");
+    fmt::print("  {} (sequence {}): {}\n", cell.axes[i].name, cell.axes[i].homing.sequence,
+               plan(cell.axes[i]));
+  fmt::print(
+      "  before any motion it refuses when the spindle turns, a device is not ready or a limit is "
+      "active;\n  Ctrl-C, a typed stop or a fault stops every moving axis\n");
   if (!args.yes) {
     if (isatty(STDIN_FILENO) == 0) {
       spdlog::error("home: confirmation needed and no terminal to ask on: add --yes to home from a script");
@@ -115,8 +121,8 @@ int home(const GlobalOptions& global, const HomeArgs& args) {
   }
 
   // The one-step recipe, kept with the run record: `cellctl run <dir>/home.yaml` does the same again.
-  const auto run_dir = args.run.journal_dir.empty() ? default_run_dir("home")
-                                                    : std::filesystem::path(args.run.journal_dir);
+  const auto run_dir =
+      args.run.journal_dir.empty() ? default_run_dir("home") : std::filesystem::path(args.run.journal_dir);
   std::filesystem::create_directories(run_dir);
   const auto recipe_file = run_dir / "home.yaml";
   {
@@ -149,16 +155,22 @@ int home(const GlobalOptions& global, const HomeArgs& args) {
 void add_home_command(CLI::App& app, Commands& commands) {
   auto* sub = app.add_subcommand("home", "Home axes as the cell config's homing says (asks before motion)");
   sub->footer(
-      "Without AXIS: every axis that has homing, in the order of homing.sequence (the same number: together).\n"
-      "Strategies (axes[].homing.strategy): absolute_encoder (no motion), end_position (into an end, encoder\n"
-      "preset there, to home_mm), scu_initialised (the SCU's own initialisation; into the retracted end when\n"
+      "Without AXIS: every axis that has homing, in the order of homing.sequence (the same number: "
+      "together).\n"
+      "Strategies (axes[].homing.strategy): absolute_encoder (no motion), end_position (into an end, "
+      "encoder\n"
+      "preset there, to home_mm), scu_initialised (the SCU's own initialisation; into the retracted end "
+      "when\n"
       "the SCU has not initialised the actuator, then to home_mm). Before any motion it refuses, with the\n"
       "reason, when the spindle turns, a device is not ready or a limit is active. The home record\n"
-      "<state_dir>/home.json (per axis: strategy, encoder and SCU positions, time, config SHA-256) is written\n"
+      "<state_dir>/home.json (per axis: strategy, encoder and SCU positions, time, config SHA-256) is "
+      "written\n"
       "at the end; `require: {homed: [...]}` in a recipe checks it against the devices.\n"
       "While it runs: hold, unhold, stop, abort, reset as in `cellctl run`; Ctrl-C stops every moving axis.\n"
-      "Exit status as `cellctl run`: 0 homed, 1 refused or failed (the reason is printed), 2 bad command line\n"
-      "or no confirmation possible, 3 bad config, 4 a port could not be opened, 130 stopped by the operator.");
+      "Exit status as `cellctl run`: 0 homed, 1 refused or failed (the reason is printed), 2 bad command "
+      "line\n"
+      "or no confirmation possible, 3 bad config, 4 a port could not be opened, 130 stopped by the "
+      "operator.");
   auto args = std::make_shared<HomeArgs>();
   sub->add_option("axes", args->axes, "Axes to home (default: every axis with homing)");
   sub->add_flag("-y,--yes", args->yes, "Do not ask before motion (for scripts)");

@@ -68,9 +68,9 @@ int run_recipe(const GlobalOptions& global, const std::string& recipe_file, cons
                   e.errors().size() == 1 ? "" : "s");
     return kExitConfig;
   }
-  return run_loaded_recipe(global, cell, recipe, args,
-                           args.journal_dir.empty() ? default_run_dir(recipe_file)
-                                                    : std::filesystem::path(args.journal_dir));
+  return run_loaded_recipe(
+      global, cell, recipe, args,
+      args.journal_dir.empty() ? default_run_dir(recipe_file) : std::filesystem::path(args.journal_dir));
 }
 
 }  // namespace
@@ -82,8 +82,9 @@ std::string run_args_problem(const RunArgs& args, const config::CellConfig& cell
   return {};
 }
 
-int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cell, const recipe::Recipe& recipe,
-                      const RunArgs& args, const std::filesystem::path& run_dir) {
+int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cell,
+                      const recipe::Recipe& recipe, const RunArgs& args,
+                      const std::filesystem::path& run_dir) {
   runtime::RunOptions options;
   options.mode = args.virtual_time ? runtime::RunMode::virtual_time
                  : args.emulate    ? runtime::RunMode::emulated
@@ -173,7 +174,8 @@ void add_run_command(CLI::App& app, Commands& commands) {
   auto recipe_file = std::make_shared<std::string>();
   sub->add_option("recipe", *recipe_file, "Recipe file (YAML)")->required();  // unreadable: exit 3
   add_run_options(sub, *args);
-  commands.on(sub, [&commands, args, recipe_file] { return run_recipe(commands.global, *recipe_file, *args); });
+  commands.on(sub,
+              [&commands, args, recipe_file] { return run_recipe(commands.global, *recipe_file, *args); });
 }
 
 }  // namespace cellctl::cli

@@ -33,22 +33,24 @@ HomingConfig parse_homing(const YamlNode& n, const AxisConfig& axis) {
   h.tolerance_mm = n.double_in_or("tolerance_mm", 0.001, 100.0, h.tolerance_mm);
   const bool moves = h.strategy != HomingStrategy::absolute_encoder;
   if (h.strategy == HomingStrategy::absolute_encoder && !axis.encoder)
-    n.at("strategy").fail(fmt::format("absolute_encoder needs the encoder on axis '{}' (encoder: true)",
-                                      axis.name));
+    n.at("strategy")
+        .fail(fmt::format("absolute_encoder needs the encoder on axis '{}' (encoder: true)", axis.name));
   if (!moves) {
     for (const char* key : {"end", "speed_mm_s", "preset_mm", "home_mm"})
       if (n.has(key)) n.at(key).fail("absolute_encoder homing does not move the axis: remove it");
     return h;
   }
   if (auto e = n.maybe("end"))
-    h.end = e->as_choice({"retracted", "extended"}) == "retracted" ? HomingEnd::retracted : HomingEnd::extended;
+    h.end =
+        e->as_choice({"retracted", "extended"}) == "retracted" ? HomingEnd::retracted : HomingEnd::extended;
   const double fallback = std::min(axis.max_speed_mm_s, std::max(2.0, 2.0 * axis.min_speed_mm_s));
   h.speed_mm_s = n.double_in_or("speed_mm_s", axis.min_speed_mm_s * 1.2, axis.max_speed_mm_s, fallback);
-  h.home_mm = n.double_in_or("home_mm", axis.min_mm, axis.max_mm, h.end == HomingEnd::retracted ? axis.min_mm
-                                                                                               : axis.max_mm);
+  h.home_mm = n.double_in_or("home_mm", axis.min_mm, axis.max_mm,
+                             h.end == HomingEnd::retracted ? axis.min_mm : axis.max_mm);
   if (n.has("preset_mm") && !(h.strategy == HomingStrategy::end_position && axis.encoder))
     n.at("preset_mm").fail("only end_position homing of the axis the encoder measures presets the encoder");
-  h.preset_mm = n.double_in_or("preset_mm", 0.0, 1e6, h.end == HomingEnd::retracted ? axis.min_mm : axis.max_mm);
+  h.preset_mm =
+      n.double_in_or("preset_mm", 0.0, 1e6, h.end == HomingEnd::retracted ? axis.min_mm : axis.max_mm);
   return h;
 }
 

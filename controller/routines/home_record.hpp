@@ -29,7 +29,7 @@ struct HomeRecord {
   std::string config_sha256;    // of the cell's config file now (what a record written now holds)
   bool config_changed = false;  // set by the loader: the record on disk was made with another config
   std::array<AxisHome, cell::kMaxAxes> axes{};  // by cell axis index
-  bool updated = false;  // homing in this run changed it: to be written
+  bool updated = false;                         // homing in this run changed it: to be written
 };
 
 // Why axis `axis` is not homed now, or an empty text when the record holds against the devices.

@@ -35,8 +35,10 @@ config::HomingStrategy strategy_from(const std::string& s) {
 
 }  // namespace
 
-std::filesystem::path home_record_path(const std::filesystem::path& state_dir, std::string_view dry_run_mode) {
-  return state_dir / (dry_run_mode.empty() ? std::string("home.json") : "home." + std::string(dry_run_mode) + ".json");
+std::filesystem::path home_record_path(const std::filesystem::path& state_dir,
+                                       std::string_view dry_run_mode) {
+  return state_dir /
+         (dry_run_mode.empty() ? std::string("home.json") : "home." + std::string(dry_run_mode) + ".json");
 }
 
 HomeRecord load_home_record(const std::filesystem::path& file, const config::CellCore& cell,

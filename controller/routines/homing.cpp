@@ -106,8 +106,8 @@ bool Homing::refuse(const cell::CellState& s) {
     if (phase_[i] == HomingPhase::idle) continue;
     needs_encoder = needs_encoder || s.axes[i].measured;
     if (!s.axes[i].present) {
-      reason_ = Text::format("not homing: the SCU does not report actuator {} (axis {})", cell_.axes[i].actuator,
-                             cell_.axes[i].name);
+      reason_ = Text::format("not homing: the SCU does not report actuator {} (axis {})",
+                             cell_.axes[i].actuator, cell_.axes[i].name);
       return true;
     }
     if (s.axes[i].actuator_fault) {
@@ -293,17 +293,16 @@ HomingStatus Homing::step(const cell::CellState& s, double t, cell::Intents& out
       for (std::size_t i = 0; i < cell_.axes.size(); ++i) {
         if (phase_[i] != HomingPhase::at_end) continue;
         const auto& a = s.axes[i];
-        const bool initialised =
-            cell_.axes[i].homing.strategy != HomingStrategy::scu_initialised || a.homed;
+        const bool initialised = cell_.axes[i].homing.strategy != HomingStrategy::scu_initialised || a.homed;
         if (!a.moving && !a.commanded && at_end(s, i) && initialised) continue;
         all = false;
         if (in_stage > kEndWaitS)
-          return fail(Text::format("axis {}: the SCU did not report actuator {} {} at its {} end within {:g} s "
-                                   "(SCU at {:.2f} mm)",
-                                   cell_.axes[i].name, cell_.axes[i].actuator,
-                                   initialised ? "at rest" : "initialised",
-                                   cell_.axes[i].homing.end == HomingEnd::retracted ? "retracted" : "extended",
-                                   kEndWaitS, a.scu_mm));
+          return fail(Text::format(
+              "axis {}: the SCU did not report actuator {} {} at its {} end within {:g} s "
+              "(SCU at {:.2f} mm)",
+              cell_.axes[i].name, cell_.axes[i].actuator, initialised ? "at rest" : "initialised",
+              cell_.axes[i].homing.end == HomingEnd::retracted ? "retracted" : "extended", kEndWaitS,
+              a.scu_mm));
       }
       if (!all) return HomingStatus::running;
       stage_since_ = t;
@@ -320,8 +319,10 @@ HomingStatus Homing::step(const cell::CellState& s, double t, cell::Intents& out
       }
       for (std::size_t i = 0; i < cell_.axes.size(); ++i)
         if (phase_[i] == HomingPhase::at_end) enter(i, HomingPhase::to_home, s, t);
-      if (!start_move(HomingPhase::to_home, s, t, move_id, supervisor::Reference::best)) finish_group(s, t);
-      else stage_ = Stage::to_home;
+      if (!start_move(HomingPhase::to_home, s, t, move_id, supervisor::Reference::best))
+        finish_group(s, t);
+      else
+        stage_ = Stage::to_home;
       return HomingStatus::running;
     }
     case Stage::preset: {
@@ -349,10 +350,13 @@ HomingStatus Homing::step(const cell::CellState& s, double t, cell::Intents& out
       events_.post(t, journal::Note{Text::format("home {}: encoder preset to {:.3f} mm, reads {:.3f} mm",
                                                  cell_.axes[i].name, want, s.axes[i].encoder_mm)});
       for (std::size_t k = 0; k < cell_.axes.size(); ++k)
-        if (phase_[k] == HomingPhase::at_end || phase_[k] == HomingPhase::preset) enter(k, HomingPhase::to_home, s, t);
+        if (phase_[k] == HomingPhase::at_end || phase_[k] == HomingPhase::preset)
+          enter(k, HomingPhase::to_home, s, t);
       stage_since_ = t;
-      if (!start_move(HomingPhase::to_home, s, t, move_id, supervisor::Reference::best)) finish_group(s, t);
-      else stage_ = Stage::to_home;
+      if (!start_move(HomingPhase::to_home, s, t, move_id, supervisor::Reference::best))
+        finish_group(s, t);
+      else
+        stage_ = Stage::to_home;
       return HomingStatus::running;
     }
   }

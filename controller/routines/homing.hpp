@@ -9,8 +9,8 @@
 //                     preset_mm there and read it back, then move to home_mm on the encoder;
 //   scu_initialised   the SCU's status 2 "initialised" is the reference: an actuator not initialised
 //                     is driven into its retracted end (our reading of the SCU manual, which does not
-//                     say how it initialises: README "Homing", devices/scu/emulator.hpp), and must then report it;
-//                     then to home_mm.
+//                     say how it initialises: README "Homing", devices/scu/emulator.hpp), and must then
+//                     report it; then to home_mm.
 // Motion goes through the supervisor's MoveExecutor (planner profile, closed on the measurement), so
 // an operator stop, a fault or Ctrl-C stops it like any recipe move: the supervisor's halt stops every
 // axis. Before any motion it refuses, with the reason, when the spindle turns, a device is not ready
@@ -33,13 +33,13 @@
 namespace cellctl::routines {
 
 enum class HomingPhase : std::uint8_t {
-  idle,        // not asked for
-  waiting,     // its sequence has not come yet
-  back_off,    // leaving the end it stood at, to drive into it again
-  to_end,      // driving into the end
-  at_end,      // waiting for the SCU to report the end (and initialised) at rest
-  preset,      // the encoder's preset handshake, then its read-back
-  to_home,     // moving to the home position
+  idle,      // not asked for
+  waiting,   // its sequence has not come yet
+  back_off,  // leaving the end it stood at, to drive into it again
+  to_end,    // driving into the end
+  at_end,    // waiting for the SCU to report the end (and initialised) at rest
+  preset,    // the encoder's preset handshake, then its read-back
+  to_home,   // moving to the home position
   homed,
   failed,
 };

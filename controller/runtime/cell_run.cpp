@@ -52,7 +52,8 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
   home_record_file_ = routines::home_record_path(
       options_.state_dir.empty() ? cell.state_dir : options_.state_dir,
       options_.mode == RunMode::hardware ? std::string_view{} : std::string_view{to_string(options_.mode)});
-  home_record_ = routines::load_home_record(home_record_file_, cell, config_sha256(cell), &home_record_problem_);
+  home_record_ =
+      routines::load_home_record(home_record_file_, cell, config_sha256(cell), &home_record_problem_);
   options_.supervisor.home_record = &home_record_;
   if (options_.mode == RunMode::virtual_time)
     waiter_ = std::make_unique<loop::VirtualWaiter>(virtual_clock_);
@@ -276,7 +277,8 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   }
   const auto wall_start = std::chrono::steady_clock::now();
   const auto unix_start =
-      std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+      std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
+          .count();
   start_ = clock_.now();
   links_->start_trace_clock(start_);
   if (rehearsal_) rehearsal_->start(start_, links_->fault_links());

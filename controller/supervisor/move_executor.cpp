@@ -13,8 +13,8 @@ double MoveExecutor::best_position(const cell::CellState& s, std::size_t i) cons
   return reference_ == Reference::scu ? s.axes[i].scu_mm : s.axes[i].position_mm();
 }
 
-void MoveExecutor::start(const recipe::Move& move, const cell::CellState& s, double t,
-                         std::uint32_t& move_id, Reference reference) {
+void MoveExecutor::start(const recipe::Move& move, const cell::CellState& s, double t, std::uint32_t& move_id,
+                         Reference reference) {
   axes_ = {};
   reference_ = reference;
   speed_ = move.speed_mm_s;

@@ -33,7 +33,7 @@ Supervisor::Supervisor(const config::CellCore& cell, const recipe::Recipe& recip
 double Supervisor::planned_mm(std::size_t axis) const noexcept {
   const auto* ins = current();
   return ins && std::holds_alternative<recipe::Home>(ins->action) ? homing_.planned_mm(axis)
-                                                                   : executor_.planned_mm(axis);
+                                                                  : executor_.planned_mm(axis);
 }
 
 const recipe::Instruction* Supervisor::current() const noexcept {

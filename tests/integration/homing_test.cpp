@@ -144,7 +144,8 @@ TEST_F(HomingTest, ARecipeHomesThenRequiresHomedThenMoves) {
   EXPECT_NEAR(run_->state().axes[0].encoder_mm, 50.0, 0.1);
   EXPECT_NE(r.home_record.find("home record written"), std::string::npos);
   EXPECT_NE(r.home_record.find("home.virtual-time.json"), std::string::npos);
-  EXPECT_FALSE(std::filesystem::exists(dir_ / "state" / "home.json")) << "a dry run leaves the cell's record alone";
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "state" / "home.json"))
+      << "a dry run leaves the cell's record alone";
 }
 
 TEST_F(HomingTest, AbortMidHomingStopsEveryMovingAxis) {
@@ -156,7 +157,8 @@ TEST_F(HomingTest, AbortMidHomingStopsEveryMovingAxis) {
     auto* scu = run.emulators()->scu();
     const bool homing = run.supervisor().current() &&
                         std::holds_alternative<recipe::Home>(run.supervisor().current()->action);
-    if (!aborted_at && homing && scu->actuator(1).position_mm() < 50.0 && scu->actuator(2).position_mm() < 50.0) {
+    if (!aborted_at && homing && scu->actuator(1).position_mm() < 50.0 &&
+        scu->actuator(2).position_mm() < 50.0) {
       aborted_at = t;
       at_abort = {scu->actuator(1).position_mm(), scu->actuator(2).position_mm()};
       run.request(supervisor::Command::abort);
@@ -207,8 +209,9 @@ TEST_F(HomedInTheNextProcess, AnScuPowerLossBreaksIt) {
   // A fresh emulated SCU is one that lost power: no actuator initialised.
   const auto r = run_steps(kRequire);
   ASSERT_EQ(r.final_state, supervisor::State::stopped);
-  EXPECT_EQ(r.failure,
-            "axis x: the SCU reports actuator 1 not initialised (power loss or reset since homing): home it again");
+  EXPECT_EQ(
+      r.failure,
+      "axis x: the SCU reports actuator 1 not initialised (power loss or reset since homing): home it again");
   EXPECT_EQ(run_->emulators()->scu()->actuator(1).position_mm(), 0.0) << "refused before any motion";
 }
 
