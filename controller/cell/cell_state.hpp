@@ -15,15 +15,17 @@ namespace cellctl::cell {
 inline constexpr std::size_t kMaxAxes = 6;
 
 struct AxisState {
-  bool present = false;         // the SCU reports the actuator
-  double scu_mm = 0.0;          // the SCU's own position
-  bool moving = false;          // SCU status 1: motion active (as of the last RC reply: it lags a command)
-  bool commanded = false;       // a move is queued for the SCU or its RE is still open
-  bool move_refused = false;    // the SCU answered an error to the last move's telegrams
-  bool homed = false;           // SCU status 2: initialised
-  bool actuator_fault = false;  // the SCU's error word names this actuator
-  bool measured = false;        // the encoder measures this axis
-  double encoder_mm = 0.0;      // valid when measured and the encoder is in data exchange
+  bool present = false;           // the SCU reports the actuator
+  double scu_mm = 0.0;            // the SCU's own position
+  bool moving = false;            // SCU status 1: motion active (as of the last RC reply: it lags a command)
+  bool commanded = false;         // a move is queued for the SCU or its RE is still open
+  bool move_refused = false;      // the SCU answered an error to the last move's telegrams
+  bool homed = false;             // SCU status 2: initialised
+  bool at_retracted_end = false;  // SCU status 1: in position reached (the actuator's retracted end)
+  bool at_extended_end = false;   // SCU status 1: out position reached
+  bool actuator_fault = false;    // the SCU's error word names this actuator
+  bool measured = false;          // the encoder measures this axis
+  double encoder_mm = 0.0;        // valid when measured and the encoder is in data exchange
   double encoder_mm_s = 0.0;
 
   // The best position there is: the encoder's where it measures the axis, else the SCU's.
@@ -38,6 +40,12 @@ struct EncoderState {
   bool diagnosis_pending = false;
   double mm = 0.0;
   double mm_s = 0.0;
+  // The last preset asked for by Intents::encoder (its id) and how it ended: the encoder acknowledged
+  // it (done), or the handshake failed or the session refused to start it (failed, with the reason).
+  std::uint32_t preset_id = 0;
+  bool preset_done = false;
+  bool preset_failed = false;
+  std::string_view preset_failure = {};  // static text
 };
 
 struct SpindleState {

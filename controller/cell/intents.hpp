@@ -29,6 +29,12 @@ struct SpindleIntent {
   bool reset = false;  // clear a converter fault (operator reset)
 };
 
+// A preset of the encoder's position (its preset handshake), asked for once per new preset_id.
+struct EncoderIntent {
+  std::uint32_t preset_id = 0;  // 0: none asked
+  double preset_mm = 0.0;
+};
+
 enum class Halt : std::uint8_t {
   none,
   controlled,  // stop categories 1 and 2: soft stop of every axis, spindle down on its ramp
@@ -38,6 +44,7 @@ enum class Halt : std::uint8_t {
 struct Intents {
   std::array<AxisIntent, kMaxAxes> axes{};
   SpindleIntent spindle;
+  EncoderIntent encoder;
   Halt halt = Halt::none;
 };
 

@@ -14,6 +14,7 @@
 #include "cli/emulate_command.hpp"
 #include "cli/encoder_commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/home_command.hpp"
 #include "cli/logging.hpp"
 #include "cli/report_command.hpp"
 #include "cli/run_command.hpp"
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
 
   add_run_command(app, commands);
   add_check_command(app, commands);
+  add_home_command(app, commands);
   add_emulate_command(app, commands);
   add_spindle_commands(app, commands);
   add_encoder_commands(app, commands);

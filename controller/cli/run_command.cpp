@@ -31,18 +31,6 @@
 namespace cellctl::cli {
 namespace {
 
-struct RunArgs {
-  std::string recipe;
-  bool emulate = false;
-  bool virtual_time = false;
-  std::string journal_dir;
-  std::vector<std::string> faults_text;
-  std::vector<runtime::FaultSpec> faults;  // parsed (and so checked) by the option's validator
-  std::string http_text;
-  std::optional<web::PageOptions> http;  // --http, parsed by its validator
-  std::string http_token_file;
-};
-
 // --http's validator: ADDR:PORT or PORT (loopback).
 CLI::Validator listen_validator(std::optional<web::PageOptions>& out) {
   return CLI::Validator(
@@ -80,32 +68,44 @@ std::string ctrl_c_hint(config::StopCategory operator_stop) {
   return "";
 }
 
-int run_recipe(const GlobalOptions& global, const RunArgs& args) {
-  if (!args.faults.empty() && !args.emulate && !args.virtual_time) {
-    spdlog::error("--fault: faults are rehearsed on emulators only: add --emulate or --virtual-time");
-    return kExitUsage;
-  }
+int run_recipe(const GlobalOptions& global, const std::string& recipe_file, const RunArgs& args) {
   const auto cell = config::load_cell_config(global.config);
-  if (auto problem = runtime::FaultRehearsal::problem(args.faults, cell)) {
-    spdlog::error("{}", *problem);
+  if (const auto problem = run_args_problem(args, cell); !problem.empty()) {
+    spdlog::error("{}", problem);
     return kExitUsage;
   }
   recipe::Recipe recipe;
   try {
-    recipe = recipe::load_recipe(args.recipe, cell);
+    recipe = recipe::load_recipe(recipe_file, cell);
   } catch (const recipe::RecipeErrors& e) {
     for (const auto& err : e.errors()) spdlog::error("{}", err.what());
-    spdlog::error("{}: {} problem{}; nothing was moved", args.recipe, e.errors().size(),
+    spdlog::error("{}: {} problem{}; nothing was moved", recipe_file, e.errors().size(),
                   e.errors().size() == 1 ? "" : "s");
     return kExitConfig;
   }
+  return run_loaded_recipe(
+      global, cell, recipe, args,
+      args.journal_dir.empty() ? default_run_dir(recipe_file) : std::filesystem::path(args.journal_dir));
+}
 
+}  // namespace
+
+std::string run_args_problem(const RunArgs& args, const config::CellConfig& cell) {
+  if (!args.faults.empty() && !args.emulate && !args.virtual_time)
+    return "--fault: faults are rehearsed on emulators only: add --emulate or --virtual-time";
+  if (auto problem = runtime::FaultRehearsal::problem(args.faults, cell)) return *problem;
+  return {};
+}
+
+int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cell,
+                      const recipe::Recipe& recipe, const RunArgs& args,
+                      const std::filesystem::path& run_dir) {
   runtime::RunOptions options;
   options.mode = args.virtual_time ? runtime::RunMode::virtual_time
                  : args.emulate    ? runtime::RunMode::emulated
                                    : runtime::RunMode::hardware;
-  options.journal_dir =
-      args.journal_dir.empty() ? default_run_dir(args.recipe) : std::filesystem::path(args.journal_dir);
+  options.journal_dir = run_dir;
+  options.state_dir = args.state_dir;
   options.trace = global.trace;
   options.faults = args.faults;
   // The plant link's section is read (and so checked) before anything opens: a bad one is exit 3.
@@ -114,7 +114,7 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   options.record_header = journal::record_header(info);
 
   runtime::CellRun run(cell, recipe, options);
-  fmt::print("cellctl: running '{}' {} ({}) on cell '{}' — {}\n", recipe.name, recipe.version, args.recipe,
+  fmt::print("cellctl: running '{}' {} ({}) on cell '{}' — {}\n", recipe.name, recipe.version, recipe.source,
              cell.name, mode_label(cell, options.mode));
   for (const auto& d : run.links().describe()) fmt::print("  {}\n", d);
   for (const auto& f : options.faults)
@@ -183,12 +183,40 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
     fmt::print(" ({:.0f}× real time)", result.duration_s / result.wall_s);
   fmt::print("\n{}{}\n", result.loop_summary, result.link_summary);
   fmt::print("run record: {}\n", options.journal_dir.string());
+  if (!result.home_record.empty()) fmt::print("{}\n", result.home_record);
 
   if (result.any_unknown()) return kExitSafeStateUnknown;
   if (result.final_state == supervisor::State::complete) return kExitOk;
   // Ended by the operator (typed stop/abort, Ctrl-C, SIGTERM) with nothing else gone wrong: 130,
   // however it was asked for; a fault or a failed step: 1.
   return journal::RunRecord::load(options.journal_dir).ended_by_operator() ? kExitInterrupted : kExitFailed;
+}
+
+void add_run_options(CLI::App* sub, RunArgs& args) {
+  auto* emulate = sub->add_flag("--emulate", args.emulate,
+                                "Every device on its emulator (in this process), in real time");
+  sub->add_flag("--virtual-time", args.virtual_time,
+                "Every device on its emulator over simulated lines, on a virtual clock, as fast as possible")
+      ->excludes(emulate);
+  sub->add_option("--journal", args.journal_dir,
+                  "Directory for the run record (default runs/<recipe file name>-<start time>)");
+  sub->add_option("--state-dir", args.state_dir,
+                  "Folder of the home record home.json (default: the cell config's state_dir, 'state')");
+  sub->add_option("--fault", args.faults_text,
+                  "Rehearse a fault (repeatable; --emulate or --virtual-time only): DEVICE:KIND@T[+D] puts\n"
+                  "KIND on DEVICE T seconds after the run starts, for D seconds (for ever without +D).\n"
+                  "DEVICE: scu, spindle, encoder. KIND: silent (the line carries nothing), disconnect\n"
+                  "(the port is lost), corrupt (bits flipped), garbage (random bytes), delay=MS (replies\n"
+                  "MS ms late), error (the device's own fault: SCU actuator faults, spindle over-\n"
+                  "temperature 31, encoder position alarm). The journal records each fault's start and end.")
+      ->check(fault_spec_validator(args.faults));
+  sub->add_option("--http", args.http_text,
+                  "Serve the operator page (live state, hold/unhold/stop/reset, /metrics) on ADDR:PORT,\n"
+                  "or on 127.0.0.1:PORT given a port alone; commands need the token (--http-token-file,\n"
+                  "else CELLCTL_HTTP_TOKEN, else a random one printed at the start)")
+      ->check(listen_validator(args.http));
+  sub->add_option("--http-token-file", args.http_token_file,
+                  "File whose first line is the operator page's token");
 }
 
 }  // namespace
@@ -198,9 +226,10 @@ void add_run_command(CLI::App& app, Commands& commands) {
       "run", "Run a recipe on the cell (hardware, emulators in real time, or virtual time)");
   sub->footer(
       "Devices whose port is 'emulated' in the cell config run as emulators inside cellctl.\n"
+      "A recipe's `require: {homed: [...]}` checks the home record (<state_dir>/home.json) against the\n"
+      "devices before any motion; its `home: [...]` steps home axes and write that record.\n"
       "Exit status: 0 complete, 1 stopped or aborted by a fault or a failed step, 2 bad command line (a bad\n"
-      "--fault says why), 3 bad config or recipe (nothing moved), 4 a port could not be opened, 5 a "
-      "device's\n"
+      "--fault says why), 3 bad config or recipe (nothing moved), 4 a port could not be opened, 5 a device's\n"
       "safe state is unknown (its stop was never confirmed and nothing bounds it: a spindle that may still\n"
       "turn; look at the cell), 130 ended by the operator (typed stop or abort, Ctrl-C, SIGTERM).\n"
       "After the end, cellctl stays until every device's stop is confirmed or bounded (the SCU: its 0.5 s\n"
@@ -208,30 +237,11 @@ void add_run_command(CLI::App& app, Commands& commands) {
       "Ctrl-C once: operator stop (category from stops.operator; 2 holds the cell); twice: emergency stop.\n"
       "SIGTERM: a controlled stop (category 1).");
   auto args = std::make_shared<RunArgs>();
-  sub->add_option("recipe", args->recipe, "Recipe file (YAML)")->required();  // unreadable: exit 3
-  auto* emulate = sub->add_flag("--emulate", args->emulate,
-                                "Every device on its emulator (in this process), in real time");
-  sub->add_flag("--virtual-time", args->virtual_time,
-                "Every device on its emulator over simulated lines, on a virtual clock, as fast as possible")
-      ->excludes(emulate);
-  sub->add_option("--journal", args->journal_dir,
-                  "Directory for the run record (default runs/<recipe file name>-<start time>)");
-  sub->add_option("--fault", args->faults_text,
-                  "Rehearse a fault (repeatable; --emulate or --virtual-time only): DEVICE:KIND@T[+D] puts\n"
-                  "KIND on DEVICE T seconds after the run starts, for D seconds (for ever without +D).\n"
-                  "DEVICE: scu, spindle, encoder. KIND: silent (the line carries nothing), disconnect\n"
-                  "(the port is lost), corrupt (bits flipped), garbage (random bytes), delay=MS (replies\n"
-                  "MS ms late), error (the device's own fault: SCU actuator faults, spindle over-\n"
-                  "temperature 31, encoder position alarm). The journal records each fault's start and end.")
-      ->check(fault_spec_validator(args->faults));
-  sub->add_option("--http", args->http_text,
-                  "Serve the operator page (live state, hold/unhold/stop/reset, /metrics) on ADDR:PORT,\n"
-                  "or on 127.0.0.1:PORT given a port alone; commands need the token (--http-token-file,\n"
-                  "else CELLCTL_HTTP_TOKEN, else a random one printed at the start)")
-      ->check(listen_validator(args->http));
-  sub->add_option("--http-token-file", args->http_token_file,
-                  "File whose first line is the operator page's token");
-  commands.on(sub, [&commands, args] { return run_recipe(commands.global, *args); });
+  auto recipe_file = std::make_shared<std::string>();
+  sub->add_option("recipe", *recipe_file, "Recipe file (YAML)")->required();  // unreadable: exit 3
+  add_run_options(sub, *args);
+  commands.on(sub,
+              [&commands, args, recipe_file] { return run_recipe(commands.global, *recipe_file, *args); });
 }
 
 }  // namespace cellctl::cli

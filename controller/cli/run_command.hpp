@@ -1,10 +1,45 @@
 #pragma once
 // `cellctl run RECIPE`: runs a recipe on the cell — hardware, emulators in real time, or
-// emulators in virtual time — with live status, a run record and a summary at the end.
+// emulators in virtual time — with live status, a run record and a summary at the end. `cellctl home`
+// runs its homing recipe through the same path (run_loaded_recipe).
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "cli/commands.hpp"
+#include "config/cell_config.hpp"
+#include "recipe/recipe.hpp"
+#include "runtime/fault_spec.hpp"
+#include "web/operator_page.hpp"
 
 namespace cellctl::cli {
+
+// How a recipe is run: the options `run` and `home` share.
+struct RunArgs {
+  bool emulate = false;
+  bool virtual_time = false;
+  std::string journal_dir;
+  std::string state_dir;
+  std::vector<std::string> faults_text;
+  std::vector<runtime::FaultSpec> faults;  // parsed (and so checked) by the option's validator
+  std::string http_text;
+  std::optional<web::PageOptions> http;  // --http, parsed by its validator
+  std::string http_token_file;
+};
+
+// --emulate, --virtual-time, --journal, --state-dir, --fault, --http and --http-token-file on `sub`.
+void add_run_options(CLI::App* sub, RunArgs& args);
+
+// Runs a loaded recipe: banner, live status, operator console, the summary; its exit status.
+// `run_dir` is the run record's folder.
+[[nodiscard]] int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cell,
+                                    const recipe::Recipe& recipe, const RunArgs& args,
+                                    const std::filesystem::path& run_dir);
+
+// A bad --fault for this cell, or --fault without an emulated mode: the reason (exit 2), else empty.
+[[nodiscard]] std::string run_args_problem(const RunArgs& args, const config::CellConfig& cell);
 
 void add_run_command(CLI::App& app, Commands& commands);
 

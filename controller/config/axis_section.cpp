@@ -15,7 +15,7 @@ std::vector<AxisConfig> parse_axes(const YamlNode& list) {
   for (const auto& n : items) {
     n.only_keys({"name", "actuator", "function", "edges_per_mm", "min_mm", "max_mm", "max_speed_mm_s",
                  "min_speed_mm_s", "max_accel_mm_s2", "max_jerk_mm_s3", "encoder", "min_ferror_mm",
-                 "ferror_mm"});
+                 "ferror_mm", "homing"});
     AxisConfig a;
     a.name = n.string_at("name");
     if (a.name.empty() ||
@@ -48,6 +48,7 @@ std::vector<AxisConfig> parse_axes(const YamlNode& list) {
       for (const auto& other : axes)
         if (other.encoder)
           n.at("encoder").fail(fmt::format("the encoder already measures axis '{}'", other.name));
+    if (auto h = n.maybe("homing")) a.homing = parse_homing(*h, a);
     axes.push_back(std::move(a));
   }
   return axes;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "config/homing_section.hpp"
 #include "config/yaml_node.hpp"
 
 namespace cellctl::config {
@@ -27,6 +28,7 @@ struct AxisConfig {
   // planned one by ferror_mm × |planned speed| / max_speed_mm_s, never less than min_ferror_mm.
   double min_ferror_mm = 1.0;
   double ferror_mm = 5.0;
+  HomingConfig homing;  // `homing:`; strategy none when absent
 };
 
 [[nodiscard]] std::vector<AxisConfig> parse_axes(const YamlNode& list);

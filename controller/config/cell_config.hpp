@@ -18,6 +18,9 @@ struct CellConfig : CellCore {
   std::optional<SpindleSection> spindle;
   std::optional<EncoderSection> encoder;
   std::optional<ScuSection> scu;
+  // Where the cell keeps what outlives a process (the home record), like runs/ beside the working
+  // directory unless the config names another folder.
+  std::filesystem::path state_dir = "state";
 };
 
 // Throws ConfigError (file:line:column: field: rule) on the first problem.

@@ -71,6 +71,11 @@ struct Require {
   bool spindle_at_rest = false;
 };
 
+// Homes the axes as the cell config's `homing:` says (strategies, sequence), then writes the home record.
+struct Home {
+  std::vector<int> axes;  // cell axis indices, each with a homing strategy
+};
+
 struct Step;
 struct Repeat {
   int times = 1;
@@ -80,7 +85,7 @@ struct Repeat {
 struct Step {
   std::string name;  // the recipe's own label, or "move", "dwell" … when none is given
   int line = 0;      // where it stands in the recipe file
-  std::variant<Move, Spindle, Dwell, Wait, Require, Repeat> action;
+  std::variant<Move, Spindle, Dwell, Wait, Require, Home, Repeat> action;
 };
 
 struct Recipe {

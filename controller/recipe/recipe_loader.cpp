@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -139,13 +140,13 @@ class Parser {
     return ConfigError(n.file(), std::max(n.line(), 1), std::max(n.column(), 1), n.field(), rule);
   }
 
-  static constexpr std::array<std::string_view, 6> kActions = {"move", "spindle", "dwell",
-                                                               "wait", "repeat",  "require"};
+  static constexpr std::array<std::string_view, 7> kActions = {"move",   "spindle", "dwell", "wait",
+                                                               "repeat", "require", "home"};
 
   Step parse_step(const YamlNode& item, int depth) {
     if (!item.is_map())
-      item.fail("a step is a mapping with one of: move, spindle, dwell, wait, repeat, require");
-    item.only_keys({"name", "move", "spindle", "dwell", "wait", "repeat", "require"});
+      item.fail("a step is a mapping with one of: move, spindle, dwell, wait, repeat, require, home");
+    item.only_keys({"name", "move", "spindle", "dwell", "wait", "repeat", "require", "home"});
     std::string action;
     for (auto a : kActions) {
       if (!item.has(a)) continue;
@@ -153,7 +154,7 @@ class Parser {
         item.fail(fmt::format("a step does one thing: both '{}' and '{}' given", action, a));
       action = a;
     }
-    if (action.empty()) item.fail("a step needs one of: move, spindle, dwell, wait, repeat, require");
+    if (action.empty()) item.fail("a step needs one of: move, spindle, dwell, wait, repeat, require, home");
     Step s;
     s.name = item.string_or("name", action);
     s.line = item.line();
@@ -163,6 +164,7 @@ class Parser {
     if (action == "dwell") s.action = Dwell{body.as_double_in(0.001, 3600.0)};
     if (action == "wait") s.action = parse_wait(body);
     if (action == "require") s.action = parse_require(body);
+    if (action == "home") s.action = Home{homed_axes(body)};
     if (action == "repeat") {
       s.action = parse_repeat(body, depth);
       return s;
@@ -266,13 +268,29 @@ class Parser {
   Require parse_require(const YamlNode& n) {
     n.only_keys({"homed", "encoder_ready", "spindle_at_rest"});
     Require r;
-    if (auto h = n.maybe("homed"))
-      for (const auto& a : h->items()) r.homed_axes.push_back(axis_index(a, a.as_string()));
+    if (auto h = n.maybe("homed")) r.homed_axes = homed_axes(*h);
     r.encoder_ready = n.bool_or("encoder_ready", false);
     r.spindle_at_rest = n.bool_or("spindle_at_rest", false);
     if (r.homed_axes.empty() && !r.encoder_ready && !r.spindle_at_rest)
       n.fail("require needs at least one of: homed, encoder_ready, spindle_at_rest");
     return r;
+  }
+
+  // A list of axes that each have a homing strategy in the cell config, none twice.
+  std::vector<int> homed_axes(const YamlNode& list) const {
+    std::vector<int> axes;
+    const auto items = list.items();
+    if (items.empty()) list.fail("name at least one axis");
+    for (const auto& a : items) {
+      const int idx = axis_index(a, a.as_string());
+      const auto& axis = cell_.axes[static_cast<std::size_t>(idx)];
+      if (axis.homing.strategy == config::HomingStrategy::none)
+        a.fail(fmt::format("axis {} has no homing in the cell config (axes[].homing.strategy)", axis.name));
+      if (std::find(axes.begin(), axes.end(), idx) != axes.end())
+        a.fail(fmt::format("axis {} is named twice", axis.name));
+      axes.push_back(idx);
+    }
+    return axes;
   }
 
   Repeat parse_repeat(const YamlNode& n, int depth) {

@@ -1,5 +1,7 @@
 #include "runtime/cell_devices.hpp"
 
+#include <cmath>
+
 namespace cellctl::runtime {
 namespace {
 
@@ -80,6 +82,8 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
       st.commanded = fn.execution_open || fn.outcome == scu::MoveOutcome::queued;
       st.move_refused = fn.outcome == scu::MoveOutcome::refused;
       st.homed = act.initialised;
+      st.at_retracted_end = act.status.in_position;
+      st.at_extended_end = act.status.out_position;
       st.actuator_fault = act.fault;
     }
   }
@@ -95,6 +99,10 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
     enc.diagnosis_pending = e.new_diagnosis;
     enc.mm = e.position_mm;
     enc.mm_s = e.velocity_mm_s;
+    enc.preset_id = preset_.id;
+    enc.preset_done = preset_.done;
+    enc.preset_failed = preset_.failed;
+    enc.preset_failure = preset_.failure;
     for (std::size_t i = 0; i < cell_.axes.size(); ++i) {
       auto& st = out.axes[i];
       st.measured = cell_.axes[i].encoder;
@@ -202,9 +210,40 @@ void CellDevices::apply_spindle(const cell::Intents& in) {
   }
 }
 
+void CellDevices::apply_encoder(const cell::Intents& in) {
+  if (!encoder_) return;
+  // The outcome of the preset in flight: the handshake ends (done or failed) a few exchanges later.
+  if (preset_.sent && !preset_.done && !preset_.failed) {
+    const auto& cmd = encoder_->snapshot().command;
+    if (cmd.kind == encoder::Handshake::Kind::preset && cmd.phase == encoder::Handshake::Phase::done) {
+      preset_.done = true;
+      encoder_->clear_command();
+    } else if (cmd.kind == encoder::Handshake::Kind::preset &&
+               cmd.phase == encoder::Handshake::Phase::failed) {
+      preset_.failed = true;
+      preset_.failure = cmd.failure;
+      encoder_->clear_command();
+    }
+  }
+  if (in.encoder.preset_id == 0 || in.encoder.preset_id == preset_.id) return;
+  preset_ = Preset{};
+  preset_.id = in.encoder.preset_id;
+  const double counts = in.encoder.preset_mm * encoder_->counts_per_mm();
+  if (encoder_->lifecycle() != link::Lifecycle::active || counts < 0.0 ||
+      !encoder_->preset(static_cast<std::uint32_t>(std::lround(counts)))) {
+    preset_.failed = true;
+    preset_.failure =
+        "the encoder session refused the preset (not in data exchange, a command running, or the value "
+        "beyond the measuring range)";
+    return;
+  }
+  preset_.sent = true;
+}
+
 void CellDevices::apply(const cell::Intents& in) {
   apply_axes(in);
   apply_spindle(in);
+  apply_encoder(in);
 }
 
 }  // namespace cellctl::runtime

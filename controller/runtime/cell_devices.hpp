@@ -55,6 +55,7 @@ class CellDevices {
   };
   void apply_axes(const cell::Intents& in);
   void apply_spindle(const cell::Intents& in);
+  void apply_encoder(const cell::Intents& in);
 
   const config::CellConfig& cell_;
   std::unique_ptr<scu::Session> scu_;
@@ -62,6 +63,14 @@ class CellDevices {
   std::unique_ptr<encoder::Session> encoder_;
   std::array<link::DeviceSession*, cell::kDevices> sessions_{};
   std::array<AxisCommand, cell::kMaxAxes> axis_cmd_{};
+  struct Preset {
+    std::uint32_t id = 0;  // the intent's preset_id last taken
+    bool sent = false;
+    bool done = false;
+    bool failed = false;
+    std::string_view failure;
+  };
+  Preset preset_;
   bool estop_requested_ = false;      // an F20 went to the session for the halt in force
   std::uint64_t estop_refusals_ = 0;  // the SCU's refusal count then
 };

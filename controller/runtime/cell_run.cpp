@@ -5,8 +5,10 @@
 #include <chrono>
 #include <nlohmann/json.hpp>
 
+#include "journal/record_header.hpp"
 #include "loop/control_stages.hpp"
 #include "loop/realtime_setup.hpp"
+#include "routines/home_record_file.hpp"
 
 namespace cellctl::runtime {
 namespace {
@@ -48,6 +50,14 @@ std::string link_figures(const CellDevices& devices, nlohmann::json& out) {
   return text;
 }
 
+std::string config_sha256(const config::CellConfig& cell) {
+  try {
+    return journal::file_sha256(cell.source);
+  } catch (const std::exception&) {
+    return {};  // a cell made in memory (tests): no file to hash
+  }
+}
+
 }  // namespace
 
 CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, RunOptions options)
@@ -62,6 +72,12 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
                                                       : journal::WhenFull::drop_and_count,
                options_.record_header),
       monitor_(cell) {
+  home_record_file_ = routines::home_record_path(
+      options_.state_dir.empty() ? cell.state_dir : options_.state_dir,
+      options_.mode == RunMode::hardware ? std::string_view{} : std::string_view{to_string(options_.mode)});
+  home_record_ =
+      routines::load_home_record(home_record_file_, cell, config_sha256(cell), &home_record_problem_);
+  options_.supervisor.home_record = &home_record_;
   if (options_.mode == RunMode::virtual_time)
     waiter_ = std::make_unique<loop::VirtualWaiter>(virtual_clock_);
   else
@@ -335,6 +351,21 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
   publish_status(t);
 }
 
+void CellRun::save_home_record(double t, std::int64_t unix_start, RunResult& r) {
+  if (!home_record_problem_.empty())
+    journal_.post(0.0, journal::Note{journal::Text::format("{}", home_record_problem_)});
+  if (!home_record_.updated) return;
+  for (auto& a : home_record_.axes)
+    if (a.homed && a.unix_time == 0) a.unix_time = unix_start + static_cast<std::int64_t>(a.run_t);
+  try {
+    routines::save_home_record(home_record_file_, home_record_, cell_);
+    r.home_record = "home record written: " + home_record_file_.string();
+  } catch (const std::exception& e) {
+    r.home_record = std::string("home record NOT written: ") + e.what();
+  }
+  journal_.post(t, journal::Note{journal::Text::format("{}", r.home_record)});
+}
+
 RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminate) {
   terminate_ = terminate;
   if (options_.mode != RunMode::virtual_time && cell_.loop.realtime) {
@@ -343,6 +374,9 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
     realtime_warnings_ = report.warnings();
   }
   const auto wall_start = std::chrono::steady_clock::now();
+  const auto unix_start =
+      std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
+          .count();
   start_ = clock_.now();
   links_->start_trace_clock(start_);
   if (rehearsal_) rehearsal_->start(start_, links_->fault_links());
@@ -365,6 +399,7 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   RunResult r;
   if (rehearsal_) rehearsal_->post_run_end(link::to_seconds(clock_.now() - start_), journal_);
   report_devices(link::to_seconds(clock_.now() - start_), r);
+  save_home_record(link::to_seconds(clock_.now() - start_), unix_start, r);
   r.final_state = supervisor_->state();
   r.failure = std::string(supervisor_->failure().view());
   r.interrupted = interrupted_;

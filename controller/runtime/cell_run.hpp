@@ -27,6 +27,7 @@
 #include "monitor/monitor.hpp"
 #include "recipe/program.hpp"
 #include "recipe/recipe.hpp"
+#include "routines/home_record.hpp"
 #include "runtime/cell_devices.hpp"
 #include "runtime/cell_links.hpp"
 #include "runtime/emulated_cell.hpp"
@@ -53,6 +54,8 @@ struct RunOptions {
   // The emulated devices' set-up; read from the cell's file (cell.source) when emulators are needed
   // and none is given here.
   std::optional<EmulatorSetup> emulators;
+  // The folder of the home record (home.json); empty: the cell config's state_dir.
+  std::filesystem::path state_dir;
 };
 
 struct RunResult {
@@ -76,6 +79,7 @@ struct RunResult {
       if (s && s->safe == Safe::unknown) return true;
     return false;
   }
+  std::string home_record;   // "home record written: <file>" (or why not) when homing changed it
 };
 
 class CellRun {
@@ -119,6 +123,8 @@ class CellRun {
   [[nodiscard]] const CellLinks& links() const noexcept { return *links_; }
   [[nodiscard]] const loop::Loop& loop() const noexcept { return *loop_; }
   [[nodiscard]] std::vector<std::string> realtime_warnings() const { return realtime_warnings_; }
+  [[nodiscard]] const std::filesystem::path& home_record_file() const noexcept { return home_record_file_; }
+  [[nodiscard]] const routines::HomeRecord& home_record() const noexcept { return home_record_; }
 
  private:
   void cycle(link::TimePoint now, std::atomic<bool>& interrupt);
@@ -132,11 +138,15 @@ class CellRun {
   }
   void publish_status(double t);
   void run_emulator_thread();
+  void save_home_record(double t, std::int64_t unix_start, RunResult& r);
 
   const config::CellConfig& cell_;
   const recipe::Recipe& recipe_;
   recipe::Program program_;
   RunOptions options_;
+  std::filesystem::path home_record_file_;
+  routines::HomeRecord home_record_;  // what `require: homed` checks; `home` steps update it
+  std::string home_record_problem_;   // the file on disk did not parse
 
   link::MonotonicClock real_clock_;
   link::VirtualClock virtual_clock_;

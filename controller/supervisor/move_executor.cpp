@@ -10,12 +10,13 @@ MoveExecutor::MoveExecutor(const config::CellCore& cell, const recipe::Limits& l
     : cell_(cell), limits_(limits), settings_(settings), planner_(dt) {}
 
 double MoveExecutor::best_position(const cell::CellState& s, std::size_t i) const noexcept {
-  return s.axes[i].position_mm();
+  return reference_ == Reference::scu ? s.axes[i].scu_mm : s.axes[i].position_mm();
 }
 
-void MoveExecutor::start(const recipe::Move& move, const cell::CellState& s, double t,
-                         std::uint32_t& move_id) {
+void MoveExecutor::start(const recipe::Move& move, const cell::CellState& s, double t, std::uint32_t& move_id,
+                         Reference reference) {
   axes_ = {};
+  reference_ = reference;
   speed_ = move.speed_mm_s;
   reason_ = {};
   corrections_total_ = 0;

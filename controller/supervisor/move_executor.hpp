@@ -30,6 +30,10 @@ struct MoveSettings {
 
 enum class MoveStatus : std::uint8_t { running, done, failed };
 
+// What a move is judged by: the best measurement (the encoder where it measures the axis), or the SCU's
+// own position — for homing, before the encoder has been referenced.
+enum class Reference : std::uint8_t { best, scu };
+
 class MoveExecutor {
  public:
   MoveExecutor(const config::CellCore& cell, const recipe::Limits& limits, double dt,
@@ -37,7 +41,8 @@ class MoveExecutor {
 
   // Starts `move` from the state's current positions. `move_id` is the cell's move counter: every
   // command to an axis takes the next value, so CellDevices sees each new command exactly once.
-  void start(const recipe::Move& move, const cell::CellState& s, double t, std::uint32_t& move_id);
+  void start(const recipe::Move& move, const cell::CellState& s, double t, std::uint32_t& move_id,
+             Reference reference = Reference::best);
   // One cycle: updates the intents of the axes in the move. On failure, reason() says why.
   [[nodiscard]] MoveStatus step(const cell::CellState& s, double t, cell::Intents& out,
                                 std::uint32_t& move_id);
@@ -67,6 +72,7 @@ class MoveExecutor {
 
   const config::CellCore& cell_;
   const recipe::Limits& limits_;
+  Reference reference_ = Reference::best;
   MoveSettings settings_;
   planner::Planner<6> planner_;
   planner::Input<6> input_;

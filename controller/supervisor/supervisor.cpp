@@ -26,7 +26,15 @@ Supervisor::Supervisor(const config::CellCore& cell, const recipe::Recipe& recip
       program_(program),
       events_(events),
       settings_(settings),
-      executor_(cell, recipe.limits, dt, settings.move) {}
+      executor_(cell, recipe.limits, dt, settings.move),
+      homing_(cell, events, dt, settings.move),
+      record_(settings.home_record ? settings.home_record : &own_record_) {}
+
+double Supervisor::planned_mm(std::size_t axis) const noexcept {
+  const auto* ins = current();
+  return ins && std::holds_alternative<recipe::Home>(ins->action) ? homing_.planned_mm(axis)
+                                                                  : executor_.planned_mm(axis);
+}
 
 const recipe::Instruction* Supervisor::current() const noexcept {
   return pc_ < program_.instructions.size() ? &program_.instructions[pc_] : nullptr;
@@ -111,6 +119,7 @@ void Supervisor::start_instruction(const cell::CellState& s, double t) {
   last_execute_t_ = t;
   if (const auto* move = std::get_if<recipe::Move>(&ins.action)) executor_.start(*move, s, t, move_counter_);
   if (const auto* dwell = std::get_if<recipe::Dwell>(&ins.action)) dwell_left_s_ = dwell->seconds;
+  if (const auto* home = std::get_if<recipe::Home>(&ins.action)) homing_.start(home->axes, t, *record_);
   if (const auto* sp = std::get_if<recipe::Spindle>(&ins.action)) {
     intents_.spindle.run = sp->start;
     if (sp->start) {
@@ -154,6 +163,13 @@ Supervisor::StepStatus Supervisor::run_instruction(const cell::CellState& s, dou
     }
     return StepStatus::running;
   }
+  if (std::holds_alternative<recipe::Home>(ins.action)) {
+    const auto status = homing_.step(s, t, intents_, move_counter_, preset_counter_);
+    if (status == routines::HomingStatus::failed) failure_ = homing_.reason();
+    return status == routines::HomingStatus::done     ? StepStatus::done
+           : status == routines::HomingStatus::failed ? StepStatus::failed
+                                                      : StepStatus::running;
+  }
   if (std::holds_alternative<recipe::Dwell>(ins.action)) {
     dwell_left_s_ -= t - last_execute_t_;
     last_execute_t_ = t;
@@ -195,10 +211,10 @@ Supervisor::StepStatus Supervisor::run_instruction(const cell::CellState& s, dou
     return StepStatus::failed;
   }
   for (int axis : r.homed_axes) {
-    if (!s.axes[static_cast<std::size_t>(axis)].homed) {
-      failure_ = Text::format("axis {} is not homed: the SCU reports actuator {} not initialised",
-                              cell_.axes[static_cast<std::size_t>(axis)].name,
-                              cell_.axes[static_cast<std::size_t>(axis)].actuator);
+    // The home record, checked against the devices as they are now.
+    auto why = routines::check_homed(*record_, cell_, s, static_cast<std::size_t>(axis));
+    if (why.size > 0) {
+      failure_ = why;
       return StepStatus::failed;
     }
   }
@@ -219,7 +235,7 @@ void Supervisor::sample(const cell::CellState& s, double t) {
   journal::Sample smp;
   smp.axes = s.axis_count;
   for (std::size_t i = 0; i < s.axis_count; ++i) {
-    smp.planned_mm[i] = static_cast<float>(executor_.planned_mm(i));
+    smp.planned_mm[i] = static_cast<float>(planned_mm(i));
     smp.scu_mm[i] = static_cast<float>(s.axes[i].scu_mm);
     if (s.axes[i].measured) {
       smp.encoder_mm = static_cast<float>(s.axes[i].encoder_mm);

@@ -14,6 +14,8 @@
 #include "journal/event_sink.hpp"
 #include "recipe/program.hpp"
 #include "recipe/recipe.hpp"
+#include "routines/home_record.hpp"
+#include "routines/homing.hpp"
 #include "supervisor/move_executor.hpp"
 #include "supervisor/packml.hpp"
 
@@ -25,6 +27,9 @@ struct SupervisorSettings {
   double sample_s = 0.02;                  // journal sample period
   std::string_view mode = "virtual-time";  // for the run record: virtual-time, emulated, hardware
   MoveSettings move;
+  // What `require: homed` checks and `home` steps write (loaded from the state folder by the runtime);
+  // nullptr: an empty record of the supervisor's own (nothing homed before this run).
+  routines::HomeRecord* home_record = nullptr;
 };
 
 class Supervisor {
@@ -49,7 +54,9 @@ class Supervisor {
   [[nodiscard]] bool cell_up() const noexcept { return cell_up_; }
   [[nodiscard]] const journal::Text& failure() const noexcept { return failure_; }
   [[nodiscard]] const journal::Text& refusal() const noexcept { return refusal_; }
-  [[nodiscard]] double planned_mm(std::size_t axis) const noexcept { return executor_.planned_mm(axis); }
+  [[nodiscard]] double planned_mm(std::size_t axis) const noexcept;
+  [[nodiscard]] const routines::HomeRecord& home_record() const noexcept { return *record_; }
+  [[nodiscard]] const routines::Homing& homing() const noexcept { return homing_; }
   [[nodiscard]] int corrections() const noexcept { return corrections_; }
 
  private:
@@ -69,6 +76,10 @@ class Supervisor {
   journal::EventSink& events_;
   SupervisorSettings settings_;
   MoveExecutor executor_;
+  routines::Homing homing_;
+  routines::HomeRecord own_record_;
+  routines::HomeRecord* record_;
+  std::uint32_t preset_counter_ = 0;
 
   State state_ = State::idle;
   double state_since_ = 0.0;

@@ -40,12 +40,23 @@ Emulator::Emulator(link::Link& link, const EmulatorConfig& config) : link_(link)
   for (auto& obj : cyclic_objects_) obj.fill(kUnusedDataId);
   remote_speed_.fill(config_.default_speed_percent);
   owner_.fill(-1);
+  initialised_ = config_.initialised;
   // Remote position default: Memory 1 of user 1.
   for (std::size_t a = 0; a < remote_position_.size(); ++a) {
     const auto& act = config_.actuators[a];
     remote_position_[a] = static_cast<std::int32_t>(
         std::lround(kUserPositionFractions[0] * act.physics.stroke_mm * act.edges_per_mm));
   }
+}
+
+void Emulator::power_cycle() {
+  stop_all(false);
+  initialised_ = config_.initialised;
+  remote_open_ = rc_seen_ = lapsed_ = false;
+  running_ = {};
+  owner_.fill(-1);
+  emergency_stop_ = false;
+  remote_speed_.fill(config_.default_speed_percent);
 }
 
 plant::Actuator& Emulator::actuator(int a) {
@@ -97,6 +108,8 @@ void Emulator::step_plant(link::Duration dt) {
       const double before = actuators_[a].position_mm();
       actuators_[a].step(h);
       stroke_edges_[a] += std::abs(actuators_[a].position_mm() - before) * config_.actuators[a].edges_per_mm;
+      // Our reading of the silent manual: an actuator is initialised by a run into its retracted end.
+      if (actuators_[a].at_in_limit() && before > 0.0) initialised_[a] = true;
       if (!actuators_[a].active()) owner_[a] = -1;
     }
     dt -= h;
@@ -470,7 +483,7 @@ void Emulator::read_element(std::uint16_t id, wire::ByteWriter& out) const {
       out.le(error_codes_[static_cast<std::size_t>(low - 1)]);
       return;
     case 0x00E0:
-      out.u8(Status2{is_present, is_present, is_present}.to_byte());
+      out.u8(Status2{is_present && initialised_[a], is_present, is_present}.to_byte());
       return;
     case 0x00F0:
       out.le(is_present ? percent(std::abs(actuators_[a].velocity_mm_s()), phys.max_speed_mm_s)

@@ -8,7 +8,10 @@
 //
 // Reading of the manual where it is unclear (see the report in the commit): after a watchdog lapse
 // with Safety_ID 0 only RC/RA/RO are accepted until the next RO; with Safety_ID 1/2 the next RC
-// resumes remote mode. Bit 22 is cleared by RO; bits 14..21 by the next motion start.
+// resumes remote mode. Bit 22 is cleared by RO; bits 14..21 by the next motion start. The manual names
+// "initialization" (status 2 bit 0) but not how it is done: here an actuator is not initialised after
+// power-up (unless EmulatorConfig::initialised says so) and becomes initialised when a run brings it
+// into its retracted end (status 1 "in position"); a power cycle loses it.
 
 #include <array>
 #include <cstddef>
@@ -59,6 +62,10 @@ class Emulator {
   // every motion start while `on` — the bit is "reset with next motion" and set again at once, so the
   // actuator does not move. Throws std::out_of_range for an actuator the config does not have.
   void set_actuator_fault(int a, bool on);
+  // Power lost and back: motion stops, remote mode is closed, and every actuator is no longer
+  // initialised (status 2 bit 0) until it is driven into its retracted end again.
+  void power_cycle();
+  [[nodiscard]] bool initialised(int a) const noexcept { return present(a) && initialised_[index(a)]; }
   void inject_over_current();                     // bit 14, every actuator fast-stopped
   void inject_position_difference(int function);  // bit 21, the function's actuators fast-stopped
 
@@ -140,6 +147,7 @@ class Emulator {
   std::array<std::uint32_t, 5> error_codes_{};  // 0x00D1 (latest) … 0x00D5
   std::array<std::uint32_t, kActuatorCount> relay_in_{}, relay_out_{}, actuator_errors_{};
   std::array<double, kActuatorCount> stroke_edges_{};
+  std::array<bool, kActuatorCount> initialised_{};  // status 2 bit 0
   std::array<std::uint16_t, kActuatorCount> max_current_{};
   std::uint32_t over_current_count_ = 0;
 

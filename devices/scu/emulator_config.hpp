@@ -22,6 +22,8 @@ struct EmulatorConfig {
   std::array<EmulatedActuator, kActuatorCount> actuators{};  // actuators[a-1] is An
   FunctionTable functions{};
   std::uint16_t default_speed_percent = 100;  // remote speed 0x3011.. after reset
+  // Status 2 bit 0 at power-up, per actuator [a-1]: not initialised unless set (tests).
+  std::array<bool, kActuatorCount> initialised{};
   std::string firmware = "SCU V2B3 cellctl emulator";
   std::string configuration = "SCP11 cellctl emulator";
 };

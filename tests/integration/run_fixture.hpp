@@ -56,6 +56,7 @@ class RunFixture : public ::testing::Test {
     o.journal_dir = dir_ / "journal";
     o.supervisor = supervisor_settings_;
     o.faults = faults_;
+    o.state_dir = dir_ / "state";  // the home record: each test its own
     run_ = std::make_unique<runtime::CellRun>(cell_, recipe_, o);
     return *run_;
   }

@@ -5,8 +5,12 @@
 // made to lag a move command (set_motion_latency), as the real one does until its next RC reply.
 // Like the real devices: a category-0 stop halts an axis in the cycle after it was decided (the F20
 // is on the line in cycle k, the SCU acts on it after), a controlled hold keeps the spindle running,
-// and "initialised" is known only once the SCU's status 2 has been read (set_status2_after). The
-// failure branches can be produced on purpose: an axis not homed, a refused move, a refused start.
+// and "initialised" is known only once the SCU's status 2 has been read (set_status2_after). As the
+// SCU (and its emulator) does, an actuator is not initialised at power-up and becomes initialised when
+// a run brings it into its retracted end (set_homed says it already is); the end bits ("in"/"out
+// position") follow the plant, and the encoder takes a preset (Intents::encoder) a few cycles after it
+// is asked for. The failure branches can be produced on purpose: an axis not homed, a refused move,
+// a refused start.
 
 #include <algorithm>
 #include <vector>
@@ -32,7 +36,7 @@ class FakeCell {
                                                     .scale_error = scale_error});
     ids_.resize(actuators_.size(), 0);
     motion_reported_from_.resize(actuators_.size(), link::Duration{});
-    homed_.resize(actuators_.size(), true);
+    homed_.resize(actuators_.size(), false);
     refuses_moves_.resize(actuators_.size(), false);
     move_refused_.resize(actuators_.size(), false);
     fast_stop_due_.resize(actuators_.size(), false);
@@ -79,16 +83,28 @@ class FakeCell {
     else
       spindle_.stop();
     spindle_set_ = in.spindle.run ? in.spindle.frequency_hz : 0.0;
+    if (in.encoder.preset_id != preset_id_) {
+      preset_id_ = in.encoder.preset_id;
+      preset_mm_ = in.encoder.preset_mm;
+      preset_due_ = elapsed_ + std::chrono::milliseconds(10);  // the handshake takes a few exchanges
+    }
   }
 
   void advance(link::Duration dt) {
     elapsed_ += dt;
     for (std::size_t i = 0; i < actuators_.size(); ++i) {
+      const double before = actuators_[i].position_mm();
       actuators_[i].step(dt);
+      if (actuators_[i].at_in_limit() && before > 0.0) homed_[i] = true;  // run into the retracted end
       if (fast_stop_due_[i]) actuators_[i].stop(false);
       fast_stop_due_[i] = false;
     }
     spindle_.step(dt);
+    if (preset_id_ != 0 && preset_done_id_ != preset_id_ && elapsed_ >= preset_due_) {
+      for (std::size_t i = 0; i < actuators_.size(); ++i)
+        if (cell_.axes[i].encoder) encoder_offset_mm_ = preset_mm_ - actuators_[i].true_position_mm();
+      preset_done_id_ = preset_id_;
+    }
   }
 
   [[nodiscard]] cell::CellState state(link::TimePoint now) const {
@@ -103,15 +119,19 @@ class FakeCell {
       // The move stays open until the SCU has reported it and the actuator has come to its end.
       a.commanded = ids_[i] != 0 && (elapsed_ < motion_reported_from_[i] || actuators_[i].active());
       a.homed = homed_[i] && elapsed_ >= status2_after_;  // unknown reads as not initialised
+      a.at_retracted_end = actuators_[i].at_in_limit();
+      a.at_extended_end = actuators_[i].at_out_limit();
       a.move_refused = move_refused_[i];
       a.measured = cell_.axes[i].encoder;
       if (a.measured) {
-        a.encoder_mm = actuators_[i].true_position_mm();
+        a.encoder_mm = actuators_[i].true_position_mm() + encoder_offset_mm_;
         a.encoder_mm_s = actuators_[i].velocity_mm_s() / (1.0 + actuators_[i].params().scale_error);
         s.encoder.mm = a.encoder_mm;
       }
     }
     s.encoder.data_exchange = s.encoder.ready = true;
+    s.encoder.preset_id = preset_id_;
+    s.encoder.preset_done = preset_id_ != 0 && preset_done_id_ == preset_id_;
     s.spindle.active = true;
     s.spindle.actual_hz = spindle_.frequency_hz();
     s.spindle.set_hz = spindle_set_;
@@ -141,6 +161,10 @@ class FakeCell {
   link::Duration status2_after_ = std::chrono::milliseconds(30);  // about the real session's first RG
   std::vector<bool> homed_, refuses_moves_, move_refused_, fast_stop_due_;
   std::uint8_t spindle_refusal_ = 0;
+  std::uint32_t preset_id_ = 0, preset_done_id_ = 0;
+  double preset_mm_ = 0.0;
+  link::Duration preset_due_{};
+  double encoder_offset_mm_ = 0.0;  // the encoder's preset offset against the axis's true position
 };
 
 }  // namespace cellctl::testing

@@ -10,6 +10,7 @@
 
 #include "fake_cell.hpp"
 #include "recipe/recipe_loader.hpp"
+#include "routines/home_record.hpp"
 
 namespace cellctl::supervisor {
 namespace {
@@ -33,9 +34,11 @@ class Recorder final : public journal::EventSink {
 const char* kCell = R"(cell: t
 axes:
   - {name: x, actuator: 1, function: 1, edges_per_mm: 10, min_mm: 0, max_mm: 190, max_speed_mm_s: 20,
-     min_speed_mm_s: 0.8, max_accel_mm_s2: 40, max_jerk_mm_s3: 400, encoder: true}
+     min_speed_mm_s: 0.8, max_accel_mm_s2: 40, max_jerk_mm_s3: 400, encoder: true,
+     homing: {strategy: end_position, speed_mm_s: 10, preset_mm: 0, home_mm: 5}}
   - {name: z, actuator: 2, function: 2, edges_per_mm: 10, min_mm: 0, max_mm: 140, max_speed_mm_s: 15,
-     min_speed_mm_s: 0.8, max_accel_mm_s2: 30, max_jerk_mm_s3: 300}
+     min_speed_mm_s: 0.8, max_accel_mm_s2: 30, max_jerk_mm_s3: 300,
+     homing: {strategy: scu_initialised, sequence: 1, speed_mm_s: 10, home_mm: 5}}
 encoder: {mm_per_revolution: 4, time_base: steps_per_10ms}
 limits: {spindle_min_hz: 100, spindle_max_hz: 800}
 )";
@@ -90,7 +93,8 @@ class SupervisorTest : public ::testing::Test {
 };
 
 TEST_F(SupervisorTest, RunsARecipeToComplete) {
-  load(R"(  - require: {encoder_ready: true, spindle_at_rest: true, homed: [x, z]}
+  load(R"(  - home: [x, z]
+  - require: {encoder_ready: true, spindle_at_rest: true, homed: [x, z]}
   - move: {to: {x: 30, z: 20}, speed_mm_s: 12}
   - spindle: {start_hz: 400}
   - repeat: {times: 2, steps: [{move: {to: {z: 60}, speed_mm_s: 6}}, {dwell: 0.5}, {move: {to: {z: 20}, speed_mm_s: 12}}]}
@@ -278,26 +282,86 @@ TEST_F(SupervisorTest, AFailedRequireStopsBeforeAnyMotion) {
 
 // The failure branches: each stops the run with a reason that says what to do, before or without motion.
 
-TEST_F(SupervisorTest, ARequiredAxisNotHomedStopsBeforeAnyMotion) {
+TEST_F(SupervisorTest, ARequireHomedWithoutAHomeRecordStopsBeforeAnyMotion) {
   load(R"(  - require: {homed: [x, z]}
   - move: {to: {x: 150}, speed_mm_s: 15}
 )");
-  fake_->set_homed(1, false);
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run_to(State::stopped, 5.0)) << to_string(sup_->state());
+  EXPECT_EQ(std::string(sup_->failure().view()), "axis x has no home record: home it first (cellctl home x)");
+  EXPECT_DOUBLE_EQ(now().axes[0].encoder_mm, 0.0);
+}
+
+// A home record made by hand: x and z homed where they stand (0 mm), with this config.
+routines::HomeRecord record_at_zero() {
+  routines::HomeRecord r;
+  r.axes[0] = {.homed = true, .strategy = config::HomingStrategy::end_position, .measured = true};
+  r.axes[1] = {.homed = true, .strategy = config::HomingStrategy::scu_initialised};
+  return r;
+}
+
+// Like the SCU: at power-up its actuators are not initialised, so a home record from before a power
+// loss does not hold.
+TEST_F(SupervisorTest, AnScuNotInitialisedSincePowerUpBreaksTheHomeRecord) {
+  auto record = record_at_zero();
+  SupervisorSettings settings;
+  settings.home_record = &record;
+  load(R"(  - require: {homed: [x, z]}
+  - move: {to: {x: 150}, speed_mm_s: 15}
+)",
+       0.0, 0.5, settings);
   ASSERT_TRUE(sup_->command(Command::start, "test", t()));
   ASSERT_TRUE(run_to(State::stopped, 5.0)) << to_string(sup_->state());
   EXPECT_EQ(std::string(sup_->failure().view()),
-            "axis z is not homed: the SCU reports actuator 2 not initialised");
+            "axis x: the SCU reports actuator 1 not initialised (power loss or reset since homing): home it "
+            "again");
   EXPECT_DOUBLE_EQ(now().axes[0].encoder_mm, 0.0);
 }
 
 TEST_F(SupervisorTest, ARequireWaitsForTheScuStatusBeforeJudgingHomed) {
+  auto record = record_at_zero();
+  SupervisorSettings settings;
+  settings.home_record = &record;
   load(R"(  - require: {homed: [x, z]}
   - move: {to: {x: 10}, speed_mm_s: 15}
-)");
+)",
+       0.0, 0.5, settings);
+  fake_->set_homed(0, true);
+  fake_->set_homed(1, true);
   fake_->set_status2_after(500ms);
   ASSERT_TRUE(sup_->command(Command::start, "test", t()));
   ASSERT_TRUE(run_to(State::complete, 30.0)) << sup_->failure().view();
   EXPECT_NEAR(now().axes[0].encoder_mm, 10.0, 0.1);
+}
+
+// Homing on the fake cell: x (sequence 0) to its retracted end, encoder preset, to 5 mm; then z
+// (sequence 1), which the SCU initialises in its retracted end; the record holds both.
+TEST_F(SupervisorTest, HomingRunsTheSequencesInOrderAndWritesTheRecord) {
+  load(R"(  - move: {to: {x: 40, z: 30}, speed_mm_s: 12}
+  - home: [z, x]
+  - require: {homed: [x, z]}
+)");
+  fake_->set_homed(0, true);
+  fake_->set_homed(1, true);
+  // (Not the recipe's business: the recipe limits let it move x and z, and homing needs none.)
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  double x_homed_at = -1.0, z_left_at = -1.0;
+  ASSERT_TRUE(run(120.0, [&] {
+    const auto s = now();
+    if (x_homed_at < 0 && sup_->homing().phase(0) == routines::HomingPhase::homed) x_homed_at = t();
+    if (z_left_at < 0 && sup_->current() && std::holds_alternative<recipe::Home>(sup_->current()->action) &&
+        s.axes[1].scu_mm < 29.0)
+      z_left_at = t();
+    return sup_->state() == State::complete;
+  })) << sup_->failure().view();
+  EXPECT_GT(z_left_at, x_homed_at) << "z (sequence 1) moves only once x (sequence 0) is homed";
+  const auto s = now();
+  EXPECT_NEAR(s.axes[0].encoder_mm, 5.0, 0.1);
+  EXPECT_NEAR(s.axes[1].scu_mm, 5.0, 0.1);
+  const auto& r = sup_->home_record();
+  EXPECT_TRUE(r.axes[0].homed && r.axes[1].homed);
+  EXPECT_TRUE(r.updated);
+  EXPECT_NEAR(r.axes[0].encoder_mm, 5.0, 0.1);
 }
 
 TEST_F(SupervisorTest, AnScuStatusNeverKnownFailsTheRequireAfterItsWait) {
