@@ -219,8 +219,6 @@ void add_run_options(CLI::App* sub, RunArgs& args) {
                   "File whose first line is the operator page's token");
 }
 
-}  // namespace
-
 void add_run_command(CLI::App& app, Commands& commands) {
   auto* sub = app.add_subcommand(
       "run", "Run a recipe on the cell (hardware, emulators in real time, or virtual time)");
