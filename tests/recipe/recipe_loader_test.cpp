@@ -19,8 +19,10 @@ using config::YamlNode;
 config::CellConfig test_cell() {
   return config::parse_cell_config(YamlNode::load_string(R"(cell: test-cell
 axes:
-  - {name: x, actuator: 1, function: 1, edges_per_mm: 10, min_mm: 0, max_mm: 190, max_speed_mm_s: 20, min_speed_mm_s: 0.8}
-  - {name: z, actuator: 2, function: 2, edges_per_mm: 10, min_mm: 0, max_mm: 140, max_speed_mm_s: 15}
+  - {name: x, actuator: 1, function: 1, edges_per_mm: 10, min_mm: 0, max_mm: 190, max_speed_mm_s: 20, min_speed_mm_s: 0.8,
+     homing: {strategy: scu_initialised}}
+  - {name: z, actuator: 2, function: 2, edges_per_mm: 10, min_mm: 0, max_mm: 140, max_speed_mm_s: 15,
+     homing: {strategy: scu_initialised}}
 limits: {spindle_min_hz: 100, spindle_max_hz: 800}
 )",
                                                          "cell.yaml"),
@@ -238,7 +240,7 @@ steps: []
                 "spindle_at_rest"},
         BadCase{"a step that is not a mapping", with_steps("  - dwell 5\n"),
                 "r.yaml:11:5: steps[0]: a step is a mapping with one of: move, spindle, dwell, wait, repeat, "
-                "require"}));
+                "require, home"}));
 
 TEST(RecipeLoader, ReportsEveryBadStepNotJustTheFirst) {
   const auto errors = errors_of(with_steps(R"(  - move: {to: {x: 185}, speed_mm_s: 10}

@@ -215,7 +215,8 @@ TEST(ScuEmulator, ReadsTheDataListWithPlausibleValues) {
   EXPECT_EQ(m.send(GetRequest{0x2001})->data.size(), 104u);
   EXPECT_EQ(m.send(GetRequest{0x2000})->data.size(), 624u) << "the largest group fits a reply";
   EXPECT_EQ(m.send(GetRequest{0x0002})->data.size(), 36u);
-  EXPECT_EQ(m.send(GetRequest{0x00E1})->data, std::vector<std::uint8_t>{0x07}) << "initialized, released";
+  EXPECT_EQ(m.send(GetRequest{0x00E1})->data, std::vector<std::uint8_t>{0x06})
+      << "released, not initialised: no run into the retracted end since power-up";
   EXPECT_EQ(m.send(GetRequest{0x3011})->data, RawMaster::le<std::uint16_t>(100)) << "default speed";
   EXPECT_EQ(m.send(GetRequest{0x3021})->data, RawMaster::le<std::int32_t>(4000))
       << "Memory 1 = 20 % of 200 mm";
