@@ -1,6 +1,7 @@
 #include "planner/axis_profile.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "planner/brake.hpp"
@@ -72,6 +73,12 @@ double golden_minimum(const G& g, double lo, double hi) noexcept {
   }
   return g1 <= g2 ? x1 : x2;
 }
+
+// Where g is sampled on [reach, cruise]: evenly, and ever closer to the reach time.
+constexpr std::array<double, 16> kSampleAt{0.0,        1.0 / 1024, 1.0 / 256, 1.0 / 128, 1.0 / 64, 1.0 / 32,
+                                           1.0 / 16,   1.0 / 8,    2.0 / 8,   3.0 / 8,   4.0 / 8,  5.0 / 8,
+                                           6.0 / 8,    7.0 / 8,    15.0 / 16, 1.0};
+constexpr int kSamples = static_cast<int>(kSampleAt.size()) - 1;
 
 bool target_within(const MotionState& target, const AxisLimits& l) noexcept {
   const double v = target.velocity;
@@ -146,50 +153,85 @@ AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double ta
   };
   const double t0 = reach_;
   const double tc = std::max(f.cruise_from(), t0);
+  // From tc on g is linear with this slope: its root there, stepped up an ulp at a time if
+  // rounding left it just short.
+  const auto linear_root = [&](double gc) {
+    if (gc >= 0.0) return tc;
+    double root = tc - gc / slope;
+    for (int i = 0; i < 8 && g(root) < 0.0; ++i) root = std::nextafter(root, 2.0 * root + 1.0);
+    return root;
+  };
   const double g0 = g(t0);
   if (set.gap) return set;
-  if (g0 < 0.0) {
-    set.from_reach = true;
-    const double gc = g(tc);
-    if (gc < 0.0) {
-      // Linear from tc on; step up an ulp at a time if rounding left the root just short.
-      double end = tc - gc / slope;
-      for (int i = 0; i < 8 && g(end) < 0.0; ++i) end = std::nextafter(end, 2.0 * end + 1.0);
-      set.end = end;
-    } else {
-      set.end = find_root(g, t0, tc, false);
+  const bool flat = tc - t0 <= 1e-15 * tc;
+  // A target at rest can be reached at any duration from the shortest on and then held, so the
+  // reachable positions only grow with the duration: no dip on either side.
+  const bool may_dip = !flat && !(target_.velocity == 0.0 && target_.acceleration == 0.0);
+  if (flat || (g0 >= 0.0 && !may_dip)) {
+    if (g0 < 0.0) {
+      set.from_reach = true;
+      set.end = linear_root(g(tc));
     }
     return set;
   }
-  if (tc - t0 <= 1e-15 * tc) return set;
-  // A target at rest can be reached at the reach time and then held, so for every longer duration
-  // the stop position stays within [nearest, farthest]: this side (not short at the reach time,
-  // so the target lies beyond the stop position from it) can never fall short later: no dip.
-  if (target_.velocity == 0.0 && target_.acceleration == 0.0) return set;
+  // g need not be monotonic nor convex on [t0, tc]: sample it. Short at the reach time, the set
+  // starts there and ends at the first root (bracketed by the first sample that is not short); the
+  // rest of the range may still hold a dip (falling short again before the cruise makes up). The
+  // first root can sit just after the reach time with a dip right behind it (the extremes part from
+  // one profile there): the samples crowd towards it.
+  std::array<double, kSampleAt.size()> at{};
+  std::array<double, kSampleAt.size()> gs{};
+  for (std::size_t k = 0; k < kSampleAt.size(); ++k) {
+    at[k] = k == kSamples ? tc : t0 + (tc - t0) * kSampleAt[k];
+    gs[k] = k == 0 ? g0 : g(at[k]);
+  }
+  if (set.gap) return set;
+  int first = 0;  // the first sample that is not short
+  double left = t0;
+  if (g0 < 0.0) {
+    set.from_reach = true;
+    while (first <= kSamples && gs[static_cast<std::size_t>(first)] < 0.0) ++first;
+    if (first > kSamples) {
+      set.end = linear_root(gs[kSamples]);
+      return set;
+    }
+    const auto i = static_cast<std::size_t>(first);
+    left = find_root(g, at[i - 1], at[i], false);
+    set.end = left;
+    if (!may_dip) return set;
+  }
   // An extreme profile that never moves backwards only gains from more time: no dip.
   {
     SevenDurations d{};
-    if (f.durations(t0, d) && f.lowest_velocity_of(d) >= 0.0) return set;
+    if (f.durations(left, d) && f.lowest_velocity_of(d) >= 0.0) return set;
   }
-  // Otherwise g need not be convex near the reach time: sample, then refine the lowest sample's
-  // neighbourhood (a golden-section search, unimodal there).
-  constexpr int kSamples = 8;
-  int lowest = 0;
-  double g_lowest = g0;
-  for (int k = 1; k <= kSamples; ++k) {
-    const double gk = g(t0 + (tc - t0) * k / kSamples);
-    if (gk < g_lowest) {
-      g_lowest = gk;
-      lowest = k;
-    }
+  // The lowest sample after `left`; if none is short, refine its neighbourhood (a golden-section
+  // search, unimodal there).
+  int lowest = first;
+  for (int k = first + 1; k <= kSamples; ++k) {
+    if (gs[static_cast<std::size_t>(k)] < gs[static_cast<std::size_t>(lowest)]) lowest = k;
   }
-  const double left = t0 + (tc - t0) * std::max(lowest - 1, 0) / kSamples;
-  const double right = t0 + (tc - t0) * std::min(lowest + 1, kSamples) / kSamples;
-  const double t_min = g_lowest < 0.0 ? t0 + (tc - t0) * lowest / kSamples : golden_minimum(g, left, right);
-  if (set.gap || g(t_min) >= 0.0) return set;
+  const auto li = static_cast<std::size_t>(lowest);
+  double t_min = at[li];
+  if (!(gs[li] < 0.0)) {
+    const double lo = lowest > first ? at[li - 1] : left;
+    const double hi = lowest < kSamples ? at[li + 1] : tc;
+    t_min = golden_minimum(g, std::max(lo, left), hi);
+    if (set.gap || !(g(t_min) < 0.0)) return set;
+  }
+  // The dip's ends: the last non-short point before t_min, the first after it.
+  double lo_end = left;
+  for (int k = first; k <= kSamples && at[static_cast<std::size_t>(k)] < t_min; ++k) {
+    if (gs[static_cast<std::size_t>(k)] >= 0.0) lo_end = std::max(lo_end, at[static_cast<std::size_t>(k)]);
+  }
+  int after = kSamples + 1;
+  for (int k = kSamples; k >= first && at[static_cast<std::size_t>(k)] > t_min; --k) {
+    if (gs[static_cast<std::size_t>(k)] >= 0.0) after = k;
+  }
   set.dip = true;
-  set.dip_lo = find_root(g, t0, t_min, true);
-  set.dip_hi = find_root(g, t_min, tc, false);
+  set.dip_lo = find_root(g, lo_end, t_min, true);
+  set.dip_hi = after <= kSamples ? find_root(g, t_min, at[static_cast<std::size_t>(after)], false)
+                                 : linear_root(gs[kSamples]);
   return set;
 }
 

@@ -105,6 +105,37 @@ TEST(Brake, SafeStartHasNone) {
   EXPECT_EQ(brake_profile({0.0, 0.9, 0.3}, kLimits).duration(), 0.0);
 }
 
+// Random problem 258555 of seed 3 (moving target): feasible just after the reach time, then
+// blocked (the nearest profile rises above the target) until about 1.76 s. The first root sits
+// between the evenly spread samples; once it was missed, the blocked interval was too.
+TEST(BlockedInterval, RightAfterAShortReachIsFound) {
+  const AxisLimits l = AxisLimits::symmetric(3.9181579062634055, 13.155955943291289, 24.959074536698438);
+  const MotionState start{-4.4583902688939361, -2.7355858029153124, 13.045888125505673};
+  const MotionState target{-3.6823864813194125, 3.2049237352366058, 0.0};
+  const oracle::Problem p = problem(start, target, l);
+  AxisProfile axis;
+  ASSERT_EQ(axis.plan(start, target, l), AxisStatus::ok);
+  EXPECT_NEAR(axis.min_duration(), 0.727411, 1e-6);
+  EXPECT_TRUE(oracle::confirms_min_duration(p, axis.min_duration(), 1e-9));
+  ASSERT_EQ(axis.blocked_count(), 1u);
+  const Interval& b = axis.blocked(0);
+  EXPECT_NEAR(b.lo, 0.881952, 1e-6);
+  EXPECT_NEAR(b.hi, 1.764668, 1e-6);
+  EXPECT_FALSE(oracle::feasible(p, b.lo * (1 + 1e-6)));
+  EXPECT_FALSE(oracle::feasible(p, b.hi * (1 - 1e-6)));
+  EXPECT_TRUE(oracle::feasible(p, b.lo * (1 - 1e-6)));
+  EXPECT_TRUE(oracle::feasible(p, b.hi * (1 + 1e-6)));
+  for (const double T : {axis.min_duration(), 0.8, b.lo, b.hi, 1.2 * b.hi}) {
+    JerkProfile profile;
+    ASSERT_TRUE(axis.build(T, profile)) << T;
+    EXPECT_NEAR(profile.duration(), T, 1e-12) << T;
+    EXPECT_NEAR(profile.end().position, target.position, 1e-8) << T;
+    EXPECT_NEAR(profile.end().velocity, target.velocity, 1e-8) << T;
+    EXPECT_NEAR(profile.end().acceleration, 0.0, 1e-8) << T;
+  }
+  plan_checked(start, target, l, "problem 258555 of seed 3");
+}
+
 TEST(LimitsAtExtremes, StatesExactlyOnTheLimits) {
   const double ramp = 2.0 * 2.0 / (2.0 * 10.0);  // velocity change of a full acceleration ramp
   const MotionState starts[] = {
