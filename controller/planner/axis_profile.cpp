@@ -109,12 +109,13 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   const double a = main_start_.acceleration;
   extremes_[0] = FarthestProfile(v, a, target.velocity, target.acceleration, limits);
   extremes_[1] = FarthestProfile(-v, -a, -target.velocity, -target.acceleration, limits.mirrored());
-  reach_ = reach_time(v, a, target.velocity, target.acceleration, limits);
   if (v == 0.0 && a == 0.0 && target.velocity == 0.0 && target.acceleration == 0.0) {
     // From rest to rest: closed form, and never a blocked interval.
+    reach_ = 0.0;
     min_duration_ = brake_.duration() + rest_to_rest_time(target_offset_, limits);
     return AxisStatus::ok;
   }
+  reach_ = reach_time(v, a, target.velocity, target.acceleration, limits);
 
   // A target acceleration may leave a gap of durations with no way to its velocity and
   // acceleration (see velocity_gap): the search then runs before it (a window) and after it.
@@ -212,10 +213,12 @@ AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double ta
   // A target at rest can be reached at any duration from the shortest on and then held, so the
   // reachable positions only grow with the duration: no dip on either side.
   const bool may_dip = !flat && !(target_.velocity == 0.0 && target_.acceleration == 0.0);
-  if (flat || (g0 >= 0.0 && !may_dip)) {
+  if (!may_dip) {
+    // Then the farthest position never falls with more time: one root at most.
     if (g0 < 0.0) {
       set.from_reach = true;
-      set.end = linear_root(g(tc));
+      const double gc = g(tc);
+      set.end = gc < 0.0 || flat ? linear_root(gc) : find_root(g, t0, tc, false);
     }
     return set;
   }
