@@ -76,9 +76,9 @@ double golden_minimum(const G& g, double lo, double hi, double below) noexcept {
 }
 
 // Where g is sampled on [reach, cruise]: evenly, and ever closer to the reach time.
-constexpr std::array<double, 16> kSampleAt{0.0,        1.0 / 1024, 1.0 / 256, 1.0 / 128, 1.0 / 64, 1.0 / 32,
-                                           1.0 / 16,   1.0 / 8,    2.0 / 8,   3.0 / 8,   4.0 / 8,  5.0 / 8,
-                                           6.0 / 8,    7.0 / 8,    15.0 / 16, 1.0};
+constexpr std::array<double, 16> kSampleAt{0.0,      1.0 / 1024, 1.0 / 256, 1.0 / 128, 1.0 / 64, 1.0 / 32,
+                                           1.0 / 16, 1.0 / 8,    2.0 / 8,   3.0 / 8,   4.0 / 8,  5.0 / 8,
+                                           6.0 / 8,  7.0 / 8,    15.0 / 16, 1.0};
 constexpr int kSamples = static_cast<int>(kSampleAt.size()) - 1;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 

@@ -11,8 +11,9 @@
 // duration is its end) and one dip after it (a blocked interval; the random tests against an
 // independent optimum found no second one). A target at rest has no dips (it can be reached at the
 // reach time and held); otherwise dips are searched by sampling, crowded towards the reach time,
-// and a golden-section refinement (the extremes are not convex near the reach time). Roots are found by regula falsi on T to the
-// last bit; the optimum itself is an extreme profile, any other feasible duration a blend of the two.
+// and a golden-section refinement (the extremes are not convex near the reach time). Roots are found by
+// regula falsi on T to the last bit; the optimum itself is an extreme profile, any other feasible duration a
+// blend of the two.
 //
 // A non-zero target acceleration can make its velocity and acceleration alone unreachable for a
 // span of durations after the reach time (velocity_gap, in closed form): the search then runs
