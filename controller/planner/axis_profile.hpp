@@ -19,7 +19,7 @@
 // span of durations after the reach time (velocity_gap, in closed form): the search then runs
 // before the gap (a window) and after it, and the gap lies in a blocked interval. The built
 // profile is checked to arrive; a miss would be refused as unsupported_target rather than
-// followed (none in 10^7 random problems).
+// followed (none seen in millions of random problems).
 
 #include <array>
 #include <cstdint>
