@@ -1,7 +1,9 @@
 #include "planner/axis_profile.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 #include "planner/brake.hpp"
 #include "planner/rest_to_rest.hpp"
@@ -46,16 +48,16 @@ double find_root(const G& g, double lo, double hi, bool lo_reaches) noexcept {
 
 // The minimum of g on [lo, hi] (unimodal there) by golden-section search: its argument.
 template <typename G>
-double golden_minimum(const G& g, double lo, double hi) noexcept {
+double golden_minimum(const G& g, double lo, double hi, double below) noexcept {
   constexpr double kInvPhi = 0.6180339887498949;
   double x1 = hi - kInvPhi * (hi - lo);
   double x2 = lo + kInvPhi * (hi - lo);
   double g1 = g(x1);
   double g2 = g(x2);
   // To the tenth digit of the range is enough to tell whether the minimum is below zero (the
-  // function is flat there); a negative value ends the search at once.
+  // function is flat there); a value below `below` ends the search at once.
   const double width = 1e-10 * (hi - lo);
-  for (int i = 0; i < 200 && hi - lo > width && g1 >= 0.0 && g2 >= 0.0; ++i) {
+  for (int i = 0; i < 200 && hi - lo > width && g1 >= below && g2 >= below; ++i) {
     if (g1 <= g2) {
       hi = x2;
       x2 = x1;
@@ -72,6 +74,13 @@ double golden_minimum(const G& g, double lo, double hi) noexcept {
   }
   return g1 <= g2 ? x1 : x2;
 }
+
+// Where g is sampled on [reach, cruise]: evenly, and ever closer to the reach time.
+constexpr std::array<double, 16> kSampleAt{0.0,      1.0 / 1024, 1.0 / 256, 1.0 / 128, 1.0 / 64, 1.0 / 32,
+                                           1.0 / 16, 1.0 / 8,    2.0 / 8,   3.0 / 8,   4.0 / 8,  5.0 / 8,
+                                           6.0 / 8,  7.0 / 8,    15.0 / 16, 1.0};
+constexpr int kSamples = static_cast<int>(kSampleAt.size()) - 1;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 bool target_within(const MotionState& target, const AxisLimits& l) noexcept {
   const double v = target.velocity;
@@ -100,16 +109,27 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   const double a = main_start_.acceleration;
   extremes_[0] = FarthestProfile(v, a, target.velocity, target.acceleration, limits);
   extremes_[1] = FarthestProfile(-v, -a, -target.velocity, -target.acceleration, limits.mirrored());
-  reach_ = reach_time(v, a, target.velocity, target.acceleration, limits);
   if (v == 0.0 && a == 0.0 && target.velocity == 0.0 && target.acceleration == 0.0) {
     // From rest to rest: closed form, and never a blocked interval.
+    reach_ = 0.0;
     min_duration_ = brake_.duration() + rest_to_rest_time(target_offset_, limits);
     return AxisStatus::ok;
   }
+  reach_ = reach_time(v, a, target.velocity, target.acceleration, limits);
 
-  const ShortSet up = short_set(extremes_[0], target_offset_, limits.max_velocity);
-  const ShortSet down = short_set(extremes_[1], -target_offset_, -limits.min_velocity);
-  double t = reach_;
+  // A target acceleration may leave a gap of durations with no way to its velocity and
+  // acceleration (see velocity_gap): the search then runs before it (a window) and after it.
+  double from = reach_;
+  Interval window{};
+  bool has_window = false;
+  const Gap gap = velocity_gap(v, a, target.velocity, target.acceleration, limits);
+  if (gap.hi > gap.lo && gap.hi > reach_) {
+    if (gap.lo > reach_) has_window = feasible_window(reach_, gap.lo, window);
+    from = gap.hi;
+  }
+  const ShortSet up = short_set(extremes_[0], target_offset_, limits.max_velocity, from);
+  const ShortSet down = short_set(extremes_[1], -target_offset_, -limits.min_velocity, from);
+  double t = from;
   for (const ShortSet* s2 : {&up, &down}) {
     if (s2->gap) return AxisStatus::unsupported_target;
     if (s2->from_reach) t = std::max(t, s2->end);
@@ -122,10 +142,15 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   }
   const double brake = brake_.duration();
   min_duration_ = brake + t;
+  if (has_window) {
+    min_duration_ = brake + window.lo;
+    blocked_[blocked_count_++] = {brake + window.hi, brake + t};
+  }
   for (const ShortSet* s2 : {&up, &down}) {
     if (s2->dip && s2->dip_lo >= t) blocked_[blocked_count_++] = {brake + s2->dip_lo, brake + s2->dip_hi};
   }
-  if (blocked_count_ == 2 && blocked_[1].lo < blocked_[0].lo) std::swap(blocked_[0], blocked_[1]);
+  std::sort(blocked_.begin(), blocked_.begin() + static_cast<std::ptrdiff_t>(blocked_count_),
+            [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
   if (!std::isfinite(min_duration_)) return AxisStatus::unsupported_target;
   if (target.acceleration != 0.0) {
     JerkProfile check;
@@ -134,8 +159,37 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   return AxisStatus::ok;
 }
 
-AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double target,
-                                             double slope) const noexcept {
+bool AxisProfile::feasible_window(double lo, double hi, Interval& window) const noexcept {
+  // Both extremes are one profile at both ends (only one way to the target's velocity and
+  // acceleration there), so the window, if any, lies inside: samples crowd towards both ends.
+  const auto h = [&](double T) {
+    const double up = extremes_[0].position(T) - target_offset_;
+    const double down = extremes_[1].position(T) + target_offset_;
+    return std::isnan(up) || std::isnan(down) ? -kInfinity : std::min(up, down);
+  };
+  std::array<double, 2 * kSampleAt.size() - 1> at{};
+  for (std::size_t k = 0; k < kSampleAt.size(); ++k) {
+    at[k] = lo + (hi - lo) * kSampleAt[k] / 2.0;
+    at[at.size() - 1 - k] = hi - (hi - lo) * kSampleAt[k] / 2.0;
+  }
+  std::array<double, at.size()> hs{};
+  std::size_t first = at.size();
+  std::size_t last = 0;
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    hs[k] = h(at[k]);
+    if (hs[k] >= 0.0) {
+      first = std::min(first, k);
+      last = k;
+    }
+  }
+  if (first == at.size()) return false;
+  window.lo = first == 0 ? at[0] : find_root(h, at[first - 1], at[first], false);
+  window.hi = last + 1 == at.size() ? at[last] : find_root(h, at[last], at[last + 1], true);
+  return true;
+}
+
+AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double target, double slope,
+                                             double t0) const noexcept {
   ShortSet set;
   // A duration with no extreme profile (possible only with a target acceleration) makes the
   // search unreliable: the plan is then refused rather than trusted.
@@ -144,52 +198,91 @@ AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double ta
     if (std::isnan(p)) set.gap = true;
     return p - target;
   };
-  const double t0 = reach_;
   const double tc = std::max(f.cruise_from(), t0);
+  // From tc on g is linear with this slope: its root there, stepped up an ulp at a time if
+  // rounding left it just short.
+  const auto linear_root = [&](double gc) {
+    if (gc >= 0.0) return tc;
+    double root = tc - gc / slope;
+    for (int i = 0; i < 8 && g(root) < 0.0; ++i) root = std::nextafter(root, 2.0 * root + 1.0);
+    return root;
+  };
   const double g0 = g(t0);
   if (set.gap) return set;
-  if (g0 < 0.0) {
-    set.from_reach = true;
-    const double gc = g(tc);
-    if (gc < 0.0) {
-      // Linear from tc on; step up an ulp at a time if rounding left the root just short.
-      double end = tc - gc / slope;
-      for (int i = 0; i < 8 && g(end) < 0.0; ++i) end = std::nextafter(end, 2.0 * end + 1.0);
-      set.end = end;
-    } else {
-      set.end = find_root(g, t0, tc, false);
+  const bool flat = tc - t0 <= 1e-15 * tc;
+  // A target at rest can be reached at any duration from the shortest on and then held, so the
+  // reachable positions only grow with the duration: no dip on either side.
+  const bool may_dip = !flat && !(target_.velocity == 0.0 && target_.acceleration == 0.0);
+  if (!may_dip) {
+    // Then the farthest position never falls with more time: one root at most.
+    if (g0 < 0.0) {
+      set.from_reach = true;
+      const double gc = g(tc);
+      set.end = gc < 0.0 || flat ? linear_root(gc) : find_root(g, t0, tc, false);
     }
     return set;
   }
-  if (tc - t0 <= 1e-15 * tc) return set;
-  // A target at rest can be reached at the reach time and then held, so for every longer duration
-  // the stop position stays within [nearest, farthest]: this side (not short at the reach time,
-  // so the target lies beyond the stop position from it) can never fall short later: no dip.
-  if (target_.velocity == 0.0 && target_.acceleration == 0.0) return set;
+  // g need not be monotonic nor convex on [t0, tc]: sample it. Short at the reach time, the set
+  // starts there and ends at the first root (bracketed by the first sample that is not short); the
+  // rest of the range may still hold a dip (falling short again before the cruise makes up). The
+  // first root can sit just after the reach time with a dip right behind it (the extremes part from
+  // one profile there): the samples crowd towards it.
+  std::array<double, kSampleAt.size()> at{};
+  std::array<double, kSampleAt.size()> gs{};
+  for (std::size_t k = 0; k < kSampleAt.size(); ++k) {
+    at[k] = k == kSamples ? tc : t0 + (tc - t0) * kSampleAt[k];
+    gs[k] = k == 0 ? g0 : g(at[k]);
+  }
+  if (set.gap) return set;
+  int first = 0;  // the first sample that is not short
+  double left = t0;
+  if (g0 < 0.0) {
+    set.from_reach = true;
+    while (first <= kSamples && gs[static_cast<std::size_t>(first)] < 0.0) ++first;
+    if (first > kSamples) {
+      set.end = linear_root(gs[kSamples]);
+      return set;
+    }
+    const auto i = static_cast<std::size_t>(first);
+    left = find_root(g, at[i - 1], at[i], false);
+    set.end = left;
+    if (!may_dip) return set;
+  }
   // An extreme profile that never moves backwards only gains from more time: no dip.
   {
     SevenDurations d{};
-    if (f.durations(t0, d) && f.lowest_velocity_of(d) >= 0.0) return set;
+    if (f.durations(left, d) && f.lowest_velocity_of(d) >= 0.0) return set;
   }
-  // Otherwise g need not be convex near the reach time: sample, then refine the lowest sample's
-  // neighbourhood (a golden-section search, unimodal there).
-  constexpr int kSamples = 8;
-  int lowest = 0;
-  double g_lowest = g0;
-  for (int k = 1; k <= kSamples; ++k) {
-    const double gk = g(t0 + (tc - t0) * k / kSamples);
-    if (gk < g_lowest) {
-      g_lowest = gk;
-      lowest = k;
-    }
+  // The lowest sample after `left`; if none is short, refine its neighbourhood (a golden-section
+  // search, unimodal there).
+  int lowest = first;
+  for (int k = first + 1; k <= kSamples; ++k) {
+    if (gs[static_cast<std::size_t>(k)] < gs[static_cast<std::size_t>(lowest)]) lowest = k;
   }
-  const double left = t0 + (tc - t0) * std::max(lowest - 1, 0) / kSamples;
-  const double right = t0 + (tc - t0) * std::min(lowest + 1, kSamples) / kSamples;
-  const double t_min = g_lowest < 0.0 ? t0 + (tc - t0) * lowest / kSamples : golden_minimum(g, left, right);
-  if (set.gap || g(t_min) >= 0.0) return set;
+  // A dip no deeper than rounding is none: a profile inside it would miss the target by less than
+  // the arrival tolerance, and its ends would be noise.
+  const double shallow = -1e-12 * (1.0 + std::abs(target));
+  const auto li = static_cast<std::size_t>(lowest);
+  double t_min = at[li];
+  if (!(gs[li] < shallow)) {
+    const double lo = lowest > first ? at[li - 1] : left;
+    const double hi = lowest < kSamples ? at[li + 1] : tc;
+    t_min = golden_minimum(g, std::max(lo, left), hi, shallow);
+    if (set.gap || !(g(t_min) < shallow)) return set;
+  }
+  // The dip's ends: the last non-short point before t_min, the first after it.
+  double lo_end = left;
+  for (int k = first; k <= kSamples && at[static_cast<std::size_t>(k)] < t_min; ++k) {
+    if (gs[static_cast<std::size_t>(k)] >= 0.0) lo_end = std::max(lo_end, at[static_cast<std::size_t>(k)]);
+  }
+  int after = kSamples + 1;
+  for (int k = kSamples; k >= first && at[static_cast<std::size_t>(k)] > t_min; --k) {
+    if (gs[static_cast<std::size_t>(k)] >= 0.0) after = k;
+  }
   set.dip = true;
-  set.dip_lo = find_root(g, t0, t_min, true);
-  set.dip_hi = find_root(g, t_min, tc, false);
+  set.dip_lo = find_root(g, lo_end, t_min, true);
+  set.dip_hi = after <= kSamples ? find_root(g, t_min, at[static_cast<std::size_t>(after)], false)
+                                 : linear_root(gs[kSamples]);
   return set;
 }
 

@@ -7,17 +7,19 @@
 // The method (see farthest_profile.hpp): after the brake pre-profile (if the start is beyond the
 // limits), a duration T is feasible when nearest(T) <= target <= farthest(T). Both functions are
 // defined from the reach time on and linear once the extreme profile cruises. Each side's
-// infeasible set is taken as one interval, either starting at the reach time (the shortest
-// duration is its end) or a blocked interval (a dip in between; the 10^5-problem tests against an
+// infeasible set is taken as at most an interval starting at the reach time (the shortest
+// duration is its end) and one dip after it (a blocked interval; the random tests against an
 // independent optimum found no second one). A target at rest has no dips (it can be reached at the
-// reach time and held); otherwise dips are searched by sampling and a golden-section refinement
-// (the extremes are not convex near the reach time). Roots are found by regula falsi on T to the
-// last bit; the optimum itself is an extreme profile, any other feasible duration a blend of the two.
+// reach time and held); otherwise dips are searched by sampling, crowded towards the reach time,
+// and a golden-section refinement (the extremes are not convex near the reach time). Roots are found by
+// regula falsi on T to the last bit; the optimum itself is an extreme profile, any other feasible duration a
+// blend of the two.
 //
-// Known limit: with a non-zero target acceleration the end velocity and acceleration alone can be
-// unreachable for some durations above the reach time (abnormal extremals, not covered by the
-// seven-segment family). Such plans are detected (the built profile misses the target) and refused
-// as unsupported_target, never followed; targets with zero acceleration are always covered.
+// A non-zero target acceleration can make its velocity and acceleration alone unreachable for a
+// span of durations after the reach time (velocity_gap, in closed form): the search then runs
+// before the gap (a window) and after it, and the gap lies in a blocked interval. The built
+// profile is checked to arrive; a miss would be refused as unsupported_target rather than
+// followed (none seen in millions of random problems).
 
 #include <array>
 #include <cstdint>
@@ -39,12 +41,12 @@ enum class AxisStatus : std::uint8_t {
   ok,
   target_outside_limits,  // target velocity/acceleration beyond the limits or bound to cross them
   limits_too_narrow,      // no state in which the velocity limits can be kept (brake cannot end)
-  unsupported_target,     // a non-zero target acceleration this method has no profile for (see below)
+  unsupported_target,     // the built profile misses the target: a safety net (see above)
 };
 
 class AxisProfile {
  public:
-  static constexpr std::size_t kMaxBlocked = 2;
+  static constexpr std::size_t kMaxBlocked = 3;
 
   // Plans; on a status other than ok nothing else is meaningful.
   AxisStatus plan(const MotionState& start, const MotionState& target, const AxisLimits& limits) noexcept;
@@ -71,7 +73,12 @@ class AxisProfile {
     bool gap = false;  // some duration searched had no extreme profile
   };
   [[nodiscard]] bool arrives(const JerkProfile& p) const noexcept;
-  [[nodiscard]] ShortSet short_set(const FarthestProfile& f, double target, double slope) const noexcept;
+  // The short set of one side, searched from t0 (the reach time, or the end of a velocity gap).
+  [[nodiscard]] ShortSet short_set(const FarthestProfile& f, double target, double slope,
+                                   double t0) const noexcept;
+  // The durations in [lo, hi] (between the reach time and a velocity gap) that reach the target,
+  // taken as one window; false when the samples find none.
+  [[nodiscard]] bool feasible_window(double lo, double hi, Interval& window) const noexcept;
 
   JerkProfile brake_;
   MotionState main_start_;

@@ -28,7 +28,30 @@ double rise_time(double a0, double af, double dv, double a_cap, double j) noexce
   return (2.0 * a_cap - a0 - af) / j + std::max(0.0, hold);
 }
 
+// The gap for a0, af >= 0 (see velocity_gap): dv the velocity change, amin < 0.
+Gap gap_above_zero(double a0, double af, double dv, double amin, double j) noexcept {
+  const double d = (a0 * a0 + af * af - 2.0 * j * dv) / 2.0;
+  if (!(d > 0.0)) return {};
+  const double m = std::sqrt(d);
+  Gap gap;
+  gap.lo = m < std::min(a0, af) ? (a0 + af - 2.0 * m) / j : 0.0;
+  if (-m >= amin) {
+    gap.hi = (a0 + af + 2.0 * m) / j;
+  } else {
+    const double at_floor = (a0 * a0 + af * af - 2.0 * amin * amin) / (2.0 * j);
+    gap.hi = (a0 + af - 2.0 * amin) / j + (dv - at_floor) / amin;
+  }
+  return gap;
+}
+
 }  // namespace
+
+Gap velocity_gap(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept {
+  const double j = limits.jerk;
+  if (a0 >= 0.0 && af >= 0.0) return gap_above_zero(a0, af, vf - v0, limits.min_acceleration, j);
+  if (a0 <= 0.0 && af <= 0.0) return gap_above_zero(-a0, -af, v0 - vf, -limits.max_acceleration, j);
+  return {};
+}
 
 double reach_time(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept {
   const double j = limits.jerk;

@@ -30,6 +30,22 @@ using SevenDurations = std::array<double, 7>;
 [[nodiscard]] double reach_time(double v0, double a0, double vf, double af,
                                 const AxisLimits& limits) noexcept;
 
+// Durations (lo, hi) in which (v0, a0) cannot become (vf, af), the position ignored. With a0 and af
+// of one sign, say both >= 0, the least velocity change in T is made by dipping the acceleration
+// to m = (a0 + af - J T) / 2 and back: (a0^2 + af^2 - 2 m^2) / 2J, which first grows with T (while
+// m > 0) and only then falls. A change vf - v0 below its peak is reachable for short T, then not
+// while the least change exceeds it, then again: the gap between the two roots m = ±sqrt(...),
+// the lower one held at min_acceleration. (The mirror for both <= 0.) lo >= hi: no gap. A gap that
+// would start at the shortest acceleration change |af - a0| / J comes back as lo = 0: nothing is
+// reachable before its end. The velocity bounds do not narrow the reachable changes around the
+// gap: the dip's velocities stay between v0 + a0^2 / 2J and vf - af^2 / 2J, both within the limits
+// for a start and a target inside them.
+struct Gap {
+  double lo = 0.0;
+  double hi = 0.0;
+};
+[[nodiscard]] Gap velocity_gap(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept;
+
 class FarthestProfile {
  public:
   FarthestProfile() = default;

@@ -18,8 +18,8 @@ std::string_view to_string(Result r) noexcept {
     case Result::limits_too_narrow:
       return "limits too narrow: the velocity range is smaller than one acceleration ramp changes it by";
     case Result::unsupported_target:
-      return "unsupported target: no profile to this non-zero target acceleration from this state at the "
-             "needed duration (plan to zero acceleration instead)";
+      return "unsupported target: the profile to this target state misses it by more than the planner "
+             "accepts (a planner defect: please report the input)";
     case Result::outside_travel:
       return "outside the travel: the target, or the motion to it, leaves the axis's position limits";
   }

@@ -14,7 +14,7 @@ enum class Result {
   target_outside_limits,  // a target velocity/acceleration is beyond the limits or bound to cross them
   limits_too_narrow,      // the velocity range is narrower than one acceleration ramp: no safe state
   outside_travel,         // the target, or the motion to it (overshoot included), leaves the travel
-  unsupported_target,     // a non-zero target acceleration without a profile of this method (rare)
+  unsupported_target,     // the profile built would miss the target (a safety net; not seen in tests)
 };
 
 [[nodiscard]] constexpr bool is_error(Result r) noexcept {

@@ -9,6 +9,26 @@ MoveExecutor::MoveExecutor(const config::CellCore& cell, const recipe::Limits& l
                            MoveSettings settings)
     : cell_(cell), limits_(limits), settings_(settings), planner_(dt) {}
 
+namespace {
+
+// The time of a trapezoid (or triangle) over `distance` at cruise speed v and ramp `accel`.
+double trapezoid_s(double distance, double v, double accel) noexcept {
+  if (distance <= 0.0) return 0.0;
+  return distance >= v * v / accel ? distance / v + v / accel : 2.0 * std::sqrt(distance / accel);
+}
+
+// The cruise speed whose trapezoid over `distance` at ramp `accel` takes `duration`: the smaller
+// root of v^2 / accel - duration v + distance = 0 (the whole duration when even the triangle is
+// longer: the fastest the ramp allows).
+double speed_for_s(double distance, double duration, double accel) noexcept {
+  if (distance <= 0.0 || duration <= 0.0) return 0.0;
+  const double disc = duration * duration - 4.0 * distance / accel;
+  if (disc <= 0.0) return accel * duration / 2.0;
+  return 2.0 * distance / (duration + std::sqrt(disc));
+}
+
+}  // namespace
+
 double MoveExecutor::best_position(const cell::CellState& s, std::size_t i) const noexcept {
   return reference_ == Reference::scu ? s.axes[i].scu_mm : s.axes[i].position_mm();
 }
@@ -32,15 +52,25 @@ void MoveExecutor::start(const recipe::Move& move, const cell::CellState& s, dou
     a.tolerance_mm = limits_.axes[i] ? limits_.axes[i]->tolerance_mm : 0.05;
     lead = std::max(lead, std::abs(a.target_mm - a.start_mm));
   }
+  // The SCU runs each actuator as a trapezoid at its own ramp (max_accel_mm_s2 is read as the SCU's
+  // soft ramp): the move takes as long as the slowest axis's trapezoid at the move speed.
+  double duration = 0.0;
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    const auto& a = axes_[i];
+    if (!a.in_move) continue;
+    const double v = std::min(speed_, cell_.axes[i].max_speed_mm_s);
+    duration = std::max(duration, trapezoid_s(std::abs(a.target_mm - a.start_mm), v, cell_.axes[i].max_accel_mm_s2));
+  }
   for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
     auto& a = axes_[i];
     planned_[i] = i < s.axis_count ? best_position(s, i) : 0.0;
     if (!a.in_move) continue;
     const auto& c = cell_.axes[i];
-    const double share = lead > 0.0 ? std::abs(a.target_mm - a.start_mm) / lead : 0.0;
-    // Coordinated: each axis gets the share of the speed that makes it arrive with the leading one;
-    // never below the speed at which the actuator moves at all.
-    a.nominal_speed = std::clamp(speed_ * share, std::min(c.min_speed_mm_s * 1.2, speed_), c.max_speed_mm_s);
+    // Coordinated: each axis gets the speed whose trapezoid takes that long, so that all arrive
+    // together (speeds in proportion to the distances would not: the ramps differ); never below the
+    // speed at which the actuator moves at all.
+    const double v = speed_for_s(std::abs(a.target_mm - a.start_mm), duration, c.max_accel_mm_s2);
+    a.nominal_speed = std::clamp(v, std::min(c.min_speed_mm_s * 1.2, speed_), c.max_speed_mm_s);
     speed_sent_[i] = a.nominal_speed;
   }
   restart_profile(s);

@@ -9,6 +9,7 @@
 
 #include "planner/axis_profile.hpp"
 #include "planner/brake.hpp"
+#include "planner/farthest_profile.hpp"
 #include "planner/optimum_oracle.hpp"
 #include "planner/random_problems.hpp"
 
@@ -103,6 +104,80 @@ TEST(Brake, FromBelowMinVelocityIsTheMirror) {
 
 TEST(Brake, SafeStartHasNone) {
   EXPECT_EQ(brake_profile({0.0, 0.9, 0.3}, kLimits).duration(), 0.0);
+}
+
+// Random problem 258555 of seed 3 (moving target): feasible just after the reach time, then
+// blocked (the nearest profile rises above the target) until about 1.76 s. The first root sits
+// between the evenly spread samples; once it was missed, the blocked interval was too.
+TEST(BlockedInterval, RightAfterAShortReachIsFound) {
+  const AxisLimits l = AxisLimits::symmetric(3.9181579062634055, 13.155955943291289, 24.959074536698438);
+  const MotionState start{-4.4583902688939361, -2.7355858029153124, 13.045888125505673};
+  const MotionState target{-3.6823864813194125, 3.2049237352366058, 0.0};
+  const oracle::Problem p = problem(start, target, l);
+  AxisProfile axis;
+  ASSERT_EQ(axis.plan(start, target, l), AxisStatus::ok);
+  EXPECT_NEAR(axis.min_duration(), 0.727411, 1e-6);
+  EXPECT_TRUE(oracle::confirms_min_duration(p, axis.min_duration(), 1e-9));
+  ASSERT_EQ(axis.blocked_count(), 1u);
+  const Interval& b = axis.blocked(0);
+  EXPECT_NEAR(b.lo, 0.881952, 1e-6);
+  EXPECT_NEAR(b.hi, 1.764668, 1e-6);
+  EXPECT_FALSE(oracle::feasible(p, b.lo * (1 + 1e-6)));
+  EXPECT_FALSE(oracle::feasible(p, b.hi * (1 - 1e-6)));
+  EXPECT_TRUE(oracle::feasible(p, b.lo * (1 - 1e-6)));
+  EXPECT_TRUE(oracle::feasible(p, b.hi * (1 + 1e-6)));
+  for (const double T : {axis.min_duration(), 0.8, b.lo, b.hi, 1.2 * b.hi}) {
+    JerkProfile profile;
+    ASSERT_TRUE(axis.build(T, profile)) << T;
+    EXPECT_NEAR(profile.duration(), T, 1e-12) << T;
+    EXPECT_NEAR(profile.end().position, target.position, 1e-8) << T;
+    EXPECT_NEAR(profile.end().velocity, target.velocity, 1e-8) << T;
+    EXPECT_NEAR(profile.end().acceleration, 0.0, 1e-8) << T;
+  }
+  plan_checked(start, target, l, "problem 258555 of seed 3");
+}
+
+// Accelerating at 1 towards a target accelerating at 1, 0.02 faster: held at 1 the acceleration
+// makes it in 0.02 s; from about 0.0211 s to 0.3789 s even the deepest dip of the acceleration
+// gains more than 0.02 (velocity_gap), so no profile exists; later one does again. A target
+// position just ahead is reached before the gap, one far ahead after it.
+TEST(VelocityGap, ATargetAccelerationIsReachedBeforeAndAfterItsGap) {
+  const AxisLimits l = AxisLimits::symmetric(1.0, 2.0, 10.0);
+  const MotionState start{0.0, 0.0, 1.0};
+  const Gap gap = velocity_gap(0.0, 1.0, 0.02, 1.0, l);
+  EXPECT_NEAR(gap.lo, (2.0 - 2.0 * std::sqrt(0.8)) / 10.0, 1e-12);
+  EXPECT_NEAR(gap.hi, (2.0 + 2.0 * std::sqrt(0.8)) / 10.0, 1e-12);
+  for (const double pf : {0.0002, 1.0}) {
+    const MotionState target{pf, 0.02, 1.0};
+    const oracle::Problem p = problem(start, target, l);
+    const std::string what = "pf " + std::to_string(pf);
+    EXPECT_FALSE(oracle::feasible(p, 0.5 * (gap.lo + gap.hi))) << what;
+    AxisProfile axis;
+    ASSERT_EQ(axis.plan(start, target, l), AxisStatus::ok) << what;
+    EXPECT_TRUE(oracle::confirms_min_duration(p, axis.min_duration(), 1e-9)) << what;
+    if (pf < 0.01) {
+      EXPECT_LT(axis.min_duration(), gap.lo) << what;
+      ASSERT_EQ(axis.blocked_count(), 1u) << what;
+      const Interval& b = axis.blocked(0);
+      EXPECT_LT(b.lo, gap.lo) << what;
+      EXPECT_GT(b.hi, gap.hi) << what;
+      EXPECT_FALSE(oracle::feasible(p, b.lo * (1 + 1e-6))) << what;
+      EXPECT_FALSE(oracle::feasible(p, b.hi * (1 - 1e-6))) << what;
+      EXPECT_TRUE(oracle::feasible(p, b.lo * (1 - 1e-9))) << what;
+      EXPECT_TRUE(oracle::feasible(p, b.hi * (1 + 1e-9))) << what;
+      for (const double T : {b.lo, b.hi, 2.0 * b.hi}) {
+        JerkProfile profile;
+        ASSERT_TRUE(axis.build(T, profile)) << what << " T " << T;
+        EXPECT_NEAR(profile.end().position, pf, 1e-9) << what << " T " << T;
+        EXPECT_NEAR(profile.end().velocity, 0.02, 1e-9) << what << " T " << T;
+        EXPECT_NEAR(profile.end().acceleration, 1.0, 1e-9) << what << " T " << T;
+      }
+    } else {
+      EXPECT_GT(axis.min_duration(), gap.hi) << what;
+      EXPECT_EQ(axis.blocked_count(), 0u) << what;
+    }
+    plan_checked(start, target, l, what);
+  }
 }
 
 TEST(LimitsAtExtremes, StatesExactlyOnTheLimits) {

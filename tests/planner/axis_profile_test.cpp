@@ -54,13 +54,13 @@ void expect_within(const JerkProfile& profile, const MotionState& target, const 
   }
 }
 
-// Returns false when the plan was refused as unsupported (allowed only with a target acceleration).
+// Returns false when the plan was refused as unsupported (counted: every random test expects none).
 bool check_problem(const oracle::Problem& p, std::mt19937_64& rng, const std::string& what) {
   AxisProfile axis;
   const AxisLimits l = limits_of(p);
   const MotionState target{p.pf, p.vf, p.af};
   const AxisStatus status = axis.plan({p.p0, p.v0, p.a0}, target, l);
-  if (status == AxisStatus::unsupported_target && p.af != 0.0) return false;
+  if (status == AxisStatus::unsupported_target) return false;
   EXPECT_EQ(status, AxisStatus::ok) << what;
   if (status != AxisStatus::ok) return true;
   const double T = axis.min_duration();
@@ -86,7 +86,7 @@ bool check_problem(const oracle::Problem& p, std::mt19937_64& rng, const std::st
   }
   EXPECT_TRUE(axis.feasible(longer)) << what;
   if (!axis.build(longer, profile)) {
-    EXPECT_NE(p.af, 0.0) << what << ": no profile for the feasible duration " << longer;
+    ADD_FAILURE() << what << ": no profile for the feasible duration " << longer;
     return true;
   }
   EXPECT_NEAR(profile.duration(), longer, 1e-9 * longer) << what;
@@ -126,7 +126,7 @@ long run_random(Start start, Target target, long fallback_count, std::uint64_t f
   return refused;
 }
 
-// 3 x 35 000 problems (CELLCTL_PLANNER_PROBLEMS sets the count per test, CELLCTL_PLANNER_SEED the seed).
+// 4 x 35 000 problems (CELLCTL_PLANNER_PROBLEMS sets the count per test, CELLCTL_PLANNER_SEED the seed).
 TEST(AxisProfileRandom, RestToRestMatchesTheIndependentOptimum) {
   EXPECT_EQ(run_random(Start::at_rest, Target::at_rest, 35000, 1), 0);
 }
@@ -136,11 +136,10 @@ TEST(AxisProfileRandom, MovingStartMatchesTheIndependentOptimum) {
 TEST(AxisProfileRandom, MovingTargetMatchesTheIndependentOptimum) {
   EXPECT_EQ(run_random(Start::moving, Target::moving, 35000, 3), 0);
 }
-// With a target acceleration some plans are refused (see axis_profile.hpp); every plan made is
-// optimal and exact, and the refusals stay rare.
-TEST(AxisProfileRandom, AcceleratingTargetIsOptimalOrRefused) {
-  const long count = testing::problem_count(5000);
-  EXPECT_LE(run_random(Start::moving, Target::accelerating, 5000, 4), count / 20);
+// With a target acceleration too: every plan optimal and exact, none refused (velocity gaps are
+// blocked intervals, see velocity_gap).
+TEST(AxisProfileRandom, AcceleratingTargetMatchesTheIndependentOptimum) {
+  EXPECT_EQ(run_random(Start::moving, Target::accelerating, 35000, 4), 0);
 }
 
 }  // namespace
