@@ -54,18 +54,6 @@ CLI::Validator listen_validator(std::optional<web::PageOptions>& out) {
       "ADDR:PORT");
 }
 
-// --fault's validator: the text becomes a FaultSpec here, or the reason is CLI11's error (exit 2).
-CLI::Validator fault_spec_validator(std::vector<runtime::FaultSpec>& out) {
-  return CLI::Validator(
-      [&out](std::string& text) -> std::string {
-        auto parsed = runtime::parse_fault_spec(text);
-        if (auto* e = std::get_if<runtime::FaultSpecError>(&parsed)) return "'" + text + "': " + e->reason;
-        out.push_back(std::get<runtime::FaultSpec>(std::move(parsed)));
-        return {};
-      },
-      "DEVICE:KIND@T[+D]");
-}
-
 // What Ctrl-C will do, as the cell's config has it.
 std::string ctrl_c_hint(config::StopCategory operator_stop) {
   switch (operator_stop) {
@@ -181,6 +169,18 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
 }
 
 }  // namespace
+
+// --fault's validator: the text becomes a FaultSpec here, or the reason is CLI11's error (exit 2).
+CLI::Validator fault_spec_validator(std::vector<runtime::FaultSpec>& out) {
+  return CLI::Validator(
+      [&out](std::string& text) -> std::string {
+        auto parsed = runtime::parse_fault_spec(text);
+        if (auto* e = std::get_if<runtime::FaultSpecError>(&parsed)) return "'" + text + "': " + e->reason;
+        out.push_back(std::get<runtime::FaultSpec>(std::move(parsed)));
+        return {};
+      },
+      "DEVICE:KIND@T[+D]");
+}
 
 void add_run_command(CLI::App& app, Commands& commands) {
   auto* sub = app.add_subcommand(
