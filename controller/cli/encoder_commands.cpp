@@ -137,8 +137,10 @@ class EncoderCommissioning {
       return kExitUsage;
     }
     if (action == Action::direction)
-      if (const auto why = encoder::manufacturer_functions_unavailable(session_.config().parameters); !why.empty()) {
-        spdlog::error("encoder direction: {}; set code_sequence in the config's encoder section instead", why);
+      if (const auto why = encoder::manufacturer_functions_unavailable(session_.config().parameters);
+          !why.empty()) {
+        spdlog::error("encoder direction: {}; set code_sequence in the config's encoder section instead",
+                      why);
         return kExitFailed;
       }
     c_.activate();
@@ -156,6 +158,10 @@ class EncoderCommissioning {
           return refuse("change direction");
         if (!finish_command()) return failed_to("acknowledge the direction change");
         print_status(session_);
+        fmt::print(
+            "note           positions now count the other way round: set zero_offset_mm (or preset) so that "
+            "the "
+            "axis reads its position before a run\n");
         // Set_Prm sends code_sequence at every start-up (4.1.1 octet 9 bit 0): recorded there, the change
         // lasts; the encoder is left in the configured (normal) mode at the next start-up.
         return record(global_.config, {{"code_sequence", options_.direction}});

@@ -69,15 +69,9 @@ std::string ctrl_c_hint(config::StopCategory operator_stop) {
 }
 
 int run_recipe(const GlobalOptions& global, const RunArgs& args) {
-  if (!args.faults.empty() && !args.emulate && !args.virtual_time) {
-    spdlog::error("--fault: faults are rehearsed on emulators only: add --emulate or --virtual-time");
-    return kExitUsage;
-  }
+  if (refuse_faults(args.faults, args.emulate || args.virtual_time)) return kExitUsage;
   const auto cell = config::load_cell_config(global.config);
-  if (auto problem = runtime::FaultRehearsal::problem(args.faults, cell)) {
-    spdlog::error("{}", *problem);
-    return kExitUsage;
-  }
+  if (refuse_faults(args.faults, cell)) return kExitUsage;
   recipe::Recipe recipe;
   try {
     recipe = recipe::load_recipe(args.recipe, cell);
@@ -169,6 +163,18 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
 }
 
 }  // namespace
+
+bool refuse_faults(const std::vector<runtime::FaultSpec>& faults, bool emulated) {
+  if (faults.empty() || emulated) return false;
+  spdlog::error("--fault: faults are rehearsed on emulators only: add --emulate or --virtual-time");
+  return true;
+}
+
+bool refuse_faults(const std::vector<runtime::FaultSpec>& faults, const config::CellConfig& cell) {
+  const auto problem = runtime::FaultRehearsal::problem(faults, cell);
+  if (problem) spdlog::error("{}", *problem);
+  return problem.has_value();
+}
 
 // --fault's validator: the text becomes a FaultSpec here, or the reason is CLI11's error (exit 2).
 CLI::Validator fault_spec_validator(std::vector<runtime::FaultSpec>& out) {

@@ -84,15 +84,9 @@ int write_result(const std::filesystem::path& config_file, const config::CellCon
 }
 
 int teach_in(const GlobalOptions& global, const TeachInArgs& args) {
-  if (!args.faults.empty() && !args.emulate && !args.virtual_time) {
-    spdlog::error("--fault: faults are rehearsed on emulators only: add --emulate or --virtual-time");
-    return kExitUsage;
-  }
+  if (refuse_faults(args.faults, args.emulate || args.virtual_time)) return kExitUsage;
   const auto cell = config::load_cell_config(global.config);
-  if (auto problem = runtime::FaultRehearsal::problem(args.faults, cell)) {
-    spdlog::error("{}", *problem);
-    return kExitUsage;
-  }
+  if (refuse_faults(args.faults, cell)) return kExitUsage;
   routines::TeachInRequest request;
   request.axis = -1;
   for (std::size_t i = 0; i < cell.axes.size(); ++i)
@@ -117,11 +111,14 @@ int teach_in(const GlobalOptions& global, const TeachInArgs& args) {
   options.mode = args.virtual_time ? runtime::RunMode::virtual_time
                  : args.emulate    ? runtime::RunMode::emulated
                                    : runtime::RunMode::hardware;
-  options.journal_dir = args.journal_dir.empty() ? default_dir(args.axis) : std::filesystem::path(args.journal_dir);
+  options.journal_dir =
+      args.journal_dir.empty() ? default_dir(args.axis) : std::filesystem::path(args.journal_dir);
   options.trace = global.trace;
   options.faults = args.faults;
-  options.record_header = {{"record", "teach-in"},        {"config", global.config},
-                           {"axis", args.axis},            {"distance_mm", args.distance_mm},
+  options.record_header = {{"record", "teach-in"},
+                           {"config", global.config},
+                           {"axis", args.axis},
+                           {"distance_mm", args.distance_mm},
                            {"mode", to_string(options.mode)}};
 
   runtime::TeachInRun run(cell, request, options);
@@ -158,8 +155,8 @@ int teach_in(const GlobalOptions& global, const TeachInArgs& args) {
   fmt::print(
       "Teach-In done: total resolution {} (units per maximum total measuring range), {:g} units per mm;\n"
       "  verified: moving back, the encoder measured {:.4f} mm, the {} {:.4f} mm\n",
-      o.result.total_resolution, o.units_per_mm, o.result.encoder_distance_mm, args.manual ? "distance given" : "SCU",
-      o.result.scu_back_mm);
+      o.result.total_resolution, o.units_per_mm, o.result.encoder_distance_mm,
+      args.manual ? "distance given" : "SCU", o.result.scu_back_mm);
   return write_result(global.config, cell, o);
 }
 
@@ -167,8 +164,9 @@ int teach_in(const GlobalOptions& global, const TeachInArgs& args) {
 
 void add_teach_in_command(CLI::App& app, Commands& commands) {
   auto* sub = app.add_subcommand(
-      "teach-in", "Teach the encoder its resolution over a distance of an axis (manual 4.4.2), verify it, and "
-                  "write it into the cell config");
+      "teach-in",
+      "Teach the encoder its resolution over a distance of an axis (manual 4.4.2), verify it, and "
+      "write it into the cell config");
   sub->footer(
       "Switches the encoder to the manual's prerequisites (commissioning mode, scaling on, units per total\n"
       "measuring range, offset 0), moves the axis with the SCU from the start over the distance without\n"
@@ -192,10 +190,12 @@ void add_teach_in_command(CLI::App& app, Commands& commands) {
                   "Verification: the encoder's distance back may differ from the SCU's by this much (mm)")
       ->capture_default_str()
       ->check(CLI::Range(1e-6, 10.0));
-  auto* emulate = sub->add_flag("--emulate", args->emulate, "Every device on its emulator, on pseudo-terminals");
+  auto* emulate =
+      sub->add_flag("--emulate", args->emulate, "Every device on its emulator, on pseudo-terminals");
   sub->add_flag("--virtual-time", args->virtual_time, "Every device on its emulator, on a virtual clock")
       ->excludes(emulate);
-  sub->add_option("--journal", args->journal_dir, "Directory for the record (default runs/teach-in-AXIS-<time>)");
+  sub->add_option("--journal", args->journal_dir,
+                  "Directory for the record (default runs/teach-in-AXIS-<time>)");
   sub->add_option("--fault", args->faults_text, "Rehearse a fault, as `cellctl run --fault` (repeatable)")
       ->check(fault_spec_validator(args->faults));
   commands.on(sub, [&commands, args] { return teach_in(commands.global, *args); });

@@ -100,7 +100,8 @@ SectionLines find_section(const std::vector<std::string>& lines, std::string_vie
 
 }  // namespace
 
-std::string edit_section(std::string_view text, std::string_view section, const std::vector<KeyChange>& changes) {
+std::string edit_section(std::string_view text, std::string_view section,
+                         const std::vector<KeyChange>& changes) {
   auto lines = split_lines(text);
   auto s = find_section(lines, section);
   std::size_t added = 0;
@@ -116,7 +117,8 @@ std::string edit_section(std::string_view text, std::string_view section, const 
       // A comment on a changed value would describe the old one: kept only when the value stays.
       if (value_of(lines[*at], prefix.size()) != *change.value) lines[*at] = prefix + " " + *change.value;
     } else {
-      lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(s.head + 1 + added), prefix + " " + *change.value);
+      lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(s.head + 1 + added),
+                   prefix + " " + *change.value);
       ++added;
       ++s.end;
     }
@@ -138,7 +140,8 @@ ConfigChange change_config_file(const std::filesystem::path& path, std::string_v
     const std::string before =
         at ? value_of(old_lines[*at], old_section.key_indent + c.key.size() + 1) : std::string("(none)");
     const std::string after = c.value.value_or("(removed)");
-    if (before != after) result.changed.push_back(fmt::format("{}.{}: {} → {}", section, c.key, before, after));
+    if (before != after)
+      result.changed.push_back(fmt::format("{}.{}: {} → {}", section, c.key, before, after));
   }
   // Same folder, so the rename is atomic; the loader judges the new text before it counts.
   auto temp = path;

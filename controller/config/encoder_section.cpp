@@ -134,8 +134,8 @@ EncoderSection parse_encoder_section(const YamlNode& section) {
   s.zero_offset_mm = section.has("zero_offset_mm") ? section.double_in("zero_offset_mm", -1e6, 1e6) : 0.0;
   // The encoder's stored preset offset (0 until a preset): checked at every start-up against the
   // encoder's diagnosis, so that a preset made since cannot shift the positions unnoticed.
-  s.expected_offset = section.int_in_or<std::int32_t>("preset_offset", std::numeric_limits<std::int32_t>::min(),
-                                                      std::numeric_limits<std::int32_t>::max(), 0);
+  s.expected_offset = section.int_in_or<std::int32_t>(
+      "preset_offset", std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max(), 0);
   return out;
 }
 

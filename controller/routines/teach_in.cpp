@@ -27,25 +27,42 @@ recipe::Limits limits_for(const config::CellCore& cell, const TeachInRequest& r)
 
 std::string_view to_string(TeachInPhase p) noexcept {
   switch (p) {
-    case TeachInPhase::checking: return "checking";
-    case TeachInPhase::to_start: return "moving to the start";
-    case TeachInPhase::switching: return "switching the encoder to Teach-In";
-    case TeachInPhase::starting: return "starting Teach-In";
-    case TeachInPhase::travelling: return "travelling";
-    case TeachInPhase::ending: return "ending Teach-In";
-    case TeachInPhase::switching_taught: return "switching the encoder to the taught resolution";
-    case TeachInPhase::returning: return "moving back";
-    case TeachInPhase::verifying: return "verifying";
-    case TeachInPhase::done: return "done";
-    case TeachInPhase::halting: return "halting";
-    case TeachInPhase::restoring: return "restoring the encoder's parameters";
-    case TeachInPhase::failed: return "failed";
+    case TeachInPhase::checking:
+      return "checking";
+    case TeachInPhase::to_start:
+      return "moving to the start";
+    case TeachInPhase::switching:
+      return "switching the encoder to Teach-In";
+    case TeachInPhase::starting:
+      return "starting Teach-In";
+    case TeachInPhase::travelling:
+      return "travelling";
+    case TeachInPhase::ending:
+      return "ending Teach-In";
+    case TeachInPhase::switching_taught:
+      return "switching the encoder to the taught resolution";
+    case TeachInPhase::returning:
+      return "moving back";
+    case TeachInPhase::verifying:
+      return "verifying";
+    case TeachInPhase::done:
+      return "done";
+    case TeachInPhase::halting:
+      return "halting";
+    case TeachInPhase::restoring:
+      return "restoring the encoder's parameters";
+    case TeachInPhase::failed:
+      return "failed";
   }
   return "?";
 }
 
 TeachIn::TeachIn(const config::CellCore& cell, TeachInPort& port, const TeachInRequest& request, double dt)
-    : cell_(cell), port_(port), request_(request), limits_(limits_for(cell, request)), executor_(cell, limits_, dt) {}
+    : cell_(cell),
+      port_(port),
+      request_(request),
+      limits_(limits_for(cell, request)),
+      executor_(cell, limits_, dt) {}
 
 void TeachIn::enter(TeachInPhase p, double t) noexcept {
   phase_ = p;
@@ -119,7 +136,8 @@ void TeachIn::step_checking(const cell::CellState& s, double t) {
     return;
   }
   if (!(s.scu_remote && s.axes[a].present && enc.up)) {
-    (void)waited_too_long(t, kDevicesTimeoutS, "devices up (SCU remote mode, encoder in data exchange and ready)");
+    (void)waited_too_long(t, kDevicesTimeoutS,
+                          "devices up (SCU remote mode, encoder in data exchange and ready)");
     return;
   }
   if (enc.stored_offset != 0) {
@@ -133,8 +151,8 @@ void TeachIn::step_checking(const cell::CellState& s, double t) {
   start_mm_ = request_.from_mm.value_or(s.axes[a].scu_mm);
   const double end_mm = start_mm_ + request_.distance_mm;
   if (request_.distance_mm <= 0.0 || start_mm_ < c.min_mm || end_mm > c.max_mm) {
-    fail(t, journal::Text::format("the travel {:.2f} … {:.2f} mm is not within axis {}'s [{:g}, {:g}] mm", start_mm_,
-                                  end_mm, c.name, c.min_mm, c.max_mm));
+    fail(t, journal::Text::format("the travel {:.2f} … {:.2f} mm is not within axis {}'s [{:g}, {:g}] mm",
+                                  start_mm_, end_mm, c.name, c.min_mm, c.max_mm));
     return;
   }
   if (!request_.manual && std::abs(s.axes[a].scu_mm - start_mm_) > request_.tolerance_mm) {
@@ -199,20 +217,23 @@ void TeachIn::step(const cell::CellState& s, std::optional<config::StopCategory>
       const double lo = n0 - request_.native_zero_margin_mm;
       const double hi = n0 + request_.distance_mm * 1.02 + request_.native_zero_margin_mm;
       if (lo <= 0.0 && hi >= 0.0) {
-        fail(t, journal::Text::format(
-                    "the encoder's native zero lies at axis {} ≈ {:.2f} mm, inside the travel {:.2f} … {:.2f} mm "
-                    "(with a {:g} mm margin): Teach-In must not cross it (manual 4.4.2.1); start at {:.1f} mm or "
-                    "above (--from)",
-                    cell_.axes[a].name, axis.scu_mm - n0, axis.scu_mm, axis.scu_mm + request_.distance_mm,
-                    request_.native_zero_margin_mm, axis.scu_mm - n0 + request_.native_zero_margin_mm + 0.5));
+        fail(
+            t,
+            journal::Text::format(
+                "the encoder's native zero lies at axis {} ≈ {:.2f} mm, inside the travel {:.2f} … {:.2f} mm "
+                "(with a {:g} mm margin): Teach-In must not cross it (manual 4.4.2.1); start at {:.1f} mm or "
+                "above (--from)",
+                cell_.axes[a].name, axis.scu_mm - n0, axis.scu_mm, axis.scu_mm + request_.distance_mm,
+                request_.native_zero_margin_mm, axis.scu_mm - n0 + request_.native_zero_margin_mm + 0.5));
         break;
       }
       scu_at_start_ = axis.scu_mm;
       native_last_mm_ = n0;
       enter(TeachInPhase::travelling, t);
       if (request_.manual)
-        prompt_ = journal::Text::format("Teach-In started: move axis {} by {:.3f} mm in + direction and confirm",
-                                        cell_.axes[a].name, request_.distance_mm);
+        prompt_ =
+            journal::Text::format("Teach-In started: move axis {} by {:.3f} mm in + direction and confirm",
+                                  cell_.axes[a].name, request_.distance_mm);
       else
         start_move(s, scu_at_start_ + request_.distance_mm, t);
       break;
@@ -220,7 +241,8 @@ void TeachIn::step(const cell::CellState& s, std::optional<config::StopCategory>
     case TeachInPhase::travelling: {
       // A jump of more than half the physical range between two cycles is the native zero crossed.
       if (std::abs(enc.position_mm - native_last_mm_) > enc.native_range_mm / 2.0) {
-        fail(t, journal::Text::format("the axis crossed the encoder's native zero during Teach-In (manual 4.4.2.1)"));
+        fail(t, journal::Text::format(
+                    "the axis crossed the encoder's native zero during Teach-In (manual 4.4.2.1)"));
         break;
       }
       native_last_mm_ = enc.position_mm;
@@ -271,11 +293,12 @@ void TeachIn::step(const cell::CellState& s, std::optional<config::StopCategory>
       result_.scu_back_mm = request_.manual ? request_.distance_mm : scu_at_end_ - axis.scu_mm;
       const double diff = result_.encoder_distance_mm - result_.scu_back_mm;
       if (!enc.up || std::abs(diff) > request_.tolerance_mm) {
-        fail(t, journal::Text::format(
-                    "verification failed: moving back, the taught encoder measured {:.4f} mm, the {} {:.4f} mm "
-                    "(difference {:.4f} mm, tolerance {:g} mm)",
-                    result_.encoder_distance_mm, request_.manual ? "distance given" : "SCU",
-                    result_.scu_back_mm, diff, request_.tolerance_mm));
+        fail(t,
+             journal::Text::format(
+                 "verification failed: moving back, the taught encoder measured {:.4f} mm, the {} {:.4f} mm "
+                 "(difference {:.4f} mm, tolerance {:g} mm)",
+                 result_.encoder_distance_mm, request_.manual ? "distance given" : "SCU", result_.scu_back_mm,
+                 diff, request_.tolerance_mm));
         break;
       }
       enter(TeachInPhase::done, t);

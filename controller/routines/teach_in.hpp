@@ -28,12 +28,12 @@
 namespace cellctl::routines {
 
 struct TeachInRequest {
-  int axis = 0;                      // index into the cell's axes (the encoder's axis)
-  double distance_mm = 0.0;          // travel from the start, in + direction
-  std::optional<double> from_mm;     // the start (default: where the axis stands)
-  bool manual = false;               // the operator moves the axis; confirm() after each move
+  int axis = 0;                   // index into the cell's axes (the encoder's axis)
+  double distance_mm = 0.0;       // travel from the start, in + direction
+  std::optional<double> from_mm;  // the start (default: where the axis stands)
+  bool manual = false;            // the operator moves the axis; confirm() after each move
   double speed_mm_s = 5.0;
-  double tolerance_mm = 0.05;        // verification: encoder distance vs SCU distance
+  double tolerance_mm = 0.05;          // verification: encoder distance vs SCU distance
   double native_zero_margin_mm = 0.5;  // the travel keeps this far from the native zero
 };
 
@@ -114,11 +114,11 @@ class TeachIn {
   double phase_since_ = 0.0;
   bool confirmed_ = false;
   bool switched_ = false;
-  double start_mm_ = 0.0;          // the start (SCU)
-  double scu_at_start_ = 0.0;      // when Teach-In started
-  double native_last_mm_ = 0.0;    // for the crossing watch
+  double start_mm_ = 0.0;        // the start (SCU)
+  double scu_at_start_ = 0.0;    // when Teach-In started
+  double native_last_mm_ = 0.0;  // for the crossing watch
   double scu_at_end_ = 0.0;
-  double encoder_at_end_ = 0.0;    // taught, at the end point
+  double encoder_at_end_ = 0.0;  // taught, at the end point
   TeachInResult result_;
   journal::Text failure_;
   journal::Text prompt_;

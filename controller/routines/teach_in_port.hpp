@@ -22,11 +22,11 @@ enum class EncoderCommand : std::uint8_t { idle, busy, done, failed };
 struct EncoderView {
   bool up = false;  // in data exchange with the setting last asked for, Ready set
   bool teach_in_running = false;
-  double position_mm = 0.0;  // as a run reads it (during Teach-In: from the native zero, unscaled)
-  double native_range_mm = 0.0;  // the encoder's physical measuring range
+  double position_mm = 0.0;        // as a run reads it (during Teach-In: from the native zero, unscaled)
+  double native_range_mm = 0.0;    // the encoder's physical measuring range
   std::int32_t stored_offset = 0;  // its preset offset (diagnosis 4.2.14); 0 when not reported
   EncoderCommand command = EncoderCommand::idle;
-  std::string_view failure;        // of a failed command or switch (static text)
+  std::string_view failure;            // of a failed command or switch (static text)
   std::uint32_t total_resolution = 0;  // after Teach-In ended
 };
 

@@ -100,10 +100,18 @@ routines::EncoderView TeachInEncoder::read() const {
   r.native_range_mm = static_cast<double>(configured_.physical.total()) / configured_steps_per_mm_;
   if (s.diagnosis && s.diagnosis->detail) r.stored_offset = s.diagnosis->detail->offset;
   switch (s.command.phase) {
-    case encoder::Handshake::Phase::done: r.command = EncoderCommand::done; break;
-    case encoder::Handshake::Phase::failed: r.command = EncoderCommand::failed; break;
-    case encoder::Handshake::Phase::idle: r.command = EncoderCommand::idle; break;
-    default: r.command = EncoderCommand::busy; break;
+    case encoder::Handshake::Phase::done:
+      r.command = EncoderCommand::done;
+      break;
+    case encoder::Handshake::Phase::failed:
+      r.command = EncoderCommand::failed;
+      break;
+    case encoder::Handshake::Phase::idle:
+      r.command = EncoderCommand::idle;
+      break;
+    default:
+      r.command = EncoderCommand::busy;
+      break;
   }
   r.total_resolution = s.command.result;
   if (!failure_.empty())

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 
 #include "loop/control_stages.hpp"
 
@@ -15,27 +14,19 @@ TeachInRun::TeachInRun(const config::CellConfig& cell, const routines::TeachInRe
       clock_(options_.mode == RunMode::virtual_time ? static_cast<const link::Clock&>(virtual_clock_)
                                                     : static_cast<const link::Clock&>(real_clock_)),
       journal_(options_.journal_dir,
-               options_.mode == RunMode::virtual_time ? journal::WhenFull::wait : journal::WhenFull::drop_and_count,
+               options_.mode == RunMode::virtual_time ? journal::WhenFull::wait
+                                                      : journal::WhenFull::drop_and_count,
                options_.record_header),
       monitor_(cell) {
-  if (options_.mode == RunMode::virtual_time)
-    waiter_ = std::make_unique<loop::VirtualWaiter>(virtual_clock_);
-  else
-    waiter_ = std::make_unique<loop::MonotonicWaiter>();
   try {
     if (!cell.encoder) throw std::invalid_argument("the cell has no encoder: section: nothing to teach");
-    if (!options_.faults.empty()) {
-      if (options_.mode == RunMode::hardware)
-        throw std::invalid_argument("faults are rehearsed on emulators only (--emulate or --virtual-time)");
-      rehearsal_ = std::make_unique<FaultRehearsal>(options_.faults, cell);
-    }
-    links_ = std::make_unique<CellLinks>(cell, options_.mode, clock_, options_.trace,
-                                         rehearsal_ ? rehearsal_->lines() : std::bitset<cell::kDevices>{});
-    if (links_->any_emulated()) {
-      if (!options_.emulators) options_.emulators = load_emulator_setup(cell);
-      emulated_ = std::make_unique<EmulatedCell>(cell, *options_.emulators, links_->device());
-    }
-    devices_ = std::make_unique<CellDevices>(cell, links_->master());
+    auto parts = open_cell_parts(cell, options_.mode, clock_, virtual_clock_, options_.trace, options_.faults,
+                                 options_.emulators);
+    waiter_ = std::move(parts.waiter);
+    rehearsal_ = std::move(parts.rehearsal);
+    links_ = std::move(parts.links);
+    emulated_ = std::move(parts.emulated);
+    devices_ = std::move(parts.devices);
     encoder_ = std::make_unique<TeachInEncoder>(*devices_->encoder(), cell.encoder->session);
   } catch (const std::exception& e) {
     journal_.close({{"outcome", "not started"}, {"reason", e.what()}});
@@ -125,14 +116,7 @@ TeachInOutcome TeachInRun::run(std::atomic<bool>& interrupt,
   links_->start_trace_clock(start_);
   if (rehearsal_) rehearsal_->start(start_, links_->fault_links());
   if (emulated_ && options_.mode != RunMode::virtual_time)
-    emulator_thread_ = std::thread([this] {
-      while (!emulators_stop_.load()) {
-        const auto now = real_clock_.now();
-        if (rehearsal_) rehearsal_->drive_emulators(now, *emulated_);
-        emulated_->poll(now);
-        std::this_thread::sleep_for(std::chrono::microseconds(200));
-      }
-    });
+    emulator_thread_ = std::thread([this] { serve_emulators(emulators_stop_, real_clock_, rehearsal_.get(), *emulated_); });
   devices_->activate(start_);
   loop_->run([&](link::TimePoint now, std::uint64_t) { cycle(now, interrupt, progress); }, loop_stop_);
   emulators_stop_.store(true);
@@ -151,7 +135,8 @@ TeachInOutcome TeachInRun::run(std::atomic<bool>& interrupt,
   static constexpr const char* kNames[cell::kDevices] = {"SCU", "spindle", "encoder"};
   for (std::size_t d = 0; d < cell::kDevices; ++d) {
     const auto* s = devices_->sessions()[d];
-    if (s && s->lifecycle() == link::Lifecycle::fault) o.device_notes.push_back(std::string(kNames[d]) + ": " + s->fault_reason());
+    if (s && s->lifecycle() == link::Lifecycle::fault)
+      o.device_notes.push_back(std::string(kNames[d]) + ": " + s->fault_reason());
   }
   nlohmann::json extra;
   extra["outcome"] = o.done ? "taught" : "failed";

@@ -26,6 +26,7 @@
 #include "routines/teach_in.hpp"
 #include "runtime/cell_devices.hpp"
 #include "runtime/cell_links.hpp"
+#include "runtime/cell_parts.hpp"
 #include "runtime/emulated_cell.hpp"
 #include "runtime/emulator_setup.hpp"
 #include "runtime/fault_rehearsal.hpp"
@@ -56,8 +57,8 @@ struct TeachInOutcome {
   bool done = false;
   routines::TeachInResult result;
   std::string failure;
-  bool restored = true;      // false: the encoder's configured parameters could not be confirmed
-  bool interrupted = false;  // Ctrl-C
+  bool restored = true;           // false: the encoder's configured parameters could not be confirmed
+  bool interrupted = false;       // Ctrl-C
   encoder::SessionConfig taught;  // the settings to record (when done)
   double units_per_mm = 0.0;
   std::vector<std::string> device_notes;
@@ -66,14 +67,16 @@ struct TeachInOutcome {
 class TeachInRun {
  public:
   // Throws config::ConfigError, link::LinkError, std::invalid_argument (set-up: before motion).
-  TeachInRun(const config::CellConfig& cell, const routines::TeachInRequest& request, TeachInRunOptions options);
+  TeachInRun(const config::CellConfig& cell, const routines::TeachInRequest& request,
+             TeachInRunOptions options);
   ~TeachInRun();
   TeachInRun(const TeachInRun&) = delete;
   TeachInRun& operator=(const TeachInRun&) = delete;
 
   // Runs until the routine is done or failed and the devices are closed. `interrupt` (Ctrl-C) aborts.
   // `progress` is called on the loop's thread at each phase change and every 0.5 s.
-  TeachInOutcome run(std::atomic<bool>& interrupt, const std::function<void(const TeachInProgress&)>& progress = {});
+  TeachInOutcome run(std::atomic<bool>& interrupt,
+                     const std::function<void(const TeachInProgress&)>& progress = {});
   // Manual mode: the operator did what the prompt asked (any thread).
   void confirm() noexcept { confirm_.store(true); }
 

@@ -24,11 +24,13 @@ namespace cellctl::encoder {
 // 4.4.2.1's prerequisites: commissioning mode, scaling on, desired measuring units per maximum total
 // measuring range (0b01) — with one unit per physical step, so positions keep their meaning while
 // the encoder is switched. (The offset of 0 is the encoder's own during Teach-In.)
-[[nodiscard]] EncoderParameters teach_in_parameters(EncoderParameters p, const PhysicalResolution& phys) noexcept;
+[[nodiscard]] EncoderParameters teach_in_parameters(EncoderParameters p,
+                                                    const PhysicalResolution& phys) noexcept;
 
 // After Teach-In: the configured parameters with the total resolution as the desired measuring units
 // per maximum total measuring range (4.4.2.1 "End": entered into Maximum Desired Measuring Units).
-[[nodiscard]] EncoderParameters taught_parameters(EncoderParameters p, std::uint32_t total_resolution) noexcept;
+[[nodiscard]] EncoderParameters taught_parameters(EncoderParameters p,
+                                                  std::uint32_t total_resolution) noexcept;
 
 // The unit Teach-In is told the distance in: the largest power of ten per mm not above the physical
 // steps per mm, so the total resolution stays within the physical range (4.1.2). 0 below 1 step/mm.

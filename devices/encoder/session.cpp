@@ -218,7 +218,8 @@ void Session::on_input(std::span<const std::uint8_t> bytes) noexcept {
   const auto half = static_cast<std::int64_t>(range / 2);
   const std::int64_t signed_counts = counts >= half ? counts - static_cast<std::int64_t>(range) : counts;
   const double per_mm = unscaled ? steps_per_mm() : counts_per_mm_;
-  snapshot_.position_mm = static_cast<double>(signed_counts) / per_mm - (unscaled ? 0.0 : config_.zero_offset_mm);
+  snapshot_.position_mm =
+      static_cast<double>(signed_counts) / per_mm - (unscaled ? 0.0 : config_.zero_offset_mm);
   snapshot_.velocity_raw = in->velocity;
   snapshot_.velocity_saturated = saturated(in->velocity);
   snapshot_.velocity_mm_s = units_per_second(in->velocity, tb, upr) / counts_per_mm_;

@@ -132,7 +132,8 @@ TEST_F(TeachInTest, AStartAtTheNativeZeroIsRefusedBeforeAnyMotion) {
   request_.from_mm = 0.0;
   auto& run = make_run();
   double farthest = 0.0;
-  run.on_cycle([&](double, runtime::TeachInRun& r) { farthest = std::max(farthest, r.state().axes[0].scu_mm); });
+  run.on_cycle(
+      [&](double, runtime::TeachInRun& r) { farthest = std::max(farthest, r.state().axes[0].scu_mm); });
   const auto o = run.run(interrupt_);
   EXPECT_FALSE(o.done);
   EXPECT_NE(o.failure.find("native zero"), std::string::npos) << o.failure;
