@@ -17,6 +17,7 @@ void add_run_command(CLI::App& app, Commands& commands);
 // Faults asked for where they cannot be rehearsed — a run that is not emulated, a device the cell lacks:
 // said (logged), and true (then exit 2).
 [[nodiscard]] bool refuse_faults(const std::vector<runtime::FaultSpec>& faults, bool emulated);
-[[nodiscard]] bool refuse_faults(const std::vector<runtime::FaultSpec>& faults, const config::CellConfig& cell);
+[[nodiscard]] bool refuse_faults(const std::vector<runtime::FaultSpec>& faults,
+                                 const config::CellConfig& cell);
 
 }  // namespace cellctl::cli

@@ -31,9 +31,9 @@ struct CellParts {
 // `clock` is `virtual_clock` in virtual time. `emulators` is read from the cell's file when needed and
 // not given. Throws std::invalid_argument (faults on hardware, a device the cell lacks), link::LinkError
 // (a port), config::ConfigError / std::runtime_error (an emulator's set-up).
-[[nodiscard]] CellParts open_cell_parts(const config::CellConfig& cell, RunMode mode, const link::Clock& clock,
-                                        link::VirtualClock& virtual_clock, bool trace,
-                                        const std::vector<FaultSpec>& faults,
+[[nodiscard]] CellParts open_cell_parts(const config::CellConfig& cell, RunMode mode,
+                                        const link::Clock& clock, link::VirtualClock& virtual_clock,
+                                        bool trace, const std::vector<FaultSpec>& faults,
                                         std::optional<EmulatorSetup>& emulators);
 
 // The emulators' thread in real time: they answer like hardware, on their own time, until `stop`.

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-
 #include "loop/control_stages.hpp"
 
 namespace cellctl::runtime {
@@ -116,7 +115,8 @@ TeachInOutcome TeachInRun::run(std::atomic<bool>& interrupt,
   links_->start_trace_clock(start_);
   if (rehearsal_) rehearsal_->start(start_, links_->fault_links());
   if (emulated_ && options_.mode != RunMode::virtual_time)
-    emulator_thread_ = std::thread([this] { serve_emulators(emulators_stop_, real_clock_, rehearsal_.get(), *emulated_); });
+    emulator_thread_ =
+        std::thread([this] { serve_emulators(emulators_stop_, real_clock_, rehearsal_.get(), *emulated_); });
   devices_->activate(start_);
   loop_->run([&](link::TimePoint now, std::uint64_t) { cycle(now, interrupt, progress); }, loop_stop_);
   emulators_stop_.store(true);

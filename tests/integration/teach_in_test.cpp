@@ -141,5 +141,30 @@ TEST_F(TeachInTest, AStartAtTheNativeZeroIsRefusedBeforeAnyMotion) {
   expect_encoder_as_configured();
 }
 
+TEST_F(TeachInTest, ManualModeGuidesTheOperatorAndAnEndWithoutTravelRestoresTheEncoder) {
+  // The axis stands at 5 mm, clear of the native zero; the operator is asked to move it and confirms
+  // without having moved it: the encoder has no distance to compute a resolution from.
+  setup_.scu->actuators[0].physics.start_position_mm = 5.0;
+  request_.manual = true;
+  request_.from_mm.reset();
+  auto& run = make_run();
+  std::string prompts;
+  run.on_cycle([&](double, runtime::TeachInRun& r) {
+    const auto p = std::string(r.routine().prompt().view());
+    if (!p.empty() && prompts.find(p) == std::string::npos) {
+      prompts += p + "\n";
+      r.confirm();
+    }
+  });
+  const auto o = run.run(interrupt_);
+  EXPECT_NE(prompts.find("Teach-In started: move axis x by 100.000 mm in + direction"), std::string::npos)
+      << prompts;
+  EXPECT_FALSE(o.done);
+  EXPECT_TRUE(o.restored);
+  EXPECT_NE(o.failure.find("Teach-In end"), std::string::npos) << o.failure;
+  EXPECT_NEAR(run.state().axes[0].scu_mm, 5.0, 0.01) << "manual mode moved the axis";
+  expect_encoder_as_configured();
+}
+
 }  // namespace
 }  // namespace cellctl::testing
