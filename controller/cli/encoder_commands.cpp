@@ -1,9 +1,7 @@
 #include "cli/encoder_commands.hpp"
 
 #include <fmt/format.h>
-#include <poll.h>
 #include <spdlog/spdlog.h>
-#include <unistd.h>
 
 #include <memory>
 #include <optional>
@@ -12,6 +10,8 @@
 #include "cli/commissioning.hpp"
 #include "cli/exit_codes.hpp"
 #include "config/cell_config.hpp"
+#include "config/config_edit.hpp"
+#include "encoder/commissioning_parameters.hpp"
 #include "encoder/session.hpp"
 
 namespace cellctl::cli {
@@ -19,11 +19,11 @@ namespace {
 
 using namespace std::chrono_literals;
 
-enum class Action { status, diag, preset, direction, set_address, teach_in };
+enum class Action { status, diag, preset, direction, set_address };
 
 struct EncoderOptions : DeviceOptions {
   EncoderOptions() { timeout_s = 10.0; }
-  std::uint32_t value = 0;  // preset value, new address or Teach-In distance
+  std::uint32_t value = 0;  // preset value or new address
   std::string direction = "cw";
 };
 
@@ -104,19 +104,31 @@ void print_diag(const encoder::Snapshot& s) {
   fmt::print("serial         {}\n", std::string(x.serial.begin(), x.serial.end()));
 }
 
-bool enter_pressed() {
-  pollfd p{STDIN_FILENO, POLLIN, 0};
-  if (::poll(&p, 1, 0) <= 0) return false;
-  char buf[64];
-  return ::read(STDIN_FILENO, buf, sizeof buf) >= 0;
+// A preset or a direction change lives in the encoder's EEPROM and changes every position the next
+// run reads: it is recorded in the config's encoder section, where every run's start-up checks it.
+int record(const std::filesystem::path& config, const std::vector<config::KeyChange>& changes) {
+  try {
+    const auto change = config::change_config_file(config, "encoder", changes);
+    for (const auto& line : change.changed) fmt::print("config         {}\n", line);
+    fmt::print("config         {} written (the previous one kept as {})\n", config.string(),
+               change.backup.string());
+    return kExitOk;
+  } catch (const std::exception& e) {
+    spdlog::error(
+        "the encoder was changed but {} could not be updated: {}. Until it is, every run refuses the encoder "
+        "at start",
+        config.string(), e.what());
+    return kExitFailed;
+  }
 }
 
 class EncoderCommissioning {
  public:
   EncoderCommissioning(const GlobalOptions& global, const EncoderOptions& options,
                        const config::EncoderSection& section, Action action)
-      : options_(options),
-        c_(global, options, section.port, "encoder", with_station(section.session, action)) {}
+      : global_(global),
+        options_(options),
+        c_(global, options, section.port, "encoder", session_config(section.session, action)) {}
 
   int run(Action action) {
     // A preset beyond this encoder's scaling is a bad argument (manual 4.3.2): refused before the bus.
@@ -124,6 +136,13 @@ class EncoderCommissioning {
       spdlog::error("preset {}: must be 0 … {} (the total measuring range − 1)", options_.value, range - 1);
       return kExitUsage;
     }
+    if (action == Action::direction)
+      if (const auto why = encoder::manufacturer_functions_unavailable(session_.config().parameters);
+          !why.empty()) {
+        spdlog::error("encoder direction: {}; set code_sequence in the config's encoder section instead",
+                      why);
+        return kExitFailed;
+      }
     c_.activate();
     if (action == Action::set_address) return set_address();
     if (!drive([&] { return snapshot().data_exchange && snapshot().exchanges > 2; }))
@@ -132,29 +151,66 @@ class EncoderCommissioning {
       case Action::preset:
         if (!session_.preset(options_.value)) return refuse("preset");
         if (!finish_command()) return failed_to("acknowledge the preset");
-        break;
+        return record_offset();
       case Action::direction:
         if (!session_.set_direction(options_.direction == "ccw" ? encoder::CodeSequence::ccw
                                                                 : encoder::CodeSequence::cw))
-          return refuse("change direction (needs status bits and commissioning: true)");
+          return refuse("change direction");
         if (!finish_command()) return failed_to("acknowledge the direction change");
-        break;
-      case Action::teach_in:
-        return teach_in();
+        print_status(session_);
+        fmt::print(
+            "note           positions now count the other way round: set zero_offset_mm (or preset) so that "
+            "the "
+            "axis reads its position before a run\n");
+        // Set_Prm sends code_sequence at every start-up (4.1.1 octet 9 bit 0): recorded there, the change
+        // lasts; the encoder is left in the configured (normal) mode at the next start-up.
+        return record(global_.config, {{"code_sequence", options_.direction}});
       default:
         break;
     }
     (void)c_.drive_for(20ms);
     print_status(session_);
     if (action == Action::diag) print_diag(snapshot());
+    if (const auto& d = snapshot().diagnosis; d && d->detail && d->detail->offset != configured_offset_)
+      fmt::print(
+          "WARNING        the encoder holds preset offset {}, the config expects preset_offset: {}: a run "
+          "refuses this encoder at start\n",
+          d->detail->offset, configured_offset_);
     return kExitOk;
   }
 
  private:
-  // Set_Slave_Add is only possible for an encoder whose switches are at 126 (manual 3.4).
-  static encoder::SessionConfig with_station(encoder::SessionConfig c, Action action) {
+  encoder::SessionConfig session_config(encoder::SessionConfig c, Action action) {
+    // Commissioning reads and changes the stored offset: it is compared here, not refused.
+    configured_offset_ = c.expected_offset.value_or(0);
+    c.expected_offset.reset();
+    // Set_Slave_Add is only possible for an encoder whose switches are at 126 (manual 3.4).
     if (action == Action::set_address) c.station_address = 126;
+    // A direction change on the fly needs commissioning mode (4.4): switched on for this command only.
+    if (action == Action::direction) c.parameters = encoder::commissioning_parameters(c.parameters);
     return c;
+  }
+
+  // The encoder reports its new offset in its diagnosis (4.2.14), read at start-up: started again to
+  // read it, then recorded in the config.
+  int record_offset() {
+    session_.deactivate(c_.clock().now());
+    if (!drive([&] { return session_.lifecycle() == link::Lifecycle::inactive; }))
+      return failed_to("close after the preset");
+    const auto reads = snapshot().diagnosis_reads;
+    c_.activate();
+    if (!drive([&] { return snapshot().data_exchange && snapshot().diagnosis_reads > reads; }))
+      return failed_to("start up again after the preset");
+    print_status(session_);
+    const auto& d = snapshot().diagnosis;
+    if (!d || !d->detail) {
+      spdlog::error(
+          "encoder: preset done, but its diagnosis carries no offset (short_diagnosis: true?): set "
+          "preset_offset in the config's encoder section by hand from `cellctl encoder diag` with "
+          "short_diagnosis: false");
+      return kExitFailed;
+    }
+    return record(global_.config, {{"preset_offset", std::to_string(d->detail->offset)}});
   }
   const encoder::Snapshot& snapshot() const { return c_.snapshot(); }
   template <class Done>
@@ -190,25 +246,6 @@ class EncoderCommissioning {
     return kExitOk;
   }
 
-  int teach_in() {
-    if (!session_.teach_in_start())
-      return refuse("start Teach-In (needs status bits and commissioning: true)");
-    if (!finish_command()) return failed_to("start Teach-In");
-    session_.clear_command();
-    fmt::print(
-        "Teach-In started at {} (un-scaled). Move the axis to the end point without crossing the\n"
-        "encoder's zero, then press Enter.\n",
-        snapshot().position_counts);
-    if (!drive(enter_pressed, 3600s)) return failed_to("see Enter");
-    if (!session_.teach_in_end(options_.value)) return refuse("end Teach-In");
-    if (!finish_command()) return failed_to("end Teach-In");
-    fmt::print(
-        "total resolution {}: enter it as measuring_units (units_select: per_total_range) in the config\n",
-        snapshot().command.result);
-    print_status(session_);
-    return kExitOk;
-  }
-
   bool finish_command() {
     if (!drive([&] { return snapshot().command.phase >= encoder::Handshake::Phase::done; })) return false;
     if (snapshot().command.phase == encoder::Handshake::Phase::failed) {
@@ -232,7 +269,9 @@ class EncoderCommissioning {
     return code == kExitLink && c_.faulted() && refused ? kExitFailed : code;
   }
 
+  const GlobalOptions& global_;
   const EncoderOptions& options_;
+  std::int32_t configured_offset_ = 0;
   Commissioning<encoder::Session> c_;
   encoder::Session& session_ = c_.session();
 };
@@ -261,10 +300,16 @@ void add_encoder_commands(CLI::App& app, Commands& commands) {
   add("status", "Start the encoder up and print position, velocity and status bits", Action::status);
   add("diag", "Print status and the decoded diagnosis (alarms, warnings, resolution, versions, …)",
       Action::diag);
-  auto* preset = add("preset", "Preset the position to a value (in measuring units)", Action::preset);
+  auto* preset = add("preset",
+                     "Preset the position to a value (in measuring units); the encoder's new offset is "
+                     "recorded as preset_offset in the config (backup: FILE.bak), which every run checks",
+                     Action::preset);
   preset->add_option("value", options->value, "New position in measuring units")->required();
   auto* direction =
-      add("direction", "Change the counting direction on the fly (commissioning mode)", Action::direction);
+      add("direction",
+          "Change the counting direction on the fly (the encoder is put in commissioning mode for it) and "
+          "record it as code_sequence in the config (backup: FILE.bak)",
+          Action::direction);
   direction->add_option("sequence", options->direction, "cw or ccw: the direction in which counts increase")
       ->required()
       ->check(CLI::IsMember({"cw", "ccw"}));
@@ -273,12 +318,6 @@ void add_encoder_commands(CLI::App& app, Commands& commands) {
   address->add_option("address", options->value, "New station address")
       ->required()
       ->check(CLI::Range(1, 125));
-  auto* teach =
-      add("teach-in", "Teach-In: start here, move to the end point, press Enter, get the total resolution",
-          Action::teach_in);
-  teach->add_option("--distance", options->value, "The travelled distance in desired units")
-      ->required()
-      ->check(CLI::Range(1, (1 << 25) - 1));
 }
 
 }  // namespace cellctl::cli

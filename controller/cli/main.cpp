@@ -20,6 +20,7 @@
 #include "cli/run_command.hpp"
 #include "cli/scu_commands.hpp"
 #include "cli/spindle_commands.hpp"
+#include "cli/teach_in_command.hpp"
 #include "config/yaml_node.hpp"
 #include "journal/version.hpp"
 #include "link/link_error.hpp"
@@ -61,6 +62,7 @@ int main(int argc, char** argv) {
   add_emulate_command(app, commands);
   add_spindle_commands(app, commands);
   add_encoder_commands(app, commands);
+  add_teach_in_command(app, commands);
   add_scu_commands(app, commands);
   add_report_command(app, commands);
   add_compare_command(app, commands);

@@ -42,18 +42,6 @@ CLI::Validator listen_validator(std::optional<web::PageOptions>& out) {
       "ADDR:PORT");
 }
 
-// --fault's validator: the text becomes a FaultSpec here, or the reason is CLI11's error (exit 2).
-CLI::Validator fault_spec_validator(std::vector<runtime::FaultSpec>& out) {
-  return CLI::Validator(
-      [&out](std::string& text) -> std::string {
-        auto parsed = runtime::parse_fault_spec(text);
-        if (auto* e = std::get_if<runtime::FaultSpecError>(&parsed)) return "'" + text + "': " + e->reason;
-        out.push_back(std::get<runtime::FaultSpec>(std::move(parsed)));
-        return {};
-      },
-      "DEVICE:KIND@T[+D]");
-}
-
 // What Ctrl-C will do, as the cell's config has it.
 std::string ctrl_c_hint(config::StopCategory operator_stop) {
   switch (operator_stop) {
@@ -90,11 +78,16 @@ int run_recipe(const GlobalOptions& global, const std::string& recipe_file, cons
 
 }  // namespace
 
-std::string run_args_problem(const RunArgs& args, const config::CellConfig& cell) {
-  if (!args.faults.empty() && !args.emulate && !args.virtual_time)
+std::string fault_problem(const std::vector<runtime::FaultSpec>& faults, bool emulated,
+                          const config::CellConfig& cell) {
+  if (!faults.empty() && !emulated)
     return "--fault: faults are rehearsed on emulators only: add --emulate or --virtual-time";
-  if (auto problem = runtime::FaultRehearsal::problem(args.faults, cell)) return *problem;
+  if (auto problem = runtime::FaultRehearsal::problem(faults, cell)) return *problem;
   return {};
+}
+
+std::string run_args_problem(const RunArgs& args, const config::CellConfig& cell) {
+  return fault_problem(args.faults, args.emulate || args.virtual_time, cell);
 }
 
 int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cell,
@@ -190,6 +183,18 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
   // Ended by the operator (typed stop/abort, Ctrl-C, SIGTERM) with nothing else gone wrong: 130,
   // however it was asked for; a fault or a failed step: 1.
   return journal::RunRecord::load(options.journal_dir).ended_by_operator() ? kExitInterrupted : kExitFailed;
+}
+
+// --fault's validator: the text becomes a FaultSpec here, or the reason is CLI11's error (exit 2).
+CLI::Validator fault_spec_validator(std::vector<runtime::FaultSpec>& out) {
+  return CLI::Validator(
+      [&out](std::string& text) -> std::string {
+        auto parsed = runtime::parse_fault_spec(text);
+        if (auto* e = std::get_if<runtime::FaultSpecError>(&parsed)) return "'" + text + "': " + e->reason;
+        out.push_back(std::get<runtime::FaultSpec>(std::move(parsed)));
+        return {};
+      },
+      "DEVICE:KIND@T[+D]");
 }
 
 void add_run_options(CLI::App* sub, RunArgs& args) {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <vector>
+
 #include "cli/commands.hpp"
 #include "config/cell_config.hpp"
 #include "recipe/recipe.hpp"
@@ -42,5 +44,12 @@ void add_run_options(CLI::App* sub, RunArgs& args);
 [[nodiscard]] std::string run_args_problem(const RunArgs& args, const config::CellConfig& cell);
 
 void add_run_command(CLI::App& app, Commands& commands);
+// --fault's validator (run and teach-in): the text becomes a FaultSpec in `out`, or the reason is
+// CLI11's error (exit 2).
+[[nodiscard]] CLI::Validator fault_spec_validator(std::vector<runtime::FaultSpec>& out);
+// Faults asked for where they cannot be rehearsed — a run that is not emulated, a device the cell
+// lacks: the reason (exit 2), else empty.
+[[nodiscard]] std::string fault_problem(const std::vector<runtime::FaultSpec>& faults, bool emulated,
+                                        const config::CellConfig& cell);
 
 }  // namespace cellctl::cli

@@ -1,6 +1,7 @@
 #include "config/encoder_section.hpp"
 
 #include <chrono>
+#include <limits>
 
 namespace cellctl::config {
 namespace {
@@ -106,6 +107,8 @@ EncoderSection parse_encoder_section(const YamlNode& section) {
                      "revolutions",
                      "counts_per_mm",
                      "mm_per_revolution",
+                     "zero_offset_mm",
+                     "preset_offset",
                      "watchdog_ms",
                      "slot_time_bits",
                      "retries",
@@ -128,6 +131,11 @@ EncoderSection parse_encoder_section(const YamlNode& section) {
     s.counts_per_mm = section.double_in("counts_per_mm", 1e-6, 1e9);
   else
     s.mm_per_revolution = section.double_in("mm_per_revolution", 1e-6, 1e6);
+  s.zero_offset_mm = section.has("zero_offset_mm") ? section.double_in("zero_offset_mm", -1e6, 1e6) : 0.0;
+  // The encoder's stored preset offset (0 until a preset): checked at every start-up against the
+  // encoder's diagnosis, so that a preset made since cannot shift the positions unnoticed.
+  s.expected_offset = section.int_in_or<std::int32_t>(
+      "preset_offset", std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max(), 0);
   return out;
 }
 

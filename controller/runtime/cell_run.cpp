@@ -78,23 +78,14 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
   home_record_ =
       routines::load_home_record(home_record_file_, cell, config_sha256(cell), &home_record_problem_);
   options_.supervisor.home_record = &home_record_;
-  if (options_.mode == RunMode::virtual_time)
-    waiter_ = std::make_unique<loop::VirtualWaiter>(virtual_clock_);
-  else
-    waiter_ = std::make_unique<loop::MonotonicWaiter>();
-  if (!options_.faults.empty()) {
-    if (options_.mode == RunMode::hardware)
-      throw std::invalid_argument("faults are rehearsed on emulators only (--emulate or --virtual-time)");
-    rehearsal_ = std::make_unique<FaultRehearsal>(options_.faults, cell);
-  }
   try {
-    links_ = std::make_unique<CellLinks>(cell, options_.mode, clock_, options_.trace,
-                                         rehearsal_ ? rehearsal_->lines() : std::bitset<cell::kDevices>{});
-    if (links_->any_emulated()) {
-      if (!options_.emulators) options_.emulators = load_emulator_setup(cell);
-      emulated_ = std::make_unique<EmulatedCell>(cell, *options_.emulators, links_->device());
-    }
-    devices_ = std::make_unique<CellDevices>(cell, links_->master());
+    auto parts = open_cell_parts(cell, options_.mode, clock_, virtual_clock_, options_.trace, options_.faults,
+                                 options_.emulators);
+    waiter_ = std::move(parts.waiter);
+    rehearsal_ = std::move(parts.rehearsal);
+    links_ = std::move(parts.links);
+    emulated_ = std::move(parts.emulated);
+    devices_ = std::move(parts.devices);
   } catch (const std::exception& e) {
     // A port that did not open (or a device set-up refused): the record says why nothing ran.
     journal_.close({{"outcome", "not started"}, {"reason", e.what()}});
@@ -112,13 +103,7 @@ CellRun::~CellRun() {
 }
 
 void CellRun::run_emulator_thread() {
-  // Emulated devices behind their links answer like hardware, on their own time.
-  while (!emulators_stop_.load()) {
-    const auto now = real_clock_.now();
-    if (rehearsal_) rehearsal_->drive_emulators(now, *emulated_);
-    emulated_->poll(now);
-    std::this_thread::sleep_for(std::chrono::microseconds(200));
-  }
+  serve_emulators(emulators_stop_, real_clock_, rehearsal_.get(), *emulated_);
 }
 
 void CellRun::take_commands(double t, std::atomic<bool>& interrupt) {

@@ -30,6 +30,7 @@
 #include "routines/home_record.hpp"
 #include "runtime/cell_devices.hpp"
 #include "runtime/cell_links.hpp"
+#include "runtime/cell_parts.hpp"
 #include "runtime/emulated_cell.hpp"
 #include "runtime/emulator_setup.hpp"
 #include "runtime/fault_rehearsal.hpp"

@@ -41,8 +41,31 @@ Session::Session(link::Link& link, const SessionConfig& config)
   snapshot_.has_status_bits = has_status_bits(config_.parameters);
 }
 
+bool Session::reconfigure(const SessionConfig& config) {
+  if (lifecycle() != link::Lifecycle::inactive && lifecycle() != link::Lifecycle::fault) return false;
+  if (master_.lifecycle() != link::Lifecycle::inactive && master_.lifecycle() != link::Lifecycle::fault)
+    return false;
+  Scaling scaling(config.parameters, config.physical);
+  const double per_mm = length_per_count(config, scaling);
+  master_.set_slave_setup(slave_setup(config));
+  config_ = config;
+  scaling_ = scaling;
+  counts_per_mm_ = per_mm;
+  snapshot_ = Snapshot{};
+  snapshot_.has_status_bits = has_status_bits(config_.parameters);
+  seen_exchanges_ = master_.stats().data_exchanges;
+  seen_diag_reads_ = master_.stats().diag_reads;
+  return true;
+}
+
+double Session::steps_per_mm() const noexcept {
+  return counts_per_mm_ * static_cast<double>(config_.physical.steps_per_revolution) /
+         scaling_.units_per_revolution();
+}
+
 void Session::activate(link::TimePoint now) {
   handshake_.reset();
+  offset_refused_ = false;
   output_word_ = 0;
   snapshot_.local_prm_violation = validate(config_.parameters, config_.physical);
   if (snapshot_.local_prm_violation) {
@@ -93,6 +116,8 @@ void Session::receive(link::TimePoint now) {
         snapshot_.diagnosis_error = to_string(std::get<DiagError>(decoded));
     }
     snapshot_.diagnosis_reads = seen_diag_reads_;
+    check_offset();
+    if (offset_refused_) master_.deactivate(now);
   }
   const auto state = master_.dp_state();
   snapshot_.dp_state = state;
@@ -114,7 +139,23 @@ void Session::receive(link::TimePoint now) {
   update_lifecycle();
 }
 
+void Session::check_offset() noexcept {
+  if (offset_refused_ || !config_.expected_offset || !snapshot_.diagnosis || !snapshot_.diagnosis->detail)
+    return;
+  const std::int32_t stored = snapshot_.diagnosis->detail->offset;
+  if (stored == *config_.expected_offset) return;
+  offset_refused_ = true;
+  // Positions would be off by the difference: never let them reach the cell. Said with both values.
+  enter_fault(
+      "the encoder holds preset offset {} (its EEPROM, diagnosis octets 32-35), this config expects "
+      "encoder.preset_offset: {}: it was preset since the config was written. Preset it again with "
+      "`cellctl encoder preset` (which records the offset in the config), or set preset_offset: {} if the "
+      "new zero is wanted",
+      stored, *config_.expected_offset, stored);
+}
+
 void Session::update_lifecycle() {
+  if (offset_refused_) return;  // a fault of its own, kept until the next activation
   const link::Lifecycle lc = master_.lifecycle();
   if (lc != link::Lifecycle::fault) {
     if (lc != lifecycle()) enter(lc);
@@ -170,7 +211,15 @@ void Session::on_input(std::span<const std::uint8_t> bytes) noexcept {
   const TimeBase tb = config_.parameters.time_base;
   const double upr = scaling_.units_per_revolution();
   snapshot_.position_counts = in->position(with_status);
-  snapshot_.position_mm = static_cast<double>(snapshot_.position_counts) / counts_per_mm_;
+  // Teach-In runs unscaled over the physical range (4.4.2.1); otherwise the scaled range rolls over.
+  const bool unscaled = with_status && (in->status().teach_in_start || in->status().teach_in_end);
+  const std::uint64_t range = unscaled ? config_.physical.total() : scaling_.range();
+  const auto counts = static_cast<std::int64_t>(snapshot_.position_counts);
+  const auto half = static_cast<std::int64_t>(range / 2);
+  const std::int64_t signed_counts = counts >= half ? counts - static_cast<std::int64_t>(range) : counts;
+  const double per_mm = unscaled ? steps_per_mm() : counts_per_mm_;
+  snapshot_.position_mm =
+      static_cast<double>(signed_counts) / per_mm - (unscaled ? 0.0 : config_.zero_offset_mm);
   snapshot_.velocity_raw = in->velocity;
   snapshot_.velocity_saturated = saturated(in->velocity);
   snapshot_.velocity_mm_s = units_per_second(in->velocity, tb, upr) / counts_per_mm_;

@@ -30,6 +30,12 @@ struct SessionConfig {
   // Length per count: exactly one of the two is > 0 (mm_per_revolution uses the units per revolution).
   double counts_per_mm = 0.0;
   double mm_per_revolution = 0.0;
+  // The encoder's reading in mm where the axis is at 0 mm: position_mm = reading − zero_offset_mm.
+  double zero_offset_mm = 0.0;
+  // The preset offset (diagnosis octets 32–35, manual 4.2.14) the encoder must hold: a stored offset
+  // that differs (a preset since the config was written) faults the session at start-up with both
+  // values. nullopt: not checked (the commissioning commands, which change it).
+  std::optional<std::int32_t> expected_offset;
 };
 
 // Where a command (handshake) stands.
@@ -53,7 +59,9 @@ struct Snapshot {
   std::string_view input_fault;  // why the last input is not valid (static text); empty when valid
   std::uint64_t bad_inputs = 0;  // inputs not taken: wrong length (master) or invalid here
 
-  std::uint32_t position_counts = 0;  // measuring units
+  std::uint32_t position_counts = 0;  // measuring units (during Teach-In: physical steps, offset 0)
+  // The counts read as signed around the encoder's output zero (a reading in the upper half of the
+  // range is below zero, not ≈ the whole range above it), in mm, less zero_offset_mm.
   double position_mm = 0.0;
   std::int16_t velocity_raw = 0;  // in the time base's unit
   bool velocity_saturated = false;
@@ -100,6 +108,11 @@ class Session final : public link::DeviceSession {
   [[nodiscard]] const SessionConfig& config() const noexcept { return config_; }
   [[nodiscard]] double counts_per_mm() const noexcept { return counts_per_mm_; }
   [[nodiscard]] const Scaling& scaling() const noexcept { return scaling_; }
+  // Physical steps per mm of the axis (what Teach-In counts in: unscaled, manual 4.4.2.1).
+  [[nodiscard]] double steps_per_mm() const noexcept;
+  // New parameters and scaling for the next activation (Set_Prm and Chk_Cfg are sent again then):
+  // only while inactive (false otherwise). Throws std::invalid_argument as the constructor does.
+  [[nodiscard]] bool reconfigure(const SessionConfig& config);
 
   // Commands: false when not in data exchange, another command runs, or the function is not
   // available with these parameters (value beyond the range; direction/Teach-In need the status
@@ -121,6 +134,7 @@ class Session final : public link::DeviceSession {
   [[nodiscard]] std::string_view flagged(const CyclicInput& in) const noexcept;
   void push_outputs() noexcept;
   void update_lifecycle();
+  void check_offset() noexcept;
 
   SessionConfig config_;
   Scaling scaling_;
@@ -132,6 +146,7 @@ class Session final : public link::DeviceSession {
   std::uint64_t outputs_changed_at_ = 0;  // exchange count when the output word last changed
   std::uint32_t output_word_ = 0;
   Snapshot snapshot_;
+  bool offset_refused_ = false;  // the stored preset offset is not the configured one (a fault)
 };
 
 }  // namespace cellctl::encoder

@@ -118,6 +118,11 @@ void DpMaster::activate(link::TimePoint now) {
   enter(setup_.station_address == kDefaultSlaveAddress ? DpState::wait_address : DpState::fdl_status, now);
 }
 
+void DpMaster::set_slave_setup(const DpSlaveSetup& setup) noexcept {
+  if (lifecycle_ != link::Lifecycle::inactive && lifecycle_ != link::Lifecycle::fault) return;
+  setup_ = setup;
+}
+
 void DpMaster::deactivate(link::TimePoint now) {
   if (lifecycle_ == link::Lifecycle::inactive) return;
   if (state_ == DpState::data_exchange || state_ == DpState::diag_cyclic) {

@@ -129,6 +129,9 @@ class DpMaster {
   DpMaster(link::Link& link, const DpMasterConfig& config, const DpSlaveSetup& setup);
 
   void activate(link::TimePoint now);
+  // The slave's parameters and configuration for the next activate() (a re-parameterisation: Set_Prm
+  // and Chk_Cfg go out again then). Ignored unless stopped (inactive or fault).
+  void set_slave_setup(const DpSlaveSetup& setup) noexcept;
   // Orderly stop: Global_Control Clear_Data to the slave, then stopped (Lifecycle::inactive).
   void deactivate(link::TimePoint now);
   [[nodiscard]] link::Lifecycle poll(link::TimePoint now);

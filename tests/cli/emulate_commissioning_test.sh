@@ -188,6 +188,20 @@ run_exits 4 "SCU status on a port where no SCU answers" scu status --port "$work
 expect "SCU status where no SCU answers" "SCU on $work/encoder"
 [[ $(grep -o "$work/encoder" <<<"$out" | wc -l) -eq 1 ]] || fail "the SCU's fault names its port more than once"
 
+# --- a preset and a direction change are recorded in the config, where every start-up checks them --
+cp "$config" "$work/cell.before-preset.yaml"
+run "encoder preset" encoder preset 1000 --timeout 10
+expect "encoder preset records the new offset" "^config +encoder.preset_offset: \(none\) → -?[0-9]+"
+grep -Eq "^  preset_offset: -?[0-9]+$" "$config" || fail "encoder preset did not record preset_offset in the config"
+cmp -s "$config.bak" "$work/cell.before-preset.yaml" || fail "the config's backup is not the config as it was"
+run "encoder status after the preset" encoder status --timeout 5
+expect "encoder status after the preset" "^position +1000 counts"
+grep -q WARNING <<<"$out" && fail "encoder status warns although the preset is recorded"
+run "encoder direction" encoder direction ccw --timeout 10
+grep -q "^  code_sequence: ccw$" "$config" || fail "encoder direction did not record code_sequence: ccw"
+run "encoder status after the direction change" encoder status --timeout 5
+expect "the direction change lasts past the next command" "counting up counterclockwise"
+
 # --- Ctrl-C ends the emulation ---------------------------------------------------------------------
 kill -INT "$emulate_pid"
 for _ in $(seq 100); do

@@ -1,0 +1,174 @@
+// The guided Teach-In (issue 10, part 5) in virtual time on the shipped cell's emulators: end to end
+// and verified; aborted by the operator and stopped by an injected fault, each leaving the encoder's
+// EEPROM and parameters as they were; a start at the encoder's native zero refused before any motion.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <variant>
+
+#include "config/cell_config.hpp"
+#include "encoder/eeprom_file.hpp"
+#include "run_fixture.hpp"
+#include "runtime/teach_in_run.hpp"
+
+namespace cellctl::testing {
+namespace {
+
+using routines::TeachInPhase;
+
+class TeachInTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = std::filesystem::temp_directory_path() /
+           (std::string("cellctl-teach-in-") + info->name() + "-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+    cell_ = config::load_cell_config(source_dir() / "config/cell.yaml");
+    setup_ = runtime::load_emulator_setup(cell_);
+    setup_.encoder->state_file = dir_ / "encoder.eeprom";  // this test's own EEPROM
+    request_.axis = 0;
+    request_.distance_mm = 100.0;
+    request_.from_mm = 5.0;
+    request_.speed_mm_s = 10.0;
+  }
+  void TearDown() override {
+    if (!HasFailure()) std::filesystem::remove_all(dir_);
+  }
+  runtime::TeachInRun& make_run(std::vector<runtime::FaultSpec> faults = {}) {
+    runtime::TeachInRunOptions o;
+    o.mode = runtime::RunMode::virtual_time;
+    o.emulators = setup_;
+    o.journal_dir = dir_ / "journal";
+    o.faults = std::move(faults);
+    run_ = std::make_unique<runtime::TeachInRun>(cell_, request_, o);
+    return *run_;
+  }
+  // The encoder's state as it was and as it must be after a failed Teach-In: its EEPROM and the
+  // parameters it was last given.
+  void expect_encoder_as_configured() {
+    EXPECT_EQ(encoder::load_eeprom(dir_ / "encoder.eeprom"), encoder::NonVolatile{});
+    EXPECT_EQ(run_->emulators()->encoder()->device().parameters(), cell_.encoder->session.parameters);
+  }
+
+  std::filesystem::path dir_;
+  config::CellConfig cell_;
+  runtime::EmulatorSetup setup_;
+  routines::TeachInRequest request_;
+  std::unique_ptr<runtime::TeachInRun> run_;
+  std::atomic<bool> interrupt_{false};
+};
+
+TEST_F(TeachInTest, TeachesVerifiesAndGivesTheTotalResolution) {
+  auto& run = make_run();
+  const auto o = run.run(interrupt_);
+  ASSERT_TRUE(o.done) << o.failure;
+  EXPECT_TRUE(o.restored);
+  // 100 mm by the SCU, whose sensor reads 0.2 % long: the shaft turned 100 / 1.002 mm at 2048 steps/mm.
+  // The taught unit is 1 µm: total = 100 000 × 2^25 / (travelled steps).
+  const double travelled_steps = 100.0 / 1.002 * 2048.0;
+  EXPECT_NEAR(o.result.total_resolution, 100000.0 * 33554432.0 / travelled_steps, 400.0);
+  EXPECT_DOUBLE_EQ(o.units_per_mm, 1000.0);
+  EXPECT_NEAR(o.result.scu_distance_mm, 100.0, 0.05);
+  EXPECT_NEAR(o.result.encoder_distance_mm, o.result.scu_back_mm, request_.tolerance_mm);
+  EXPECT_EQ(encoder::load_eeprom(dir_ / "encoder.eeprom").taught_units, o.result.total_resolution);
+  EXPECT_EQ(o.taught.parameters.measuring_units, o.result.total_resolution);
+  EXPECT_EQ(o.taught.parameters.units_select, encoder::UnitsSelect::per_total_range);
+  EXPECT_DOUBLE_EQ(o.taught.counts_per_mm, 1000.0);
+}
+
+TEST_F(TeachInTest, AbortDuringTheTravelRestoresTheEncoder) {
+  auto& run = make_run();
+  bool aborted_travelling = false;
+  run.on_cycle([&](double, runtime::TeachInRun& r) {
+    if (!aborted_travelling && r.routine().phase() == TeachInPhase::travelling &&
+        r.state().axes[0].scu_mm > 40.0) {
+      aborted_travelling = true;
+      interrupt_.store(true);
+    }
+  });
+  const auto o = run.run(interrupt_);
+  ASSERT_TRUE(aborted_travelling);
+  EXPECT_FALSE(o.done);
+  EXPECT_TRUE(o.interrupted);
+  EXPECT_TRUE(o.restored);
+  EXPECT_NE(o.failure.find("aborted by the operator in phase 'travelling'"), std::string::npos) << o.failure;
+  expect_encoder_as_configured();
+  EXPECT_FALSE(run.emulators()->encoder()->device().teach_in_running());
+}
+
+TEST_F(TeachInTest, AnInjectedFaultDuringTheTravelRestoresTheEncoder) {
+  // The SCU reports actuator faults 20 s in (the travel from 5 mm runs from about 2 s to 13 s after the
+  // start at 10 mm/s; 20 s is on the way back — both are Teach-In states the encoder must leave).
+  auto spec = runtime::parse_fault_spec("scu:error@8");
+  ASSERT_TRUE(std::holds_alternative<runtime::FaultSpec>(spec));
+  auto& run = make_run({std::get<runtime::FaultSpec>(spec)});
+  TeachInPhase phase_at_fault = TeachInPhase::checking;
+  run.on_cycle([&](double t, runtime::TeachInRun& r) {
+    if (t < 8.0) phase_at_fault = r.routine().phase();
+  });
+  const auto o = run.run(interrupt_);
+  EXPECT_EQ(phase_at_fault, TeachInPhase::travelling);
+  EXPECT_FALSE(o.done);
+  EXPECT_TRUE(o.restored);
+  EXPECT_NE(o.failure.find("stopped by the monitor"), std::string::npos) << o.failure;
+  expect_encoder_as_configured();
+}
+
+TEST_F(TeachInTest, AFailedVerificationRestoresTheConfiguredParameters) {
+  // The encoder's coupling starts to slip 2 % once the taught encoder has measured the end point: on
+  // the way back it measures 0.1 mm less than the SCU (tolerance 0.05 mm).
+  auto& run = make_run();
+  run.on_cycle([](double, runtime::TeachInRun& r) {
+    if (r.routine().phase() == TeachInPhase::returning) r.emulators()->shaft()->set_slip(0.02);
+  });
+  const auto o = run.run(interrupt_);
+  EXPECT_FALSE(o.done);
+  EXPECT_TRUE(o.restored);
+  EXPECT_NE(o.failure.find("verification failed"), std::string::npos) << o.failure;
+  EXPECT_EQ(run.emulators()->encoder()->device().parameters(), cell_.encoder->session.parameters);
+}
+
+TEST_F(TeachInTest, AStartAtTheNativeZeroIsRefusedBeforeAnyMotion) {
+  // The shipped cell's axis x stands at the encoder's native zero at 0 mm.
+  request_.from_mm = 0.0;
+  auto& run = make_run();
+  double farthest = 0.0;
+  run.on_cycle(
+      [&](double, runtime::TeachInRun& r) { farthest = std::max(farthest, r.state().axes[0].scu_mm); });
+  const auto o = run.run(interrupt_);
+  EXPECT_FALSE(o.done);
+  EXPECT_NE(o.failure.find("native zero"), std::string::npos) << o.failure;
+  EXPECT_LT(farthest, 0.01) << "the axis moved although the Teach-In could not be done";
+  expect_encoder_as_configured();
+}
+
+TEST_F(TeachInTest, ManualModeGuidesTheOperatorAndAnEndWithoutTravelRestoresTheEncoder) {
+  // The axis stands at 5 mm, clear of the native zero; the operator is asked to move it and confirms
+  // without having moved it: the encoder has no distance to compute a resolution from.
+  setup_.scu->actuators[0].physics.start_position_mm = 5.0;
+  request_.manual = true;
+  request_.from_mm.reset();
+  auto& run = make_run();
+  std::string prompts;
+  run.on_cycle([&](double, runtime::TeachInRun& r) {
+    const auto p = std::string(r.routine().prompt().view());
+    if (!p.empty() && prompts.find(p) == std::string::npos) {
+      prompts += p + "\n";
+      r.confirm();
+    }
+  });
+  const auto o = run.run(interrupt_);
+  EXPECT_NE(prompts.find("Teach-In started: move axis x by 100.000 mm in + direction"), std::string::npos)
+      << prompts;
+  EXPECT_FALSE(o.done);
+  EXPECT_TRUE(o.restored);
+  EXPECT_NE(o.failure.find("Teach-In end"), std::string::npos) << o.failure;
+  EXPECT_NEAR(run.state().axes[0].scu_mm, 5.0, 0.01) << "manual mode moved the axis";
+  expect_encoder_as_configured();
+}
+
+}  // namespace
+}  // namespace cellctl::testing
