@@ -31,9 +31,10 @@ EmulatedCell::EmulatedCell(const config::CellConfig& cell, const EmulatorSetup& 
       throw std::invalid_argument(
           "an emulated encoder needs an emulated SCU axis to turn its shaft (axes[].encoder)");
     const plant::Actuator& actuator = scu_->actuator(measured->actuator);
-    shaft_.emplace(plant::ShaftParams{.mm_per_revolution = mm_per_revolution(*cell.encoder),
+    const double per_revolution = mm_per_revolution(*cell.encoder);
+    shaft_.emplace(plant::ShaftParams{.mm_per_revolution = per_revolution,
                                       .slip = setup.plant.encoder_slip,
-                                      .offset_revolutions = 0.0},
+                                      .offset_revolutions = setup.plant.encoder_mount_mm / per_revolution},
                    [&actuator] { return actuator.true_position_mm(); });
     encoder_ = std::make_unique<encoder::Emulator>(*links.encoder, *setup.encoder, *shaft_);
   }

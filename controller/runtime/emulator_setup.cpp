@@ -9,9 +9,10 @@ namespace {
 using config::YamlNode;
 
 PlantConfig parse_plant(const YamlNode& n) {
-  n.only_keys({"encoder_slip"});
+  n.only_keys({"encoder_slip", "encoder_mount_mm"});
   PlantConfig p;
   p.encoder_slip = n.double_in_or("encoder_slip", -0.5, 0.5, p.encoder_slip);
+  p.encoder_mount_mm = n.double_in_or("encoder_mount_mm", -1e6, 1e6, p.encoder_mount_mm);
   return p;
 }
 

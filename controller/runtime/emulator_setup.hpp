@@ -16,9 +16,11 @@
 namespace cellctl::runtime {
 
 // The emulated cell's physics beyond each device's own (what couples them): the encoder's shaft
-// slips this fraction against the axis it measures.
+// slips this fraction against the axis it measures, and is mounted so that it reads as if the axis
+// stood encoder_mount_mm further (a replaced or remounted encoder reads the same axis differently).
 struct PlantConfig {
   double encoder_slip = 0.0;
+  double encoder_mount_mm = 0.0;
 };
 
 struct EmulatorSetup {

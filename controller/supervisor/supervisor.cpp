@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace cellctl::supervisor {
 namespace {
@@ -300,9 +301,17 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
     case State::starting: {
       bool up = s.scu_remote && s.encoder.data_exchange && s.encoder.ready;
       for (const auto& l : s.links) up = up && l.active;
+      // A session that gave up while starting does not try again in this run: waiting for it out
+      // to the start time-out would only hide its reason (the run reports it) behind a time.
+      std::optional<cell::Device> failed;
+      for (std::size_t d = 0; d < cell::kDevices && !failed; ++d)
+        if (s.links[d].fault) failed = static_cast<cell::Device>(d);
       if (up) {
         cell_up_ = true;
         enter(State::execute, t, Text::format("all devices up, encoder ready"));
+      } else if (failed) {
+        failure_ = Text::format("{} session failed while starting (its reason follows)", cell::to_string(*failed));
+        enter(State::aborting, t, failure_);
       } else if (t - state_since_ > settings_.start_timeout_s) {
         failure_ = Text::format("devices not ready after {:g} s (scu {}, spindle {}, encoder {})",
                                 settings_.start_timeout_s, s.links[0].active ? "up" : "down",

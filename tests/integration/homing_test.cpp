@@ -110,11 +110,27 @@ TEST_F(HomingTest, AbsoluteEncoderThatDisagreesWithItsRecordIsRefused) {
   cell_.axes[0].homing = {.strategy = HomingStrategy::absolute_encoder};
   ASSERT_EQ(run_steps("  - home: [x]\n").final_state, supervisor::State::complete);
   next_process();
-  // Another encoder, mounted 1 mm off (its EEPROM offset: 2048 counts = 1 mm at 4 mm per 8192 steps).
+  emulators().plant.encoder_mount_mm = 1.0;  // another encoder, mounted 1 mm off
+  const auto r = run_steps("  - home: [x]\n");
+  ASSERT_EQ(r.final_state, supervisor::State::stopped) << r.failure;
+  EXPECT_NE(r.failure.find("the home record expects 0.00 mm"), std::string::npos) << r.failure;
+}
+
+// An encoder preset since the config was written (another encoder, or a preset by hand) holds an
+// offset the config does not expect: its session refuses it, and the run ends on that at once with
+// the session's reason, not after the start time-out with "encoder down".
+TEST_F(HomingTest, AnEncoderPresetSinceTheConfigIsRefusedAtOnceWithItsReason) {
+  std::filesystem::create_directories(dir_);
   ASSERT_TRUE(encoder::save_eeprom(dir_ / "encoder.eeprom", {.offset = 2048}));
   const auto r = run_steps("  - home: [x]\n");
-  ASSERT_EQ(r.final_state, supervisor::State::stopped);
-  EXPECT_NE(r.failure.find("the home record expects 0.00 mm"), std::string::npos) << r.failure;
+  ASSERT_EQ(r.final_state, supervisor::State::aborted) << r.failure;
+  EXPECT_EQ(r.failure, "encoder session failed while starting (its reason follows)");
+  EXPECT_LT(r.duration_s, 2.0) << "not the 20 s start time-out";
+  const auto note = std::find_if(r.device_notes.begin(), r.device_notes.end(), [](const std::string& n) {
+    return n.find("the encoder holds preset offset 2048") != std::string::npos;
+  });
+  EXPECT_NE(note, r.device_notes.end()) << ::testing::PrintToString(r.device_notes);
+  EXPECT_EQ(run_->emulators()->scu()->actuator(1).position_mm(), 0.0) << "refused before any motion";
 }
 
 TEST_F(HomingTest, HomingTwiceGivesTheSamePositions) {
@@ -217,9 +233,9 @@ TEST_F(HomedInTheNextProcess, AnScuPowerLossBreaksIt) {
 
 TEST_F(HomedInTheNextProcess, AReplacedEncoderBreaksIt) {
   emulators().scu->initialised = {true, true};
-  ASSERT_TRUE(encoder::save_eeprom(dir_ / "encoder.eeprom", {.offset = 2048}));  // reads 1 mm more
+  emulators().plant.encoder_mount_mm = 1.0;  // another encoder, mounted to read 1 mm more
   const auto r = run_steps(kRequire);
-  ASSERT_EQ(r.final_state, supervisor::State::stopped);
+  ASSERT_EQ(r.final_state, supervisor::State::stopped) << r.failure;
   EXPECT_NE(r.failure.find("axis x: encoder at 1.00 mm, home record expects "), std::string::npos)
       << r.failure;
   EXPECT_EQ(run_->emulators()->scu()->actuator(1).position_mm(), 0.0) << "refused before any motion";
