@@ -1,6 +1,10 @@
 #include "faults/fault_matrix.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -313,6 +317,52 @@ Outcome run_case(const MatrixCase& c, const config::CellConfig& cell, const std:
   read_outcome(dir / "journal" / "journal.jsonl", o);
   if (!keep) std::filesystem::remove_all(dir);
   return o;
+}
+
+std::optional<int> cellctl_exit_status(const MatrixCase& c, const config::CellConfig& cell,
+                                       const std::filesystem::path& cellctl,
+                                       const std::filesystem::path& work_dir) {
+  std::string dir_name = name_of(c);
+  std::replace(dir_name.begin(), dir_name.end(), '/', '-');
+  const auto dir = work_dir / (dir_name + "-cellctl");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  // The shipped config with the encoder's EEPROM file in this directory, so no other run shares it.
+  std::ifstream in(std::filesystem::path(CELLCTL_SOURCE_DIR) / "config/cell.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string eeprom = "state_file: /tmp/cellctl-encoder.eeprom";
+  const auto at = text.find(eeprom);
+  if (at == std::string::npos) return std::nullopt;
+  text.replace(at, eeprom.size(), "state_file: " + (dir / "encoder.eeprom").string());
+  std::ofstream(dir / "cell.yaml") << text;
+
+  const std::vector<std::string> args = {cellctl.string(),
+                                         "run",
+                                         recipe_of(c.activity).string(),
+                                         "--virtual-time",
+                                         "-c",
+                                         (dir / "cell.yaml").string(),
+                                         "--journal",
+                                         (dir / "journal").string(),
+                                         "--fault",
+                                         fault_spec_text(c, cell)};
+  std::vector<char*> argv;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
+  const auto out = (dir / "output.txt").string();
+  posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&files, 1, 2);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, argv[0], &files, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&files);
+  if (spawned != 0) return std::nullopt;
+  int status = 0;
+  if (::waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return std::nullopt;
+  std::filesystem::remove_all(dir);
+  return WEXITSTATUS(status);
 }
 
 std::vector<std::string> verdict(const MatrixCase& c, const Expectation& expected, const Outcome& o) {

@@ -108,6 +108,13 @@ struct Outcome {
 [[nodiscard]] Outcome run_case(const MatrixCase& c, const config::CellConfig& cell,
                                const std::filesystem::path& work_dir, bool keep = false);
 
+// The exit status of the real `cellctl run RECIPE --virtual-time --fault SPEC` for the case (its
+// journal and a copy of the cell config, with the encoder's EEPROM file of its own, under `work_dir`);
+// none when it could not be started or did not exit normally.
+[[nodiscard]] std::optional<int> cellctl_exit_status(const MatrixCase& c, const config::CellConfig& cell,
+                                                     const std::filesystem::path& cellctl,
+                                                     const std::filesystem::path& work_dir);
+
 // Every way the outcome falls short of the expectation, in words; empty: the case passes.
 [[nodiscard]] std::vector<std::string> verdict(const MatrixCase& c, const Expectation& e, const Outcome& o);
 

@@ -3,9 +3,10 @@
 // state the journal's summary gives per device, and the verdict; below it each failed case's reasons.
 // Exit status 0 when every case passes, 1 otherwise.
 //
-//   fault_matrix_table [--keep DIR] [FILTER]
-//     FILTER  runs only the cases whose name (device/fault/activity) contains it, e.g. spindle_on
-//     --keep  leaves each case's run record under DIR (for cellctl report / the plots)
+//   fault_matrix_table [--keep DIR] [--cellctl PATH] [FILTER]
+//     FILTER     runs only the cases whose name (device/fault/activity) contains it, e.g. spindle_on
+//     --keep     leaves each case's run record under DIR (for cellctl report / the plots)
+//     --cellctl  runs each case a second time through that cellctl binary and judges its exit status
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -39,14 +40,19 @@ std::string safe_cell(const Outcome& o) {
 int main(int argc, char** argv) {
   std::string filter;
   std::filesystem::path keep;
+  std::filesystem::path cellctl;
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--keep") == 0 && i + 1 < argc)
+    const bool has_value = i + 1 < argc;
+    if (std::strcmp(argv[i], "--keep") == 0 && has_value) {
       keep = argv[++i];
-    else if (argv[i][0] == '-') {
-      fmt::print(stderr, "usage: {} [--keep DIR] [FILTER]\n", argv[0]);
+    } else if (std::strcmp(argv[i], "--cellctl") == 0 && has_value) {
+      cellctl = argv[++i];
+    } else if (argv[i][0] == '-') {
+      fmt::print(stderr, "usage: {} [--keep DIR] [--cellctl PATH] [FILTER]\n", argv[0]);
       return 2;
-    } else
+    } else {
       filter = argv[i];
+    }
   }
   const auto cell = matrix_cell();
   const auto work = keep.empty() ? std::filesystem::temp_directory_path() /
@@ -57,7 +63,7 @@ int main(int argc, char** argv) {
       "encoder\n\n",
       kInjectAtS, kLastingS);
   fmt::print("{:<32} {:<22} {:<12} {:<12} {:<27} {}\n", "case", "--fault", "detected", "safe after",
-             "safe per device", "verdict");
+             "safe per device", cellctl.empty() ? "verdict" : "exit verdict");
   std::vector<std::pair<std::string, std::vector<std::string>>> failed;
   int cases = 0;
   const auto wall = std::chrono::steady_clock::now();
@@ -66,13 +72,19 @@ int main(int argc, char** argv) {
     if (!filter.empty() && name.find(filter) == std::string::npos) continue;
     ++cases;
     const auto e = expectation(c, cell);
-    const auto o = run_case(c, cell, work, !keep.empty());
+    auto o = run_case(c, cell, work, !keep.empty());
+    if (!cellctl.empty()) {
+      o.exit_status = cellctl_exit_status(c, cell, cellctl, work);
+      if (!o.exit_status) o.setup_error += " (cellctl did not exit normally)";
+    }
     auto problems = verdict(c, e, o);
     fmt::print(
         "{:<32} {:<22} {:<12} {:<12} {:<27} {}\n", name, fault_spec_text(c, cell),
         e.fault_detected ? time_cell(o.detected_ms, e.detect_ms) : (o.detected_ms ? "FAULT" : "none"),
         e.fault_detected ? time_cell(o.safe_ms, e.safe_ms) : (o.safe_ms ? "at the end" : "NOT AT REST"),
-        safe_cell(o), problems.empty() ? "pass" : "FAIL");
+        safe_cell(o),
+        (o.exit_status ? fmt::format("{:<4} ", *o.exit_status) : std::string()) +
+            (problems.empty() ? "pass" : "FAIL"));
     std::fflush(stdout);
     if (!problems.empty()) failed.emplace_back(name, std::move(problems));
   }
