@@ -122,23 +122,6 @@ std::string lower(std::string s) {
   return s;
 }
 
-std::optional<Safe> parse_safe(const nlohmann::json& j) {
-  if (!j.is_string()) return std::nullopt;
-  for (const auto s : {Safe::observed, Safe::bounded, Safe::unknown})
-    if (j.get<std::string>() == to_string(s)) return s;
-  return std::nullopt;
-}
-
-std::vector<nlohmann::json> read_journal(const std::filesystem::path& file) {
-  std::vector<nlohmann::json> out;
-  std::ifstream in(file);
-  for (std::string line; std::getline(in, line);) {
-    auto j = nlohmann::json::parse(line, nullptr, false);
-    if (!j.is_discarded()) out.push_back(std::move(j));
-  }
-  return out;
-}
-
 // What the journal says of the run: injection time, first fault, the summary and its devices.
 void read_outcome(const std::filesystem::path& file, Outcome& o) {
   const auto lines = read_journal(file);
@@ -152,17 +135,10 @@ void read_outcome(const std::filesystem::path& file, Outcome& o) {
       o.first_fault = o.first_rule + ": " + j.value("detail", "");
     }
   }
-  if (lines.empty() || lines.back().value("event", "") != "summary") return;
-  o.summary = lines.back();
+  o.summary = summary_of(lines);
+  if (o.summary.is_null()) return;
   o.outcome = o.summary.value("outcome", "");
-  const auto devices = o.summary.find("devices");
-  if (devices == o.summary.end() || !devices->is_object()) return;
-  for (const auto d : kDevices) {
-    const auto dev = devices->find(std::string(cell::to_string(d)));
-    if (dev == devices->end() || !dev->is_object()) continue;
-    o.safe[index(d)] = parse_safe(dev->value("safe", nlohmann::json()));
-    o.evidence[index(d)] = dev->value("evidence", "");
-  }
+  o.devices = device_safety(o.summary);
 }
 
 }  // namespace
@@ -176,11 +152,6 @@ std::string_view to_string(FaultClass c) noexcept {
 std::string_view to_string(Activity a) noexcept {
   constexpr std::string_view names[] = {"idle", "moving", "spindle_on"};
   return names[static_cast<std::size_t>(a)];
-}
-
-std::string_view to_string(Safe s) noexcept {
-  constexpr std::string_view names[] = {"observed", "bounded", "unknown"};
-  return names[static_cast<std::size_t>(s)];
 }
 
 std::vector<MatrixCase> all_cases() {
@@ -289,12 +260,7 @@ Outcome run_case(const MatrixCase& c, const config::CellConfig& cell, const std:
     std::atomic<bool> interrupt{false};
     std::optional<double> moving_last;  // the last cycle the plant was not at rest
     run.on_cycle([&](double t, runtime::CellRun& r) {
-      auto* emulated = r.emulators();
-      bool moving = emulated->spindle() && !emulated->spindle()->motor().at_rest();
-      if (auto* scu = emulated->scu())
-        for (int a = 1; a <= scu::kActuatorCount; ++a)
-          moving |= scu->has_actuator(a) && scu->actuator(a).moving();
-      if (moving) moving_last = t;
+      if (spindle_turning(*r.emulators()) || axes_moving(*r.emulators())) moving_last = t;
       if (t > kHangS && o.ended_by_itself) {
         o.ended_by_itself = false;
         interrupt.store(true);
@@ -305,11 +271,7 @@ Outcome run_case(const MatrixCase& c, const config::CellConfig& cell, const std:
     const auto result = run.run(interrupt);
     o.final_state = result.final_state;
     o.ended_ms = (result.duration_s - kInjectAtS) * 1000.0;
-    bool at_rest = true;
-    if (auto* sp = run.emulators()->spindle()) at_rest &= sp->motor().at_rest();
-    if (auto* scu = run.emulators()->scu())
-      for (int a = 1; a <= scu::kActuatorCount; ++a)
-        at_rest &= !(scu->has_actuator(a) && scu->actuator(a).moving());
+    const bool at_rest = !spindle_turning(*run.emulators()) && !axes_moving(*run.emulators());
     if (at_rest) o.safe_ms = std::max(0.0, (moving_last.value_or(0.0) - kInjectAtS) * 1000.0);
   } catch (const std::exception& e) {
     o.setup_error = e.what();
@@ -413,16 +375,16 @@ std::vector<std::string> verdict(const MatrixCase& c, const Expectation& expecte
   else if (e.fault_detected && *o.safe_ms > e.safe_ms)
     fail(fmt::format("plant at rest after {:.0f} ms > {:.0f} ms", *o.safe_ms, e.safe_ms));
 
-  if (!o.summary.contains("devices")) {
+  if (!o.devices.present) {
     fail("the summary has no devices object");
   } else {
     for (const auto d : kDevices) {
       const auto i = index(d);
-      if (!o.safe[i])
+      if (!o.devices.safe[i])
         fail(fmt::format("devices.{}.safe missing or not observed|bounded|unknown", cell::to_string(d)));
-      else if (*o.safe[i] != e.safe[i])
-        fail(fmt::format("{} safe {} (expected {}): {}", cell::to_string(d), to_string(*o.safe[i]),
-                         to_string(e.safe[i]), o.evidence[i]));
+      else if (*o.devices.safe[i] != e.safe[i])
+        fail(fmt::format("{} safe {} (expected {}): {}", cell::to_string(d), to_string(*o.devices.safe[i]),
+                         to_string(e.safe[i]), o.devices.evidence[i]));
     }
   }
   if (o.exit_status && *o.exit_status != e.exit_status)

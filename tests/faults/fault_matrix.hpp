@@ -26,6 +26,7 @@
 
 #include "cell/cell_state.hpp"
 #include "config/cell_config.hpp"
+#include "faults/run_truth.hpp"
 #include "supervisor/packml.hpp"
 
 namespace cellctl::faults {
@@ -48,8 +49,6 @@ enum class Activity : std::uint8_t { idle, moving, spindle_on };
 inline constexpr std::array kActivities = {Activity::idle, Activity::moving, Activity::spindle_on};
 [[nodiscard]] std::string_view to_string(Activity a) noexcept;
 
-inline constexpr std::array kDevices = {cell::Device::scu, cell::Device::spindle, cell::Device::encoder};
-
 // When the fault comes and how long it lasts, in every case: 1.5 s in, every recipe is in the state
 // its name says (the move at full speed, the spindle at 400 Hz); 2 s, as long as the line faults that
 // left the spindle turning in the trial — long enough to outlast every detection, short
@@ -70,9 +69,6 @@ struct MatrixCase {
 [[nodiscard]] double delay_ms(const MatrixCase& c, const config::CellConfig& cell);
 // The --fault text, e.g. "scu:delay=75@1.5+2".
 [[nodiscard]] std::string fault_spec_text(const MatrixCase& c, const config::CellConfig& cell);
-
-enum class Safe : std::uint8_t { observed, bounded, unknown };
-[[nodiscard]] std::string_view to_string(Safe s) noexcept;
 
 struct Expectation {
   bool fault_detected = true;  // false: the run completes, no monitor fault at all
@@ -96,10 +92,9 @@ struct Outcome {
   std::optional<double> safe_ms;  // plant at rest from then to the end (none: not at rest at the end)
   double ended_ms = 0.0;          // the run's end
   supervisor::State final_state = supervisor::State::idle;
-  std::string outcome;                        // the summary's outcome
-  nlohmann::json summary;                     // the journal's last line (null: not closed)
-  std::array<std::optional<Safe>, 3> safe{};  // the summary's devices object (none: absent or unreadable)
-  std::array<std::string, 3> evidence{};
+  std::string outcome;             // the summary's outcome
+  nlohmann::json summary;          // the journal's last line (null: not closed)
+  DeviceSafety devices;            // the summary's devices object
   std::optional<int> exit_status;  // as cellctl run would exit (none: the run result cannot say)
   std::string setup_error;         // the run could not be made or threw
 };

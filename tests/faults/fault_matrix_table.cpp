@@ -29,7 +29,7 @@ std::string time_cell(const std::optional<double>& ms, double bound) {
 std::string safe_cell(const Outcome& o) {
   std::string out;
   for (const auto d : kDevices) {
-    const auto& s = o.safe[static_cast<std::size_t>(d)];
+    const auto& s = o.devices.safe[static_cast<std::size_t>(d)];
     out += fmt::format("{:<9}", s ? to_string(*s) : "-");
   }
   return out;
