@@ -220,11 +220,11 @@ Expectation expectation(const MatrixCase& c, const config::CellConfig& cell) {
   e.first_rules = c.device == cell::Device::encoder
                       ? std::vector<std::string>{"encoder_not_ready", "link_silent"}
                       : std::vector<std::string>{"link_silent"};
-  // The SCU cannot confirm its stop while its line is down; the bound (its watchdog 0.5 s + the
-  // actuators' stopping time) passes before the line is back: bounded. The converter's line is back
-  // after 2 s, well within the time cellctl keeps sending the stop: observed. The encoder stops
-  // nothing; once its line is back the master exchanges with it again.
-  if (c.device == cell::Device::scu) e.safe[index(cell::Device::scu)] = Safe::bounded;
+  // The SCU cannot confirm its stop while its line is down; the bound (its communication time-out
+  // 0.5 s + the actuators' stopping time) passes before the line is back: bounded. The converter's
+  // line is back after 2 s, well within the time cellctl keeps sending the stop: observed. The
+  // encoder stops nothing; with its link lost it cannot watch the axes to the end: bounded.
+  if (c.device != cell::Device::spindle) e.safe[index(c.device)] = Safe::bounded;
   return e;
 }
 
