@@ -200,6 +200,7 @@ Expectation expectation(const MatrixCase& c, const config::CellConfig& cell) {
   const auto [safe, safe_why] = safe_bound(c, detect);
   e.detect_ms = detect;
   e.safe_ms = safe;
+  e.detect_why = detect_why;
   e.why = detect_why + "; " + safe_why;
   e.may_ride_through = c.fault == FaultClass::garbage;
   if (c.fault == FaultClass::error) {

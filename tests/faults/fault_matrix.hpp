@@ -80,7 +80,8 @@ struct Expectation {
   std::array<Safe, 3> safe{};            // per device (cell::Device order) in the summary
   std::vector<std::string> first_rules;  // the rules the first fault may have; empty: any naming the device
   int exit_status = 1;                   // what `cellctl run` gives for such a run (0, 1 or 5)
-  std::string why;                       // the bounds' reasoning, for the table
+  std::string detect_why;                // the detection bound's reasoning, for the table
+  std::string why;                       // both bounds' reasoning
 };
 [[nodiscard]] Expectation expectation(const MatrixCase& c, const config::CellConfig& cell);
 

@@ -92,6 +92,36 @@ int main(int argc, char** argv) {
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
   fmt::print("\n{} cases, {} passed, {} failed ({:.1f} s wall)\n", cases,
              cases - static_cast<int>(failed.size()), failed.size(), wall_s);
+  // The bounds, per device and fault class: detection's reasoning, and the plant's rest per activity.
+  fmt::print(
+      "\nbounds from config/cell.yaml, ms after the injection (plant at rest: idle | moving | "
+      "spindle_on):\n");
+  for (const auto d : kDevices) {
+    for (const auto f : kFaultClasses) {
+      std::string rest;
+      std::string why;
+      for (const auto a : kActivities) {
+        const auto e = expectation({d, f, a}, cell);
+        if (!e.fault_detected) {
+          why = e.why;
+          break;
+        }
+        why = e.detect_why;
+        rest += fmt::format("{}{:.0f}", rest.empty() ? "" : " | ", e.safe_ms);
+      }
+      const auto e = expectation({d, f, Activity::idle}, cell);
+      if (e.fault_detected)
+        fmt::print("  {:<20} detected ≤ {:.0f} ({}); at rest ≤ {}\n",
+                   fmt::format("{}/{}", cellctl::cell::to_string(d), to_string(f)), e.detect_ms, why, rest);
+      else
+        fmt::print("  {:<20} no fault ({})\n",
+                   fmt::format("{}/{}", cellctl::cell::to_string(d), to_string(f)), why);
+    }
+  }
+  fmt::print(
+      "  at rest: idle: at rest already; moving: detected + stopping 500, or, the SCU's line down, its\n"
+      "  watchdog 500 + stopping 500; spindle on: detected + run-down 1250, or, the converter's line down,\n"
+      "  the line back (2000) + run-down 1250\n");
   for (const auto& [name, problems] : failed) {
     fmt::print("\n{}:\n", name);
     for (const auto& p : problems) fmt::print("  - {}\n", p);
