@@ -121,6 +121,16 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   fmt::print("\n{}", result.summary_text);
   if (!result.failure.empty()) fmt::print("failed step: {}\n", result.failure);
   for (const auto& n : result.device_notes) fmt::print("device: {}\n", n);
+  if (!result.ended_by.empty()) fmt::print("ended by: {}\n", result.ended_by);
+  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+    const auto& s = result.safety[d];
+    if (!s) continue;
+    const auto* name = cell::to_string(static_cast<cell::Device>(d));
+    if (s->safe == runtime::Safe::unknown)
+      fmt::print(stderr, "WARNING: {} safe state UNKNOWN: {}\n", name, s->evidence);
+    else
+      fmt::print("safe state of {}: {} — {}\n", name, to_string(s->safe), s->evidence);
+  }
   fmt::print("{} cycles; {} s of cell time in {:.2f} s", result.cycles,
              fmt::format("{:.2f}", result.duration_s), result.wall_s);
   if (options.mode == runtime::RunMode::virtual_time)
@@ -128,6 +138,7 @@ int run_recipe(const GlobalOptions& global, const RunArgs& args) {
   fmt::print("\n{}\n", result.loop_summary);
   fmt::print("run record: {}\n", options.journal_dir.string());
 
+  if (result.any_unknown()) return kExitSafeStateUnknown;
   if (result.final_state == supervisor::State::complete) return kExitOk;
   // Ended by the operator (typed stop/abort, Ctrl-C, SIGTERM) with nothing else gone wrong: 130,
   // however it was asked for; a fault or a failed step: 1.
@@ -142,8 +153,11 @@ void add_run_command(CLI::App& app, Commands& commands) {
   sub->footer(
       "Devices whose port is 'emulated' in the cell config run as emulators inside cellctl.\n"
       "Exit status: 0 complete, 1 stopped or aborted by a fault or a failed step, 2 bad command line (a bad\n"
-      "--fault says why), 3 bad config or recipe (nothing moved), 4 a port could not be opened, 130 ended\n"
-      "by the operator (typed stop or abort, Ctrl-C, SIGTERM).\n"
+      "--fault says why), 3 bad config or recipe (nothing moved), 4 a port could not be opened, 5 a device's\n"
+      "safe state is unknown (its stop was never confirmed and nothing bounds it: a spindle that may still\n"
+      "turn; look at the cell), 130 ended by the operator (typed stop or abort, Ctrl-C, SIGTERM).\n"
+      "After the end, cellctl stays until every device's stop is confirmed or bounded (the SCU: its 0.5 s\n"
+      "communication time-out plus scu.stopping_time_ms; the spindle: stop re-sent for 5 s).\n"
       "Ctrl-C once: operator stop (category from stops.operator; 2 holds the cell); twice: emergency stop.\n"
       "SIGTERM: a controlled stop (category 1).");
   auto args = std::make_shared<RunArgs>();

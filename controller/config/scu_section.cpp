@@ -55,7 +55,7 @@ void parse_functions(const YamlNode& list, ScuSection& out) {
 
 ScuSection parse_scu_section(const YamlNode& section) {
   section.only_keys({"safety_id", "keepalive_ms", "reply_timeout_ms", "retries", "link_fault_after_ms",
-                     "arrival_tolerance_edges", "default_speed_percent", "actuators", "functions"},
+                     "stopping_time_ms", "arrival_tolerance_edges", "default_speed_percent", "actuators", "functions"},
                     kPortKeys);
   ScuSection out;
   out.port = parse_port(section, "scu", link::line_8n1(38400));
@@ -69,6 +69,7 @@ ScuSection parse_scu_section(const YamlNode& section) {
   if (s.link_fault_after <= s.reply_timeout)
     (section.has("link_fault_after_ms") ? section.at("link_fault_after_ms") : section.at("reply_timeout_ms"))
         .fail("link_fault_after_ms must be longer than reply_timeout_ms");
+  s.stopping_time = section.milliseconds_or("stopping_time_ms", 0, 10000, s.stopping_time);
   s.arrival_tolerance_edges =
       section.int_in_or<std::int32_t>("arrival_tolerance_edges", 0, 100000, s.arrival_tolerance_edges);
 

@@ -61,6 +61,14 @@ link::Link* CellLinks::open(cell::Device device, const config::PortConfig& port,
   return master;
 }
 
+link::IoResult CellLinks::reopen(cell::Device device) {
+  link::Link* l = device == cell::Device::scu       ? master_.scu
+                  : device == cell::Device::spindle ? master_.spindle
+                                                    : master_.encoder;
+  if (l == nullptr) return {0, link::IoStatus::failed, 0};
+  return l->reopen();
+}
+
 std::vector<std::string> CellLinks::describe() const {
   return descriptions_;
 }

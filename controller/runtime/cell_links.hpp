@@ -42,6 +42,9 @@ class CellLinks {
   [[nodiscard]] const std::array<link::FaultInjectingLink*, cell::kDevices>& fault_links() const noexcept {
     return fault_links_;
   }
+  // Opens a device's port again after it was lost (link::Link::reopen through the fault-injecting
+  // and tracing links): ok() when the session may use its link again. For the safe-stop only.
+  link::IoResult reopen(cell::Device device);
   [[nodiscard]] bool any_emulated() const noexcept {
     return device_.scu || device_.spindle || device_.encoder;
   }

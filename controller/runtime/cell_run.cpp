@@ -158,9 +158,45 @@ void CellRun::report_devices(double t, RunResult& r) {
     note("spindle: " + sp->snapshot().start_refused_reason);
   if (auto* enc = devices_->encoder(); enc && !enc->restart_reason().empty())
     note("encoder: DP start-up begun again: " + enc->restart_reason());
-  if (!devices_->all_inactive())
-    note(fmt::format("the devices were not all closed within {:g} s of the end (remote mode, spindle stop)",
-                     options_.shutdown_timeout_s));
+}
+
+void CellRun::report_safety(RunResult& r, nlohmann::json& extra) const {
+  r.safety = safe_stop_->verdicts();
+  nlohmann::json devices = nlohmann::json::object();
+  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+    if (!r.safety[d]) continue;
+    devices[cell::to_string(static_cast<cell::Device>(d))] = {{"safe", to_string(r.safety[d]->safe)},
+                                                               {"evidence", r.safety[d]->evidence}};
+  }
+  extra["devices"] = devices;
+  if (!first_fault_ || supervisor_->state() == supervisor::State::complete) return;
+  // A link that failed is named as the link (device, symptom, since when), whatever rule latched.
+  const auto& f = *first_fault_;
+  std::optional<cell::Device> lost;
+  double since = 0.0;
+  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+    const auto dev = static_cast<cell::Device>(d);
+    const auto at = safe_stop_->lost_at_s(dev);
+    if (at && *at <= f.t && (!lost || *at < since)) {
+      lost = dev;
+      since = *at;
+    }
+  }
+  nlohmann::json ended{{"t", journal::round_ms(f.t)}, {"rule", monitor::to_string(f.rule)}};
+  if (lost) {
+    ended["kind"] = "link";
+    ended["device"] = cell::to_string(*lost);
+    ended["symptom"] = safe_stop_->lost_reason(*lost);
+    ended["since_s"] = journal::round_ms(since);
+    r.ended_by = fmt::format("{} link fault since {:.3f} s: {}", cell::to_string(*lost), since,
+                             safe_stop_->lost_reason(*lost));
+  } else {
+    const bool by_operator = f.rule == monitor::Rule::operator_stop || f.rule == monitor::Rule::emergency_stop;
+    ended["kind"] = by_operator ? "operator" : "monitor";
+    ended["detail"] = std::string(f.detail.view());
+    r.ended_by = fmt::format("{} at {:.3f} s: {}", monitor::to_string(f.rule), f.t, f.detail.view());
+  }
+  extra["ended_by"] = ended;
 }
 
 void CellRun::publish_status(double t) {
@@ -202,6 +238,7 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
 
     stages.begin(index(ControlStage::state));
     devices_->read(now, state_);
+    safe_stop_->observe(now);
 
     stages.begin(index(ControlStage::monitor));
     const auto fresh =
@@ -212,6 +249,7 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
       const auto& latch = monitor_.latch(rule);
       journal_.post(t, journal::Fault{monitor::to_string(rule), static_cast<std::uint8_t>(latch.category),
                                       latch.detail});
+      if (!first_fault_ && !shutdown_since_) first_fault_.emplace(FirstFault{rule, t, latch.detail});
     }
 
     stages.begin(index(ControlStage::supervisor));
@@ -224,16 +262,17 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
 
     stages.begin(index(ControlStage::write_sessions));
     if (supervisor::is_final(supervisor_->state()) && !shutdown_since_) {
-      devices_->deactivate(now);  // axes stopped, remote mode closed, spindle stopped
-      monitor_.disarm();          // the devices go down on purpose now
+      safe_stop_->begin(now);  // axes stopped, remote mode closed, spindle stopped — and confirmed
+      monitor_.disarm();       // the devices go down on purpose now
       shutdown_since_ = now;
     }
-    if (!shutdown_since_) devices_->apply(supervisor_->intents());
+    if (shutdown_since_)
+      safe_stop_->step(now);  // lost devices: port reopened, stop sent again until confirmed or bounded
+    else
+      devices_->apply(supervisor_->intents());
     devices_->transmit(now);  // what this cycle decided goes out in this cycle
   }
-  if (shutdown_since_ &&
-      (devices_->all_inactive() || link::to_seconds(now - *shutdown_since_) > options_.shutdown_timeout_s))
-    loop_stop_.store(true);
+  if (shutdown_since_ && safe_stop_->done()) loop_stop_.store(true);
   publish_status(t);
 }
 
@@ -251,6 +290,10 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   if (emulated_ && options_.mode != RunMode::virtual_time)
     emulator_thread_ = std::thread([this] { run_emulator_thread(); });
 
+  safe_stop_ = std::make_unique<SafeStop>(cell_, *devices_, *links_,
+                                          std::chrono::duration_cast<link::Duration>(
+                                              std::chrono::duration<double>(options_.shutdown_timeout_s)),
+                                          start_);
   devices_->activate(start_);
   (void)supervisor_->command(supervisor::Command::start, "cellctl run", 0.0);
   loop_->run([this, &interrupt](link::TimePoint now, std::uint64_t) { cycle(now, interrupt); }, loop_stop_);
@@ -277,6 +320,7 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   extra["wall_s"] = r.wall_s;
   extra["mode"] = to_string(options_.mode);
   extra["corrections"] = supervisor_->corrections();
+  report_safety(r, extra);
   journal_.close(extra);
   r.faults = journal_.summary().faults();
   r.summary_text = journal_.summary().to_text();

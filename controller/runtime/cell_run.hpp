@@ -31,6 +31,7 @@
 #include "runtime/emulator_setup.hpp"
 #include "runtime/fault_rehearsal.hpp"
 #include "runtime/fault_spec.hpp"
+#include "runtime/safe_stop.hpp"
 #include "runtime/status_view.hpp"
 #include "supervisor/supervisor.hpp"
 
@@ -42,7 +43,10 @@ struct RunOptions {
   nlohmann::json record_header;  // the journal's first line (journal/record_header.hpp); none if null
   bool trace = false;
   supervisor::SupervisorSettings supervisor;  // mode and sample period are filled in from the config
-  double shutdown_timeout_s = 5.0;            // for sessions to close (RA, spindle stop) at the end
+  // How long after the end a stop is sent again to a device that has not confirmed it and has no
+  // protection of its own to bound it (the spindle converter); the SCU is bounded by its own
+  // communication time-out and the actuators' stopping time (runtime/safe_stop.hpp).
+  double shutdown_timeout_s = 5.0;
   std::vector<FaultSpec> faults;              // to rehearse (emulated and virtual-time runs only)
   // The emulated devices' set-up; read from the cell's file (cell.source) when emulators are needed
   // and none is given here.
@@ -60,6 +64,15 @@ struct RunResult {
   std::uint64_t cycles = 0;
   std::string loop_summary;
   std::string summary_text;  // the journal's summary for the terminal
+  // The safe state each device was left in (nullopt: the cell has no such device).
+  std::array<std::optional<DeviceSafety>, cell::kDevices> safety;
+  // The fault that ended the run, in words ("scu link: … since 1.502 s"); empty when none did.
+  std::string ended_by;
+  [[nodiscard]] bool any_unknown() const noexcept {
+    for (const auto& s : safety)
+      if (s && s->safe == Safe::unknown) return true;
+    return false;
+  }
 };
 
 class CellRun {
@@ -103,6 +116,8 @@ class CellRun {
   void take_commands(double t, std::atomic<bool>& interrupt);
   void judge_reset(double t);
   void report_devices(double t, RunResult& r);
+  // The summary's "devices" and "ended_by" (journal/README: the summary line).
+  void report_safety(RunResult& r, nlohmann::json& extra) const;
   [[nodiscard]] static constexpr unsigned bit(supervisor::Command c) noexcept {
     return 1u << static_cast<unsigned>(c);
   }
@@ -122,6 +137,7 @@ class CellRun {
   std::unique_ptr<CellLinks> links_;
   std::unique_ptr<EmulatedCell> emulated_;
   std::unique_ptr<CellDevices> devices_;
+  std::unique_ptr<SafeStop> safe_stop_;
   journal::Journal journal_;
   monitor::Monitor monitor_;
   std::unique_ptr<supervisor::Supervisor> supervisor_;
@@ -141,6 +157,13 @@ class CellRun {
   bool operator_stop_ = false;   // Ctrl-C once: the monitor's operator stop
   bool emergency_stop_ = false;  // Ctrl-C twice: the monitor's emergency stop
   std::optional<link::TimePoint> shutdown_since_;
+  // The first monitor fault of the run (the one that ended it, when one did).
+  struct FirstFault {
+    monitor::Rule rule;
+    double t;
+    journal::Text detail;
+  };
+  std::optional<FirstFault> first_fault_;
   std::atomic<bool> loop_stop_{false};
 };
 

@@ -92,6 +92,12 @@ IoResult FaultInjectingLink::write(std::span<const std::uint8_t> bytes) {
   return inner_.write(bytes);
 }
 
+IoResult FaultInjectingLink::reopen() {
+  const auto fault = active(clock_.now());
+  if (fault && fault->kind == LinkFaultKind::disconnect) return port_gone();
+  return inner_.reopen();
+}
+
 IoResult FaultInjectingLink::discard_inbound() {
   for (;;) {
     const auto r = inner_.read(scratch_);

@@ -49,6 +49,8 @@ class FaultInjectingLink final : public Link {
   IoResult read(std::span<std::uint8_t> buffer) override;
   IoResult write(std::span<const std::uint8_t> bytes) override;
   [[nodiscard]] std::string describe() const override { return inner_.describe(); }
+  // While a disconnect window is open the port stays gone (closed); otherwise the wrapped link's.
+  IoResult reopen() override;
 
   // What the faults have done so far (for tests and reports).
   struct Counters {

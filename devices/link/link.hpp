@@ -31,6 +31,11 @@ class Link {
   virtual IoResult write(std::span<const std::uint8_t> bytes) = 0;
   // Where this link goes, for messages and traces ("/dev/ttyUSB0", "sim:scu").
   [[nodiscard]] virtual std::string describe() const = 0;
+  // After the link answered IoStatus::closed or failed: opens the same port again (a USB adapter that
+  // came back, a pty published again at its symlink). ok() when the link can be used again; a link
+  // with nothing to open (an in-memory line) is always ok. May make system calls and allocate: for the
+  // safe-stop after a fault, never for the cycle of a healthy run.
+  virtual IoResult reopen() { return {}; }
 };
 
 }  // namespace cellctl::link

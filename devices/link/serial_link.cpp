@@ -120,13 +120,29 @@ std::unique_ptr<SerialLink> SerialLink::open(const std::string& path, LineFormat
 }
 
 SerialLink::~SerialLink() {
-  ::close(fd_);
+  if (fd_ >= 0) ::close(fd_);
+}
+
+IoResult SerialLink::reopen() {
+  // The old descriptor goes first: its lock would refuse the new one.
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  try {
+    auto fresh = open(path_, format_);
+    std::swap(fd_, fresh->fd_);
+    modem_lines_held_ = fresh->modem_lines_held_;
+    return {};
+  } catch (const LinkError& e) {
+    return {0, IoStatus::closed, e.cause()};
+  }
 }
 
 IoResult SerialLink::read(std::span<std::uint8_t> buffer) {
+  if (fd_ < 0) return {0, IoStatus::closed, EBADF};
   return fd_read(fd_, buffer);
 }
 IoResult SerialLink::write(std::span<const std::uint8_t> bytes) {
+  if (fd_ < 0) return {0, IoStatus::closed, EBADF};
   return fd_write(fd_, bytes);
 }
 std::string SerialLink::describe() const {

@@ -22,6 +22,9 @@ class SerialLink final : public Link {
   IoResult read(std::span<std::uint8_t> buffer) override;
   IoResult write(std::span<const std::uint8_t> bytes) override;
   [[nodiscard]] std::string describe() const override;
+  // Closes the port and opens its path again with the same line format (exclusively, DTR/RTS held).
+  // Until it succeeds, reads and writes answer IoStatus::closed.
+  IoResult reopen() override;
 
   // False on a pseudo-terminal, which has no modem lines to hold.
   [[nodiscard]] bool modem_lines_held() const noexcept { return modem_lines_held_; }

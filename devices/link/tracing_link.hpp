@@ -88,6 +88,7 @@ class TracingLink final : public Link {
   IoResult read(std::span<std::uint8_t> buffer) override;
   IoResult write(std::span<const std::uint8_t> bytes) override;
   [[nodiscard]] std::string describe() const override { return inner_.describe(); }
+  IoResult reopen() override { return inner_.reopen(); }
 
  private:
   void flush_rx();

@@ -74,6 +74,9 @@ class Session final : public link::DeviceSession {
   [[nodiscard]] bool read(std::uint16_t data_id);
 
   [[nodiscard]] const Snapshot& snapshot() const noexcept { return snapshot_; }
+  // When the last request went on the line (none yet: the epoch). Any of them may have reached the
+  // SCU and restarted its communication time-out, so a bound on the SCU's own stop counts from here.
+  [[nodiscard]] link::TimePoint last_sent() const noexcept { return sent_at_; }
   [[nodiscard]] const CyclicLayout& layout() const noexcept { return layout_; }
   [[nodiscard]] const SessionConfig& config() const noexcept { return config_; }
 

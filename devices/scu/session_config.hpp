@@ -28,6 +28,11 @@ struct SessionConfig {
   link::Duration reply_timeout = std::chrono::milliseconds(150);
   int retries = 2;  // further attempts after a time-out or a CSE
   link::Duration link_fault_after = std::chrono::milliseconds(1000);
+  // How long the fitted actuators take at most to stand still once the SCU terminates their motion
+  // (a communication time-out, RA, F20), from full speed. With the SCU's communication time-out
+  // (0.5 s after the last RC or RO it received, whatever the Safety_ID: every motion of ours is a
+  // remote one) it bounds when axes the program lost sight of are surely at rest.
+  link::Duration stopping_time = std::chrono::milliseconds(500);
   std::bitset<kActuatorCount> actuators = 1;  // bit a-1 = actuator a is fitted
   FunctionTable functions = scp11(1);
   std::array<ActuatorSpec, kActuatorCount> specs{};  // specs[a-1]: actuator a, when fitted

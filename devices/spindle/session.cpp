@@ -87,6 +87,7 @@ void Session::activate(link::TimePoint now) {
   values_at_.reset();
   at_speed_since_.reset();
   next_status_at_ = next_values_at_ = now;
+  stop_acked_at_.reset();
   start_parameters_sent_ = false;  // the converter may have been switched off and on in between
   watching_start_ = false;
 }
@@ -94,6 +95,7 @@ void Session::activate(link::TimePoint now) {
 void Session::deactivate(link::TimePoint) {
   if (quiet()) return;
   enter(link::Lifecycle::deactivating);
+  stop_acked_at_.reset();
   (void)stop();
 }
 
@@ -156,7 +158,10 @@ void Session::receive(link::TimePoint now) {
           link::to_milliseconds(silent_for(now)), link::to_milliseconds(config_.link_fault_after));
     return;
   }
-  if (lifecycle() == link::Lifecycle::deactivating && !in_flight_ && queued_ == 0)
+  // Closed only once the stop is acknowledged and a statusout asked for after it reports STILLSTAND:
+  // the converter has no watchdog of its own (the manual names none) and keeps turning without us.
+  if (lifecycle() == link::Lifecycle::deactivating && !in_flight_ && queued_ == 0 && stop_acked_at_ &&
+      status_at_ && *status_at_ > *stop_acked_at_ && snapshot_.at_rest)
     enter(link::Lifecycle::inactive);
 }
 
@@ -223,6 +228,7 @@ void Session::on_reply(link::TimePoint now, const Message& m) {
     if (lifecycle() == link::Lifecycle::activating) enter(link::Lifecycle::active);
   }
   if (ack && ack->acknowledged == MsgId::cmd_start) watching_start_ = true;
+  if (ack && ack->acknowledged == MsgId::cmd_stop) stop_acked_at_ = now;
   in_flight_.reset();
 }
 
@@ -290,9 +296,14 @@ void Session::send_next(link::TimePoint now) {
     send(now, next);
     return;
   }
-  if (lifecycle() == link::Lifecycle::deactivating) return;
   std::optional<MsgId> wanted;
-  if (!snapshot_.identification) {
+  if (lifecycle() == link::Lifecycle::deactivating) {
+    // Stopping: statusout only, until it reports the motor at rest.
+    if (now >= next_status_at_) {
+      wanted = MsgId::res_statusout;
+      next_status_at_ = now + config_.status_poll;
+    }
+  } else if (!snapshot_.identification) {
     wanted = MsgId::res_ident;
   } else if (now >= next_status_at_) {
     wanted = MsgId::res_statusout;

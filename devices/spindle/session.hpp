@@ -81,7 +81,8 @@ class Session final : public link::DeviceSession {
   Session(link::Link& link, const SessionConfig& config);
 
   void activate(link::TimePoint now) override;
-  // Stops the spindle (CMD System Stopp, confirmed) and then goes inactive.
+  // Stops the spindle (CMD System Stopp, confirmed) and goes inactive once a statusout asked for after
+  // the stop's ACK reports STILLSTAND; silent meanwhile for link_fault_after, it faults.
   void deactivate(link::TimePoint now) override;
   void receive(link::TimePoint now) override;
   void transmit(link::TimePoint now) override;
@@ -146,6 +147,7 @@ class Session final : public link::DeviceSession {
   bool start_parameters_sent_ = false;
   Direction sent_direction_ = Direction::clockwise;
   bool watching_start_ = false;  // a start was acknowledged; the next statusout tells if it was taken
+  std::optional<link::TimePoint> stop_acked_at_;  // the last CMD System Stopp's ACK
 };
 
 }  // namespace cellctl::spindle
