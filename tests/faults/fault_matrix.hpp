@@ -77,7 +77,8 @@ struct Expectation {
   bool may_ride_through = false;
   double detect_ms = 0.0;                // bound from the injection to the first monitor fault
   double safe_ms = 0.0;                  // bound from the injection to the plant at rest
-  std::array<Safe, 3> safe{};            // per device (cell::Device order) in the summary
+  std::array<Safe, 3> safe{};            // per device (cell::Device order) in the summary …
+  std::array<bool, 3> or_observed{};     // … or observed: the line came back before the bound passed
   std::vector<std::string> first_rules;  // the rules the first fault may have; empty: any naming the device
   int exit_status = 1;                   // what `cellctl run` gives for such a run (0, 1 or 5)
   std::string detect_why;                // the detection bound's reasoning, for the table

@@ -19,6 +19,14 @@ const config::CellConfig& cell() {
   return c;
 }
 
+}  // namespace
+
+void PrintTo(const MatrixCase& c, std::ostream* os) {
+  *os << name_of(c);
+}
+
+namespace {
+
 class FaultMatrix : public ::testing::TestWithParam<MatrixCase> {};
 
 TEST_P(FaultMatrix, EndsSafeWithinItsBounds) {
