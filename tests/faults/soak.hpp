@@ -7,7 +7,8 @@
 //  - it ends by itself within a bound (kStuckS of virtual time; the demo takes 91 s, a hold at most
 //    kMaxHoldS more, a safe stop seconds), with its journal closed by a summary;
 //  - the summary says per device how its safe state is known, and a device is `unknown` only where
-//    the fault left no way to confirm a stop: a line fault on that very device still on at the end;
+//    the fault left no way to confirm a stop: a line fault on that very device on until less than
+//    1.5 s before the end (a retry, the reply, the spindle's run-down from 400 Hz);
 //  - the emulated plant is at rest at the end, unless cellctl says the device that moves it is
 //    `unknown` (then it must say so, and does).
 // Leaks are the sanitizer's to find: run it in the ASan build.
