@@ -191,12 +191,15 @@ void SafeStop::step_encoder(link::TimePoint now) {
   if (!s || t.resolved) return;
   const auto& scu = track_[slot(cell::Device::scu)];
   if (t.lost_at || s->lifecycle() == link::Lifecycle::fault) return resolve(t, Safe::bounded, now);
+  // Observed only when the positions kept coming through the stop: a master that left data exchange
+  // (and may be starting it again), or whose replies stopped being good, saw nothing of the axes.
+  if (!s->snapshot().data_exchange || s->lifecycle() != link::Lifecycle::active ||
+      s->silent_for(now) > kRetry)
+    encoder_.missed = true;
   if (scu.present && !scu.resolved) return;  // watching the axes until the SCU is resolved
-  // In data exchange up to now (this cycle's exchange may still be on the line): watched to the end.
-  const bool watching = encoder_.last_seen && now - *encoder_.last_seen <= kRetry;
   if (s->lifecycle() == link::Lifecycle::active || s->lifecycle() == link::Lifecycle::activating)
     s->deactivate(now);
-  resolve(t, watching ? Safe::observed : Safe::bounded, now);
+  resolve(t, encoder_.missed ? Safe::bounded : Safe::observed, now);
 }
 
 bool SafeStop::done() const noexcept {

@@ -110,6 +110,7 @@ class SafeStop {
   };
   struct EncoderWatch {
     std::optional<link::TimePoint> last_seen;  // in data exchange
+    bool missed = false;  // out of data exchange in a cycle after the end: not watched to the end
     double mm = 0.0;
     double mm_s = 0.0;
   };

@@ -310,7 +310,8 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
         cell_up_ = true;
         enter(State::execute, t, Text::format("all devices up, encoder ready"));
       } else if (failed) {
-        failure_ = Text::format("{} session failed while starting (its reason follows)", cell::to_string(*failed));
+        failure_ =
+            Text::format("{} session failed while starting (its reason follows)", cell::to_string(*failed));
         enter(State::aborting, t, failure_);
       } else if (t - state_since_ > settings_.start_timeout_s) {
         failure_ = Text::format("devices not ready after {:g} s (scu {}, spindle {}, encoder {})",

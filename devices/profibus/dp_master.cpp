@@ -61,6 +61,8 @@ std::string_view to_string(StartupFault::Kind k) noexcept {
 
 namespace {
 
+constexpr std::string_view kSlaveLost = "slave lost: no good reply within lost_slave_time";
+
 void require(bool ok, const char* field, unsigned value, const char* rule) {
   if (!ok)
     throw std::invalid_argument(std::string("profibus master: ") + field + ": " + std::to_string(value) +
@@ -189,6 +191,17 @@ link::Lifecycle DpMaster::poll(link::TimePoint now) {
       on_reply(ev->frame, now);
   }
   if (in_flight_ && expect_reply_ && now >= reply_deadline_) on_no_reply(now);
+  // Checked every poll, not only when a request has gone unanswered through its retries: noise that
+  // looks like the start of a reply holds the reply deadline out by a longest frame's time (150 ms at
+  // 19.2 kbaud), and a line kept busy holds every request back (TSYN never passes). A reply still on
+  // its way after lost_slave_time is no longer waited for.
+  if ((state_ == DpState::data_exchange || state_ == DpState::diag_cyclic) &&
+      pending_ != Pending::set_address && health_.silent_for(now, state_since_) >= config_.lost_slave_time) {
+    in_flight_ = false;
+    pending_ = Pending::none;
+    ++stats_.lost;
+    restart(now, kSlaveLost);
+  }
   if (!in_flight_ && now >= line_idle_from_ + tsyn_) next_request(now);
   return lifecycle_;
 }
@@ -440,8 +453,7 @@ void DpMaster::on_data(const FdlFrame& reply, link::TimePoint now) {
   if (reply.data.size() != setup_.input_length) {
     // Not our inputs: a slave that answers with another shape is not in the exchange we configured.
     ++stats_.bad_inputs;
-    restart_with_bad_reply(now, "Data_Exchange", reply.data.size(), setup_.input_length,
-                           setup_.input_length);
+    restart_with_bad_reply(now, "Data_Exchange", reply.data.size(), setup_.input_length, setup_.input_length);
     return;
   }
   (void)inputs_.assign(reply.data.view());
@@ -480,7 +492,7 @@ void DpMaster::on_no_reply(link::TimePoint now) {
   if (state_ == DpState::data_exchange || state_ == DpState::diag_cyclic) {
     if (health_.silent_for(now, state_since_) >= config_.lost_slave_time) {
       ++stats_.lost;
-      restart(now, "slave lost: no reply within lost_slave_time");
+      restart(now, kSlaveLost);
     }
     return;
   }

@@ -44,6 +44,32 @@ TEST(DpBus, PowerOnToDataExchange) {
   EXPECT_LT(bus.master.input_age(bus.now()), milliseconds(2));
 }
 
+// A line kept busy by bytes that are no frame holds every request back (TSYN never passes), so no
+// request goes unanswered: the master still leaves data exchange lost_slave_time after the last good
+// reply, and names it.
+TEST(DpBus, ALineBusyWithNoiseLosesTheSlaveAfterLostSlaveTime) {
+  Bus bus;
+  bus.master.activate(bus.now());
+  ASSERT_TRUE(bus.run_until([&] { return bus.in_data_exchange(); }, milliseconds(10)));
+  bus.run_for(milliseconds(5));
+  bus.slave.set_silent(true);
+  const auto noise_from = bus.now();
+  const std::vector<std::uint8_t> noise(250, 0x00);  // 250 octets: 1.8 ms of line at 1.5 Mbaud
+  auto next_burst = bus.now();
+  ASSERT_TRUE(bus.run_until(
+      [&] {
+        if (bus.now() >= next_burst) {
+          (void)bus.sim.device().write(noise);
+          next_burst = bus.now() + milliseconds(1);
+        }
+        return bus.master.lifecycle() != link::Lifecycle::active;
+      },
+      milliseconds(100)));
+  EXPECT_LE(bus.now() - noise_from, milliseconds(22)) << "lost_slave_time 20 ms, checked every poll";
+  EXPECT_EQ(bus.master.restart_reason(), "slave lost: no good reply within lost_slave_time");
+  EXPECT_GT(bus.master.health().bad_frames, 0u);
+}
+
 TEST(DpBus, PrmVetoKeepsTheSlaveOutOfDataExchange) {
   Bus bus;
   bus.behaviour.veto = "units per revolution above the physical resolution";
@@ -127,7 +153,7 @@ TEST(DpBus, SilentSlaveIsDetectedAndRecovers) {
   EXPECT_GE(bus.now() - silent_from, milliseconds(19));
   EXPECT_EQ(bus.master.lifecycle(), link::Lifecycle::activating);
   EXPECT_EQ(bus.master.stats().lost, 1u);
-  EXPECT_EQ(bus.master.restart_reason(), "slave lost: no reply within lost_slave_time");
+  EXPECT_EQ(bus.master.restart_reason(), "slave lost: no good reply within lost_slave_time");
   EXPECT_GT(bus.master.health().timeouts, 0u);
   EXPECT_GT(bus.master.health().retries, 0u);
   EXPECT_GE(bus.master.input_age(bus.now()), milliseconds(19));
