@@ -20,11 +20,7 @@ std::unique_ptr<link::SerialLink> open_serial(const std::string& device, const s
 
 CellLinks::CellLinks(const config::CellConfig& cell, RunMode mode, const link::Clock& clock, bool trace,
                      std::bitset<cell::kDevices> fault_lines)
-    : clock_(clock),
-      mode_(mode),
-      trace_(trace),
-      fault_lines_(fault_lines),
-      sink_(mode == RunMode::virtual_time ? wire::WhenFull::wait : wire::WhenFull::drop_and_count) {
+    : clock_(clock), mode_(mode), trace_(trace), fault_lines_(fault_lines), sink_(when_writer_full(mode)) {
   if (cell.scu) master_.scu = open(cell::Device::scu, cell.scu->port, device_.scu);
   if (cell.spindle) master_.spindle = open(cell::Device::spindle, cell.spindle->port, device_.spindle);
   if (cell.encoder) master_.encoder = open(cell::Device::encoder, cell.encoder->port, device_.encoder);

@@ -23,12 +23,24 @@
 #include "link/tracing_link.hpp"
 #include "runtime/cell_devices.hpp"
 #include "runtime/emulated_cell.hpp"
+#include "wire/spsc_queue.hpp"
 
 namespace cellctl::runtime {
 
 enum class RunMode { hardware, emulated, virtual_time };
 [[nodiscard]] constexpr const char* to_string(RunMode m) noexcept {
   return m == RunMode::hardware ? "hardware" : m == RunMode::emulated ? "emulated" : "virtual-time";
+}
+// A writer (the run record, the trace) that falls behind: a virtual-time run waits for it (its time
+// costs nothing), a real-time loop never waits on it — it drops and counts.
+[[nodiscard]] constexpr wire::WhenFull when_writer_full(RunMode m) noexcept {
+  return m == RunMode::virtual_time ? wire::WhenFull::wait : wire::WhenFull::drop_and_count;
+}
+// The clock a run goes by: the virtual one the loop steps in virtual time, else the real one.
+[[nodiscard]] inline const link::Clock& run_clock(RunMode m, const link::MonotonicClock& real,
+                                                  const link::VirtualClock& virtual_clock) noexcept {
+  return m == RunMode::virtual_time ? static_cast<const link::Clock&>(virtual_clock)
+                                    : static_cast<const link::Clock&>(real);
 }
 
 class CellLinks {

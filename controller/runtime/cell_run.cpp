@@ -65,12 +65,8 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
       recipe_(recipe),
       program_(recipe::unroll(recipe)),
       options_(std::move(options)),
-      clock_(options_.mode == RunMode::virtual_time ? static_cast<const link::Clock&>(virtual_clock_)
-                                                    : static_cast<const link::Clock&>(real_clock_)),
-      journal_(options_.journal_dir,
-               options_.mode == RunMode::virtual_time ? journal::WhenFull::wait
-                                                      : journal::WhenFull::drop_and_count,
-               options_.record_header),
+      clock_(run_clock(options_.mode, real_clock_, virtual_clock_)),
+      journal_(options_.journal_dir, when_writer_full(options_.mode), options_.record_header),
       monitor_(cell) {
   home_record_file_ = routines::home_record_path(
       options_.state_dir.empty() ? cell.state_dir : options_.state_dir,
@@ -79,13 +75,8 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
       routines::load_home_record(home_record_file_, cell, config_sha256(cell), &home_record_problem_);
   options_.supervisor.home_record = &home_record_;
   try {
-    auto parts = open_cell_parts(cell, options_.mode, clock_, virtual_clock_, options_.trace, options_.faults,
-                                 options_.emulators);
-    waiter_ = std::move(parts.waiter);
-    rehearsal_ = std::move(parts.rehearsal);
-    links_ = std::move(parts.links);
-    emulated_ = std::move(parts.emulated);
-    devices_ = std::move(parts.devices);
+    parts_ = open_cell_parts(cell, options_.mode, clock_, virtual_clock_, options_.trace, options_.faults,
+                             options_.emulators);
   } catch (const std::exception& e) {
     // A port that did not open (or a device set-up refused): the record says why nothing ran.
     journal_.close({{"outcome", "not started"}, {"reason", e.what()}});
@@ -93,7 +84,8 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
   }
   supervisor_ = std::make_unique<supervisor::Supervisor>(
       cell, recipe, program_, journal_, cell.loop.period_ms / 1000.0, settings_for(cell, options_));
-  loop_ = std::make_unique<loop::Loop>(clock_, *waiter_, period_of(cell), loop::kControlStages, &real_clock_);
+  loop_ = std::make_unique<loop::Loop>(clock_, *parts_.waiter, period_of(cell), loop::kControlStages,
+                                       &real_clock_);
   state_.axis_count = static_cast<std::uint8_t>(cell.axes.size());
 }
 
@@ -103,7 +95,7 @@ CellRun::~CellRun() {
 }
 
 void CellRun::run_emulator_thread() {
-  serve_emulators(emulators_stop_, real_clock_, rehearsal_.get(), *emulated_);
+  serve_emulators(emulators_stop_, real_clock_, parts_.rehearsal.get(), *parts_.emulated);
 }
 
 void CellRun::take_commands(double t, std::atomic<bool>& interrupt) {
@@ -174,13 +166,13 @@ void CellRun::report_devices(double t, RunResult& r) {
   };
   static constexpr const char* kNames[cell::kDevices] = {"SCU", "spindle", "encoder"};
   for (std::size_t d = 0; d < cell::kDevices; ++d) {
-    const auto* s = devices_->sessions()[d];
+    const auto* s = parts_.devices->sessions()[d];
     if (s && s->lifecycle() == link::Lifecycle::fault)
       note(std::string(kNames[d]) + ": " + s->fault_reason());
   }
-  if (auto* sp = devices_->spindle(); sp && sp->snapshot().start_refused)
+  if (auto* sp = parts_.devices->spindle(); sp && sp->snapshot().start_refused)
     note("spindle: " + sp->snapshot().start_refused_reason);
-  if (auto* enc = devices_->encoder(); enc && !enc->restart_reason().empty())
+  if (auto* enc = parts_.devices->encoder(); enc && !enc->restart_reason().empty())
     note("encoder: DP start-up begun again: " + enc->restart_reason());
 }
 
@@ -221,7 +213,7 @@ void CellRun::report_safety(RunResult& r, nlohmann::json& extra) const {
     // The session's own words when it gave up on the link; else what the monitor saw of it.
     const auto& reason = safe_stop_->lost_reason(*f.link);
     std::string symptom = reason.empty() ? std::string(f.detail.view()) : reason;
-    if (auto* enc = devices_->encoder();
+    if (auto* enc = parts_.devices->encoder();
         *f.link == cell::Device::encoder && enc && !enc->restart_reason().empty())
       symptom += "; DP start-up begun again: " + enc->restart_reason();
     ended["kind"] = "link";
@@ -285,19 +277,19 @@ void CellRun::publish_status(double t) {
 void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
   const double t = link::to_seconds(now - start_);
   if (hook_) hook_(t, *this);
-  if (rehearsal_) rehearsal_->post_journal(now, t, journal_);
+  if (parts_.rehearsal) parts_.rehearsal->post_journal(now, t, journal_);
   take_commands(t, interrupt);
   {  // the stages, timed back to back; the last ends with this block
     auto stages = loop_->stage_sequence();
     stages.begin(index(ControlStage::read_sessions));
-    if (emulated_ && options_.mode == RunMode::virtual_time) {
-      if (rehearsal_) rehearsal_->drive_emulators(now, *emulated_);
-      emulated_->poll(now);
+    if (parts_.emulated && options_.mode == RunMode::virtual_time) {
+      if (parts_.rehearsal) parts_.rehearsal->drive_emulators(now, *parts_.emulated);
+      parts_.emulated->poll(now);
     }
-    devices_->receive(now);
+    parts_.devices->receive(now);
 
     stages.begin(index(ControlStage::state));
-    devices_->read(now, state_);
+    parts_.devices->read(now, state_);
     safe_stop_->observe(now);
 
     stages.begin(index(ControlStage::monitor));
@@ -329,8 +321,8 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
     // Lost devices: port reopened, the stop sent again until confirmed or bounded.
     const auto demanded = monitor_.demanded_stop();
     safe_stop_->step(now, demanded && *demanded != monitor::StopCategory::controlled_hold);
-    if (!shutdown_since_) devices_->apply(supervisor_->intents());
-    devices_->transmit(now);  // what this cycle decided goes out in this cycle
+    if (!shutdown_since_) parts_.devices->apply(supervisor_->intents());
+    parts_.devices->transmit(now);  // what this cycle decided goes out in this cycle
   }
   if (shutdown_since_ && safe_stop_->done()) loop_stop_.store(true);
   publish_status(t);
@@ -363,18 +355,18 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
       std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
           .count();
   start_ = clock_.now();
-  links_->start_trace_clock(start_);
-  if (rehearsal_) rehearsal_->start(start_, links_->fault_links());
+  parts_.links->start_trace_clock(start_);
+  if (parts_.rehearsal) parts_.rehearsal->start(start_, parts_.links->fault_links());
   // Started after apply_realtime, so it inherits the loop's SCHED_FIFO priority and memory lock: an
   // emulator the load keeps off the CPU would look like a device that stops answering.
-  if (emulated_ && options_.mode != RunMode::virtual_time)
+  if (parts_.emulated && options_.mode != RunMode::virtual_time)
     emulator_thread_ = std::thread([this] { run_emulator_thread(); });
 
   safe_stop_ = std::make_unique<SafeStop>(
-      cell_, *devices_, *links_,
+      cell_, *parts_.devices, *parts_.links,
       std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.shutdown_timeout_s)),
       start_);
-  devices_->activate(start_);
+  parts_.devices->activate(start_);
   (void)supervisor_->command(supervisor::Command::start, "cellctl run", 0.0);
   loop_->run([this, &interrupt](link::TimePoint now, std::uint64_t) { cycle(now, interrupt); }, loop_stop_);
 
@@ -382,7 +374,7 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   if (emulator_thread_.joinable()) emulator_thread_.join();
 
   RunResult r;
-  if (rehearsal_) rehearsal_->post_run_end(link::to_seconds(clock_.now() - start_), journal_);
+  if (parts_.rehearsal) parts_.rehearsal->post_run_end(link::to_seconds(clock_.now() - start_), journal_);
   report_devices(link::to_seconds(clock_.now() - start_), r);
   save_home_record(link::to_seconds(clock_.now() - start_), unix_start, r);
   r.final_state = supervisor_->state();
@@ -393,7 +385,7 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   r.cycles = loop_->stats().cycles;
   r.loop_summary = loop_->summary();
   nlohmann::json extra;
-  r.link_summary = link_figures(*devices_, extra["links"]);
+  r.link_summary = link_figures(*parts_.devices, extra["links"]);
   extra["cycles"] = r.cycles;
   extra["overrun_cycles"] = loop_->stats().overrun_cycles;
   extra["missed_deadlines"] = loop_->stats().missed_deadlines;

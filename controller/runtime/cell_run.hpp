@@ -80,7 +80,7 @@ struct RunResult {
       if (s && s->safe == Safe::unknown) return true;
     return false;
   }
-  std::string home_record;   // "home record written: <file>" (or why not) when homing changed it
+  std::string home_record;  // "home record written: <file>" (or why not) when homing changed it
 };
 
 class CellRun {
@@ -116,12 +116,12 @@ class CellRun {
   // Tests in virtual time: called at the start of every cycle, on the loop's thread.
   void on_cycle(std::function<void(double t, CellRun&)> hook) { hook_ = std::move(hook); }
 
-  [[nodiscard]] EmulatedCell* emulators() noexcept { return emulated_.get(); }
+  [[nodiscard]] EmulatedCell* emulators() noexcept { return parts_.emulated.get(); }
   [[nodiscard]] const cell::CellState& state() const noexcept { return state_; }
   [[nodiscard]] const supervisor::Supervisor& supervisor() const noexcept { return *supervisor_; }
   [[nodiscard]] const monitor::Monitor& monitor() const noexcept { return monitor_; }
   [[nodiscard]] const StatusBoard& status() const noexcept { return board_; }
-  [[nodiscard]] const CellLinks& links() const noexcept { return *links_; }
+  [[nodiscard]] const CellLinks& links() const noexcept { return *parts_.links; }
   [[nodiscard]] const loop::Loop& loop() const noexcept { return *loop_; }
   [[nodiscard]] std::vector<std::string> realtime_warnings() const { return realtime_warnings_; }
   [[nodiscard]] const std::filesystem::path& home_record_file() const noexcept { return home_record_file_; }
@@ -152,11 +152,7 @@ class CellRun {
   link::MonotonicClock real_clock_;
   link::VirtualClock virtual_clock_;
   const link::Clock& clock_;
-  std::unique_ptr<loop::CycleWaiter> waiter_;
-  std::unique_ptr<FaultRehearsal> rehearsal_;
-  std::unique_ptr<CellLinks> links_;
-  std::unique_ptr<EmulatedCell> emulated_;
-  std::unique_ptr<CellDevices> devices_;
+  CellParts parts_;  // the cycle waiter, faults rehearsed, links, emulators, device sessions
   std::unique_ptr<SafeStop> safe_stop_;
   journal::Journal journal_;
   monitor::Monitor monitor_;

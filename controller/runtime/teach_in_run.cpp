@@ -10,29 +10,20 @@ TeachInRun::TeachInRun(const config::CellConfig& cell, const routines::TeachInRe
                        TeachInRunOptions options)
     : cell_(cell),
       options_(std::move(options)),
-      clock_(options_.mode == RunMode::virtual_time ? static_cast<const link::Clock&>(virtual_clock_)
-                                                    : static_cast<const link::Clock&>(real_clock_)),
-      journal_(options_.journal_dir,
-               options_.mode == RunMode::virtual_time ? journal::WhenFull::wait
-                                                      : journal::WhenFull::drop_and_count,
-               options_.record_header),
+      clock_(run_clock(options_.mode, real_clock_, virtual_clock_)),
+      journal_(options_.journal_dir, when_writer_full(options_.mode), options_.record_header),
       monitor_(cell) {
   try {
     if (!cell.encoder) throw std::invalid_argument("the cell has no encoder: section: nothing to teach");
-    auto parts = open_cell_parts(cell, options_.mode, clock_, virtual_clock_, options_.trace, options_.faults,
-                                 options_.emulators);
-    waiter_ = std::move(parts.waiter);
-    rehearsal_ = std::move(parts.rehearsal);
-    links_ = std::move(parts.links);
-    emulated_ = std::move(parts.emulated);
-    devices_ = std::move(parts.devices);
-    encoder_ = std::make_unique<TeachInEncoder>(*devices_->encoder(), cell.encoder->session);
+    parts_ = open_cell_parts(cell, options_.mode, clock_, virtual_clock_, options_.trace, options_.faults,
+                             options_.emulators);
+    encoder_ = std::make_unique<TeachInEncoder>(*parts_.devices->encoder(), cell.encoder->session);
   } catch (const std::exception& e) {
     journal_.close({{"outcome", "not started"}, {"reason", e.what()}});
     throw;
   }
   routine_ = std::make_unique<routines::TeachIn>(cell, *encoder_, request, cell.loop.period_ms / 1000.0);
-  loop_ = std::make_unique<loop::Loop>(clock_, *waiter_, link::milliseconds(cell.loop.period_ms),
+  loop_ = std::make_unique<loop::Loop>(clock_, *parts_.waiter, link::milliseconds(cell.loop.period_ms),
                                        loop::kControlStages, &real_clock_);
   state_.axis_count = static_cast<std::uint8_t>(cell.axes.size());
 }
@@ -46,19 +37,19 @@ void TeachInRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt,
                        const std::function<void(const TeachInProgress&)>& progress) {
   const double t = link::to_seconds(now - start_);
   if (hook_) hook_(t, *this);
-  if (rehearsal_) rehearsal_->post_journal(now, t, journal_);
+  if (parts_.rehearsal) parts_.rehearsal->post_journal(now, t, journal_);
   if (interrupt.exchange(false) && !routine_->finished()) {
     interrupted_ = true;
     routine_->abort(t);
   }
   if (confirm_.exchange(false)) routine_->confirm();
-  if (emulated_ && options_.mode == RunMode::virtual_time) {
-    if (rehearsal_) rehearsal_->drive_emulators(now, *emulated_);
-    emulated_->poll(now);
+  if (parts_.emulated && options_.mode == RunMode::virtual_time) {
+    if (parts_.rehearsal) parts_.rehearsal->drive_emulators(now, *parts_.emulated);
+    parts_.emulated->poll(now);
   }
-  devices_->receive(now);
+  parts_.devices->receive(now);
   encoder_->step(now);
-  devices_->read(now, state_);
+  parts_.devices->read(now, state_);
   routine_->adjust(state_);
 
   const auto fresh = monitor_.evaluate(state_, {}, t);
@@ -98,33 +89,33 @@ void TeachInRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt,
   }
 
   if (routine_->finished() && !shutdown_since_) {
-    devices_->deactivate(now);
+    parts_.devices->deactivate(now);
     monitor_.disarm();
     shutdown_since_ = now;
   }
-  if (!shutdown_since_) devices_->apply(routine_->intents());
-  devices_->transmit(now);
-  if (shutdown_since_ &&
-      (devices_->all_inactive() || link::to_seconds(now - *shutdown_since_) > options_.shutdown_timeout_s))
+  if (!shutdown_since_) parts_.devices->apply(routine_->intents());
+  parts_.devices->transmit(now);
+  if (shutdown_since_ && (parts_.devices->all_inactive() ||
+                          link::to_seconds(now - *shutdown_since_) > options_.shutdown_timeout_s))
     loop_stop_.store(true);
 }
 
 TeachInOutcome TeachInRun::run(std::atomic<bool>& interrupt,
                                const std::function<void(const TeachInProgress&)>& progress) {
   start_ = clock_.now();
-  links_->start_trace_clock(start_);
-  if (rehearsal_) rehearsal_->start(start_, links_->fault_links());
-  if (emulated_ && options_.mode != RunMode::virtual_time)
-    emulator_thread_ =
-        std::thread([this] { serve_emulators(emulators_stop_, real_clock_, rehearsal_.get(), *emulated_); });
-  devices_->activate(start_);
+  parts_.links->start_trace_clock(start_);
+  if (parts_.rehearsal) parts_.rehearsal->start(start_, parts_.links->fault_links());
+  if (parts_.emulated && options_.mode != RunMode::virtual_time)
+    emulator_thread_ = std::thread(
+        [this] { serve_emulators(emulators_stop_, real_clock_, parts_.rehearsal.get(), *parts_.emulated); });
+  parts_.devices->activate(start_);
   loop_->run([&](link::TimePoint now, std::uint64_t) { cycle(now, interrupt, progress); }, loop_stop_);
   emulators_stop_.store(true);
   if (emulator_thread_.joinable()) emulator_thread_.join();
 
   TeachInOutcome o;
   const double t = link::to_seconds(clock_.now() - start_);
-  if (rehearsal_) rehearsal_->post_run_end(t, journal_);
+  if (parts_.rehearsal) parts_.rehearsal->post_run_end(t, journal_);
   o.done = routine_->phase() == routines::TeachInPhase::done;
   o.result = routine_->result();
   o.failure = std::string(routine_->failure().view());
@@ -134,7 +125,7 @@ TeachInOutcome TeachInRun::run(std::atomic<bool>& interrupt,
   if (o.done) o.taught = encoder_->taught(o.result.total_resolution);
   static constexpr const char* kNames[cell::kDevices] = {"SCU", "spindle", "encoder"};
   for (std::size_t d = 0; d < cell::kDevices; ++d) {
-    const auto* s = devices_->sessions()[d];
+    const auto* s = parts_.devices->sessions()[d];
     if (s && s->lifecycle() == link::Lifecycle::fault)
       o.device_notes.push_back(std::string(kNames[d]) + ": " + s->fault_reason());
   }

@@ -82,7 +82,7 @@ class TeachInRun {
 
   // Tests: called at the start of every cycle, on the loop's thread.
   void on_cycle(std::function<void(double t, TeachInRun&)> hook) { hook_ = std::move(hook); }
-  [[nodiscard]] EmulatedCell* emulators() noexcept { return emulated_.get(); }
+  [[nodiscard]] EmulatedCell* emulators() noexcept { return parts_.emulated.get(); }
   [[nodiscard]] const routines::TeachIn& routine() const noexcept { return *routine_; }
   [[nodiscard]] const cell::CellState& state() const noexcept { return state_; }
 
@@ -95,11 +95,7 @@ class TeachInRun {
   link::MonotonicClock real_clock_;
   link::VirtualClock virtual_clock_;
   const link::Clock& clock_;
-  std::unique_ptr<loop::CycleWaiter> waiter_;
-  std::unique_ptr<FaultRehearsal> rehearsal_;
-  std::unique_ptr<CellLinks> links_;
-  std::unique_ptr<EmulatedCell> emulated_;
-  std::unique_ptr<CellDevices> devices_;
+  CellParts parts_;  // the cycle waiter, faults rehearsed, links, emulators, device sessions
   std::unique_ptr<TeachInEncoder> encoder_;
   journal::Journal journal_;
   monitor::Monitor monitor_;
