@@ -42,37 +42,11 @@ fail() {
   exit 1
 }
 
-# --- the config copy -------------------------------------------------------------------------------
-# publish_as goes right after `port:` in each device section; the encoder emulator's state_file is
-# replaced. Top-level keys start in column 0, so the current section is the last one seen.
-awk -v dir="$work" '
-  /^[A-Za-z_]+:/ { section = $1; sub(":", "", section) }
-  { print }
-  /^  port:/ && (section == "scu" || section == "spindle" || section == "encoder") {
-    print "  publish_as: " dir "/" section
-  }
-' "$source_config" | sed -E "s|^(    state_file:).*|\1 $work/encoder.eeprom|" >"$config"
-[[ $(grep -c "^  publish_as: $work/" "$config") -eq 3 ]] ||
-  fail "could not point publish_as of scu, spindle and encoder into $work (does $source_config still have their port: keys?)"
-grep -q "^    state_file: $work/encoder.eeprom" "$config" ||
-  fail "could not move the encoder emulator's state_file into $work"
+# --- the config copy and cellctl emulate in the background ----------------------------------------
+source "$(dirname "${BASH_SOURCE[0]}")/emulate_lib.sh"
+publish_config "$source_config" "$config"
 links=("$work/scu" "$work/spindle" "$work/encoder")
-
-# --- cellctl emulate in the background -------------------------------------------------------------
-"$cellctl" -c "$config" --trace emulate >"$emulate_log" 2>&1 &
-emulate_pid=$!
-
-# Condition wait (at most 10 s): all three links published and the emulation loop running.
-ready=false
-for _ in $(seq 100); do
-  kill -0 "$emulate_pid" 2>/dev/null || fail "cellctl emulate exited before publishing its pseudo-terminals"
-  if [[ -L ${links[0]} && -L ${links[1]} && -L ${links[2]} ]] && grep -q "Ctrl-C ends the emulation" "$emulate_log"; then
-    ready=true
-    break
-  fi
-  sleep 0.1
-done
-$ready || fail "cellctl emulate did not publish ${links[*]} within 10 s"
+start_emulate "$config" --trace
 for l in "${links[@]}"; do
   [[ -c $(readlink "$l") ]] || fail "$l points to $(readlink "$l"), which is not a character device"
 done

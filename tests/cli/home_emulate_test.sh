@@ -38,14 +38,9 @@ fail() {
   exit 1
 }
 
-awk -v dir="$work" '
-  /^[A-Za-z_]+:/ { section = $1; sub(":", "", section) }
-  { print }
-  /^  port:/ && (section == "scu" || section == "spindle" || section == "encoder") {
-    print "  publish_as: " dir "/" section
-  }
-' "$source_config" | sed -E -e "s|^(    state_file:).*|\1 $work/encoder.eeprom|" \
-  -e "s|^state_dir:.*|state_dir: $work/state|" >"$emulated"
+source "$(dirname "${BASH_SOURCE[0]}")/emulate_lib.sh"
+publish_config "$source_config" "$emulated"
+sed -i -E "s|^state_dir:.*|state_dir: $work/state|" "$emulated"
 awk -v dir="$work" '
   /^[A-Za-z_]+:/ { section = $1; sub(":", "", section) }
   /^  port: emulated/ && (section == "scu" || section == "spindle" || section == "encoder") {
@@ -66,18 +61,7 @@ steps:
   - move: {to: {x: 20}, speed_mm_s: 10}
 RECIPE
 
-"$cellctl" -c "$emulated" emulate >"$emulate_log" 2>&1 &
-emulate_pid=$!
-ready=false
-for _ in $(seq 100); do
-  kill -0 "$emulate_pid" 2>/dev/null || fail "cellctl emulate exited before publishing its pseudo-terminals"
-  if [[ -L $work/scu && -L $work/spindle && -L $work/encoder ]] && grep -q "Ctrl-C ends the emulation" "$emulate_log"; then
-    ready=true
-    break
-  fi
-  sleep 0.1
-done
-$ready || fail "cellctl emulate did not publish its pseudo-terminals within 10 s"
+start_emulate "$emulated"
 
 out=""
 run_exits() {
