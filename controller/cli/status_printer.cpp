@@ -56,7 +56,8 @@ std::string StatusPrinter::line(const runtime::StatusView& v) {
     if (!v.label.empty()) s += fmt::format(" {}", v.label);
     // The step's time while it runs (a held or ended step's clock says nothing).
     const double in_step = v.t - step_since_;
-    const auto& planned = v.step <= planned_s_.size() ? planned_s_[v.step - 1] : std::nullopt;
+    auto planned = v.step <= planned_s_.size() ? planned_s_[v.step - 1] : std::nullopt;
+    if (!planned && v.step_planned_s > 0.0) planned = v.step_planned_s;  // a move's, once it started
     if (v.state == supervisor::State::execute) {
       s += planned && *planned > 0.0
                ? fmt::format(" · {:.1f} of {:.1f} s", std::min(in_step, *planned), *planned)

@@ -239,6 +239,7 @@ void CellRun::publish_status(double t) {
   v.steps = static_cast<std::uint32_t>(supervisor_->step_count());
   v.step = static_cast<std::uint32_t>(std::min(supervisor_->step_index() + 1, supervisor_->step_count()));
   if (const auto* ins = supervisor_->current()) v.label = ins->label;
+  v.step_planned_s = supervisor_->step_planned_s();
   v.axes = state_.axis_count;
   for (std::size_t i = 0; i < state_.axis_count; ++i) {
     v.position_mm[i] = state_.axes[i].position_mm();

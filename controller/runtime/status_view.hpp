@@ -23,7 +23,8 @@ struct StatusView {
   supervisor::State state = supervisor::State::idle;
   std::uint32_t step = 0;  // 1-based, 0 before the first
   std::uint32_t steps = 0;
-  std::string_view label;  // the program's label (lives as long as the run)
+  std::string_view label;       // the program's label (lives as long as the run)
+  double step_planned_s = 0.0;  // known once the step started (a move's profile); 0: none
   std::uint8_t axes = 0;
   std::array<double, cell::kMaxAxes> position_mm{};
   std::array<bool, cell::kMaxAxes> position_known{};  // the SCU has reported the actuator

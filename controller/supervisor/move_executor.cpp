@@ -59,8 +59,10 @@ void MoveExecutor::start(const recipe::Move& move, const cell::CellState& s, dou
     const auto& a = axes_[i];
     if (!a.in_move) continue;
     const double v = std::min(speed_, cell_.axes[i].max_speed_mm_s);
-    duration = std::max(duration, trapezoid_s(std::abs(a.target_mm - a.start_mm), v, cell_.axes[i].max_accel_mm_s2));
+    duration =
+        std::max(duration, trapezoid_s(std::abs(a.target_mm - a.start_mm), v, cell_.axes[i].max_accel_mm_s2));
   }
+  planned_s_ = duration;
   for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
     auto& a = axes_[i];
     planned_[i] = i < s.axis_count ? best_position(s, i) : 0.0;

@@ -49,6 +49,8 @@ class MoveExecutor {
 
   [[nodiscard]] const journal::Text& reason() const noexcept { return reason_; }
   [[nodiscard]] int corrections() const noexcept { return corrections_total_; }
+  // The move's planned time: the slowest axis's trapezoid at the move speed (as the SCU runs it).
+  [[nodiscard]] double planned_s() const noexcept { return planned_s_; }
   // Where the profile says each axis should be now (for the journal's samples).
   [[nodiscard]] double planned_mm(std::size_t axis) const noexcept { return planned_[axis]; }
 
@@ -82,6 +84,7 @@ class MoveExecutor {
   std::array<double, cell::kMaxAxes> planned_speed_{};
   std::array<double, cell::kMaxAxes> speed_sent_{};
   double speed_ = 0.0;
+  double planned_s_ = 0.0;
   double started_t_ = 0.0;
   double last_progress_t_ = 0.0;
   double best_remaining_ = 0.0;

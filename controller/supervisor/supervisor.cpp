@@ -37,6 +37,13 @@ double Supervisor::planned_mm(std::size_t axis) const noexcept {
                                                                   : executor_.planned_mm(axis);
 }
 
+double Supervisor::step_planned_s() const noexcept {
+  const auto* ins = current();
+  return ins && instruction_started_ && std::holds_alternative<recipe::Move>(ins->action)
+             ? executor_.planned_s()
+             : 0.0;
+}
+
 const recipe::Instruction* Supervisor::current() const noexcept {
   return pc_ < program_.instructions.size() ? &program_.instructions[pc_] : nullptr;
 }

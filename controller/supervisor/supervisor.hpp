@@ -55,6 +55,8 @@ class Supervisor {
   [[nodiscard]] const journal::Text& failure() const noexcept { return failure_; }
   [[nodiscard]] const journal::Text& refusal() const noexcept { return refusal_; }
   [[nodiscard]] double planned_mm(std::size_t axis) const noexcept;
+  // The current step's planned time where it is known once the step has started (a move's); 0 else.
+  [[nodiscard]] double step_planned_s() const noexcept;
   [[nodiscard]] const routines::HomeRecord& home_record() const noexcept { return *record_; }
   [[nodiscard]] const routines::Homing& homing() const noexcept { return homing_; }
   [[nodiscard]] int corrections() const noexcept { return corrections_; }

@@ -53,6 +53,8 @@ def wait_for(pattern, timeout=20.0):
 
 
 wait_for(r"step 2/6 go")  # the status line: the first move is under way
+# A move's planned time is known once it starts (its profile): elapsed of planned on the status line.
+wait_for(r"step 2/6 go[^\n]* · [0-9]+\.[0-9] of [0-9]+\.[0-9] s")
 os.write(fd, b"HOLD\n")
 wait_for(r"hold: accepted")
 wait_for(r"Holding → Held")
