@@ -120,6 +120,18 @@ def build(build_dir: pathlib.Path, jobs: int) -> tuple[bool, str]:
     return r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
 
 
+def set_test_timeout(build_dir: pathlib.Path, seconds: str) -> None:
+    # CTest's --timeout yields to a test's TIMEOUT property, which the GoogleTest cases carry; the property
+    # comes from this cache variable, so a hung mutant is ended after TEST_TIMEOUT_S and not 300 s.
+    subprocess.run(["cmake", f"-DCELLCTL_TEST_TIMEOUT={seconds}", str(build_dir)], capture_output=True, check=True)
+
+
+def cached_test_timeout(build_dir: pathlib.Path) -> str:
+    cache = (build_dir / "CMakeCache.txt").read_text()
+    found = re.search(r"^CELLCTL_TEST_TIMEOUT:STRING=(\S+)$", cache, re.M)
+    return found.group(1) if found else "300"
+
+
 def run_tests(build_dir: pathlib.Path, selection: str, jobs: int) -> tuple[bool, list[str], int]:
     """Runs the selection; returns (all passed, the failed tests' names, how many ran)."""
     r = subprocess.run(
@@ -167,13 +179,23 @@ def main() -> int:
 
     build_dir = (ROOT / args.build).resolve()
     signal.signal(signal.SIGTERM, interrupted)
-    ok, log = build(build_dir, args.jobs)
+    timeout_before = cached_test_timeout(build_dir)
+    set_test_timeout(build_dir, str(TEST_TIMEOUT_S))
+    try:
+        return judge(mutations, build_dir, args.jobs)
+    finally:
+        set_test_timeout(build_dir, timeout_before)
+
+
+def judge(mutations: list[Mutation], build_dir: pathlib.Path, jobs: int) -> int:
+    """Builds and tests the unmutated code, then each mutation; prints the table."""
+    ok, log = build(build_dir, jobs)
     if not ok:
         print(f"the unmutated code does not build in {build_dir}:\n{log}", file=sys.stderr)
         return 2
     selections = sorted({m.tests or "." for m in mutations})
     for selection in selections:
-        passed, failed, ran = run_tests(build_dir, selection, args.jobs)
+        passed, failed, ran = run_tests(build_dir, selection, jobs)
         if not passed:
             print(f"baseline: tests '{selection}' fail without any mutation ({ran} ran; failed: {failed}); "
                   "a mutation could not be judged", file=sys.stderr)
@@ -185,20 +207,20 @@ def main() -> int:
         for n, m in enumerate(mutations, start=1):
             print(f"[{n}/{len(mutations)}] {m.ident}: {m.what}", flush=True)
             with Applied(m):
-                built, log = build(build_dir, args.jobs)
+                built, log = build(build_dir, jobs)
                 if not built:
                     rows.append((m, "does not compile", log.strip().splitlines()[-1:] or [""]))
                     continue
-                passed, failed, ran = run_tests(build_dir, m.tests or ".", args.jobs)
+                passed, failed, ran = run_tests(build_dir, m.tests or ".", jobs)
             if not passed:
                 rows.append((m, "killed", failed[:2] or [f"({ran} tests ran)"]))
             else:
                 rows.append((m, "survived (explained)" if m.survives else "SURVIVED", [m.survives or f"{ran} tests passed"]))
     except KeyboardInterrupt:
         print("interrupted: the source is restored; rebuilding it", file=sys.stderr)
-        build(build_dir, args.jobs)
+        build(build_dir, jobs)
         return 1
-    build(build_dir, args.jobs)  # the build directory matches the source again
+    build(build_dir, jobs)  # the build directory matches the source again
 
     print()
     print(f"{'mutation':42} {'result':20} evidence")

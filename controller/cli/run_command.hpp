@@ -8,8 +8,6 @@
 #include <string>
 #include <vector>
 
-#include <vector>
-
 #include "cli/commands.hpp"
 #include "config/cell_config.hpp"
 #include "recipe/recipe.hpp"

@@ -24,7 +24,8 @@ class CoordinatedMove : public RunFixture {
 
   // Runs a one-move recipe (x and z from 0 to the targets) and returns when each rod first came
   // within `tolerance_mm` of its target.
-  Arrival run_move(double x_mm, double z_mm, double speed_mm_s, const std::string& path, double x_scale_error) {
+  Arrival run_move(double x_mm, double z_mm, double speed_mm_s, const std::string& path,
+                   double x_scale_error) {
     load_recipe_text(std::string(R"(
 recipe: {name: coordinated, version: "1", cell: demo-cell}
 limits:
@@ -63,8 +64,8 @@ struct Case {
 // Ratios from 2:1 to 7.5:1 (x the longer or the shorter), without and with `path: line`. (At 15:1,
 // x 150 and z 10 at 12 mm/s, z's share is below what its actuator runs steadily, 0.96 mm/s: the
 // SCU runs it faster than the line and the following-error rule stops the run.)
-constexpr Case kCases[] = {{120, 60, 10, ""}, {150, 20, 12, ""}, {40, 100, 12, ", path: line"},
-                           {90, 30, 6, ", path: line"}};
+constexpr Case kCases[] = {
+    {120, 60, 10, ""}, {150, 20, 12, ""}, {40, 100, 12, ", path: line"}, {90, 30, 6, ", path: line"}};
 
 // The SCU's sensors read true (no scale error): the axes arrive together. One run per case.
 class CoordinatedMoveCases : public CoordinatedMove, public ::testing::WithParamInterface<Case> {};
@@ -90,8 +91,8 @@ TEST_F(CoordinatedMove, ScaleErrorDelaysTheMeasuredAxisByItsCorrection) {
   const Arrival a = run_move(c.x, c.z, c.speed, c.path, 0.002);
   ASSERT_TRUE(a.x_t && a.z_t);
   const double skew = *a.x_t - *a.z_t;
-  std::cout << "  with x reading 0.2 % long: x arrives at " << *a.x_t << " s, z at " << *a.z_t << " s, x later by "
-            << skew * 1e3 << " ms\n";
+  std::cout << "  with x reading 0.2 % long: x arrives at " << *a.x_t << " s, z at " << *a.z_t
+            << " s, x later by " << skew * 1e3 << " ms\n";
   EXPECT_GT(skew, 0.0);
   EXPECT_LE(skew, 1.0);
 }

@@ -60,7 +60,8 @@ TEST(DpDiag, ADiagnosisLongerThanADataUnitIsRefusedNotCut) {
   ASSERT_TRUE(decode_diagnosis(bytes)) << "244 octets is the most a DP data unit carries";
   EXPECT_EQ(decode_diagnosis(bytes)->extended.size(), kMaxData - kStandardDiagSize);
   bytes.push_back(0x00);
-  EXPECT_FALSE(decode_diagnosis(bytes)) << "245 octets cannot be a whole Slave_Diag: cut, it would read as one";
+  EXPECT_FALSE(decode_diagnosis(bytes))
+      << "245 octets cannot be a whole Slave_Diag: cut, it would read as one";
 }
 
 TEST(DpServices, PrmStandardOctets) {
