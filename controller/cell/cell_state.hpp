@@ -74,10 +74,19 @@ inline constexpr std::size_t kDevices = 3;
   return d == Device::scu ? "scu" : d == Device::spindle ? "spindle" : "encoder";
 }
 
+// A link's exchanges since the session was built, for the plant's metrics (not for any rule).
+struct LinkCounts {
+  std::uint64_t good_replies = 0;
+  std::uint64_t timeouts = 0;    // requests with no (complete) answer in time
+  std::uint64_t bad_frames = 0;  // CRC/checksum/length errors and garbage
+  std::uint64_t refusals = 0;    // well-formed replies in which the device refused
+};
+
 struct LinkState {
   bool active = false;          // the session is in its active state
   bool fault = false;           // the session gave up (its own link-fault deadline)
   link::Duration silent_for{};  // since the last good reply
+  LinkCounts counts;
 };
 
 // The SCU's error word as the session typed it: the raw word for the record, the first cause named.

@@ -6,9 +6,14 @@ namespace cellctl::runtime {
 namespace {
 
 cell::LinkState link_state(const link::DeviceSession& s, link::TimePoint now) {
+  const auto& h = s.health();
   return {.active = s.lifecycle() == link::Lifecycle::active,
           .fault = s.lifecycle() == link::Lifecycle::fault,
-          .silent_for = s.silent_for(now)};
+          .silent_for = s.silent_for(now),
+          .counts = {.good_replies = h.good_replies,
+                     .timeouts = h.timeouts,
+                     .bad_frames = h.bad_frames,
+                     .refusals = h.error_replies}};
 }
 
 std::size_t slot(cell::Device d) {
@@ -58,7 +63,7 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
   out.now = now;
   out.axis_count = static_cast<std::uint8_t>(cell_.axes.size());
   for (auto& l : out.links)
-    l = {.active = true, .fault = false, .silent_for = {}};  // absent devices: no rule
+    l = {.active = true, .fault = false, .silent_for = {}, .counts = {}};  // absent devices: no rule
   for (std::size_t d = 0; d < cell::kDevices; ++d)
     if (sessions_[d]) out.links[d] = link_state(*sessions_[d], now);
 

@@ -265,6 +265,7 @@ void CellRun::publish_status(double t) {
   for (std::size_t d = 0; d < cell::kDevices; ++d) {
     v.link_fault[d] = state_.links[d].fault;
     v.link_silent_s[d] = link::to_seconds(state_.links[d].silent_for);
+    v.link_counts[d] = state_.links[d].counts;
   }
   for (std::size_t r = 0; r < monitor::kRuleCount; ++r) {
     if (!monitor_.latch(static_cast<monitor::Rule>(r)).active) continue;

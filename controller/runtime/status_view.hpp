@@ -36,6 +36,7 @@ struct StatusView {
   std::uint64_t overruns = 0;
   std::array<bool, cell::kDevices> link_fault{};       // a device's session gave up on its link
   std::array<double, cell::kDevices> link_silent_s{};  // since its last good reply
+  std::array<cell::LinkCounts, cell::kDevices> link_counts{};
   bool fault = false;
   monitor::Rule first_fault = monitor::Rule::operator_stop;
 };

@@ -223,6 +223,19 @@ std::string OperatorPage::metrics_text() {
     for (std::size_t d = 0; d < v.link_silent_s.size(); ++d)
       out += fmt::format("cellctl_device_silent_seconds{{device=\"{}\"}} {:.6f}\n", kDevices[d],
                          v.link_silent_s[d]);
+    add("cellctl_device_exchanges_total", "counter", "Good replies from the device.");
+    for (std::size_t d = 0; d < v.link_counts.size(); ++d)
+      out += fmt::format("cellctl_device_exchanges_total{{device=\"{}\"}} {}\n", kDevices[d],
+                         v.link_counts[d].good_replies);
+    add("cellctl_device_errors_total", "counter",
+        "Failed exchanges: no answer in time, a bad frame, or a reply in which the device refused.");
+    for (std::size_t d = 0; d < v.link_counts.size(); ++d) {
+      const auto& c = v.link_counts[d];
+      for (const auto& [kind, n] : {std::pair{"timeout", c.timeouts}, std::pair{"bad_frame", c.bad_frames},
+                                    std::pair{"refused", c.refusals}})
+        out += fmt::format("cellctl_device_errors_total{{device=\"{}\",kind=\"{}\"}} {}\n", kDevices[d], kind,
+                           n);
+    }
     add("cellctl_run_seconds", "gauge", "Time since the run started (the run's clock).");
     out += fmt::format("cellctl_run_seconds {:.6f}\n", v.t);
   }

@@ -31,7 +31,7 @@ cell::CellState healthy() {
   s.axes[0] = {.present = true, .scu_mm = 10.0, .measured = true, .encoder_mm = 10.1};
   s.axes[1] = {.present = true, .scu_mm = 5.0};
   s.encoder = {.data_exchange = true, .ready = true, .mm = 10.1};
-  for (auto& l : s.links) l = {.active = true, .fault = false, .silent_for = 10ms};
+  for (auto& l : s.links) l = {.active = true, .fault = false, .silent_for = 10ms, .counts = {}};
   return s;
 }
 

@@ -9,12 +9,14 @@ usage: operator_page_test.py CELLCTL CONFIG OUT_DIR
 Runs the recipe with the page on a free loopback port and a token
 file; checks that the page shows the live state (Execute, the step, the axes), that a command without
 the token is refused (401) and changes nothing, that the Hold button (token typed, confirmation
-accepted) holds the cell, that /metrics is Prometheus text with the loop's jitter histogram; saves a
+accepted) holds the cell, that /metrics is Prometheus text with the loop's jitter histogram and
+every device's exchanges and errors; saves a
 screenshot (OUT_DIR/operator_page.png); then stops the run through the page (exit 130). Every wait is
 on a condition with a time-out.
 """
 import json
 import os
+import re
 import socket
 import subprocess
 import sys
@@ -132,6 +134,12 @@ try:
                    'cellctl_device_link_fault{device="scu"} 0', "cellctl_runs_total 1",
                    "cellctl_web_commands_unauthorised_total 2"):
         assert needed in metrics, f"/metrics lacks {needed}:\n{metrics}"
+    for device in ("scu", "spindle", "encoder"):
+        exchanges = re.search(rf'^cellctl_device_exchanges_total{{device="{device}"}} (\d+)$', metrics, re.M)
+        assert exchanges and int(exchanges.group(1)) > 0, f"/metrics counts no exchanges with the {device}:\n{metrics}"
+        for kind in ("timeout", "bad_frame", "refused"):
+            assert re.search(rf'^cellctl_device_errors_total{{device="{device}",kind="{kind}"}} \d+$', metrics, re.M), \
+                f"/metrics lacks the {device}'s {kind} count:\n{metrics}"
 finally:
     driver.quit()
 
