@@ -1,11 +1,14 @@
 // The guided Teach-In (issue 10, part 5) in virtual time on the shipped cell's emulators: end to end
 // and verified; aborted by the operator and stopped by an injected fault, each leaving the encoder's
-// EEPROM and parameters as they were; a start at the encoder's native zero refused before any motion.
+// EEPROM and parameters as they were; a start at the encoder's native zero refused before any motion;
+// the manual mode with the operator's hand moves (taught and verified) and without them (restored).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <filesystem>
+#include <optional>
+#include <string>
 #include <variant>
 
 #include "config/cell_config.hpp"
@@ -143,6 +146,50 @@ TEST_F(TeachInTest, AStartAtTheNativeZeroIsRefusedBeforeAnyMotion) {
   EXPECT_NE(o.failure.find("native zero"), std::string::npos) << o.failure;
   EXPECT_LT(farthest, 0.01) << "the axis moved although the Teach-In could not be done";
   expect_encoder_as_configured();
+}
+
+TEST_F(TeachInTest, ManualModeTeachesOverTheDistanceTheOperatorMovedAndVerifiesIt) {
+  // The operator moves the rod by hand (the test pushes the emulated actuator; cellctl commands no
+  // motion, as the test without a hand shows): 100 mm true travel out, confirm, back to the start
+  // mark, confirm. The SCU's sensor reads 0.2 % long, so in its frame the hand travels 100.2 mm; in
+  // manual mode the reference is the distance the operator was asked for, so the taught resolution
+  // is that of 100 true mm.
+  setup_.scu->actuators[0].physics.start_position_mm = 5.0;
+  request_.manual = true;
+  request_.from_mm.reset();
+  auto& run = make_run();
+  std::string prompts;
+  std::optional<double> hand_target_mm;  // the SCU's frame, where the hand is taking the rod
+  run.on_cycle([&](double, runtime::TeachInRun& r) {
+    auto& rod = r.emulators()->scu()->actuator(1);
+    if (hand_target_mm && !rod.moving()) {  // the hand has arrived: the operator confirms
+      hand_target_mm.reset();
+      r.confirm();
+    }
+    const auto p = std::string(r.routine().prompt().view());
+    if (p.empty() || prompts.find(p) != std::string::npos) return;
+    prompts += p + "\n";
+    if (p.find("by 100.000 mm in + direction") != std::string::npos) {
+      hand_target_mm = 5.0 + 100.0 * 1.002;
+    } else if (p.find("back to the start mark") != std::string::npos) {
+      hand_target_mm = 5.0;
+    } else {
+      r.confirm();
+      return;
+    }
+    rod.move_to(*hand_target_mm, 20.0, true);
+  });
+  const auto o = run.run(interrupt_);
+  ASSERT_TRUE(o.done) << o.failure << "\nprompts:\n" << prompts;
+  EXPECT_TRUE(o.restored);
+  EXPECT_NE(prompts.find("back to the start mark"), std::string::npos) << prompts;
+  const double travelled_steps = 100.0 * 2048.0;  // 100 true mm at 2048 steps/mm
+  EXPECT_NEAR(o.result.total_resolution, 100000.0 * 33554432.0 / travelled_steps, 400.0);
+  EXPECT_DOUBLE_EQ(o.result.scu_distance_mm, 100.0) << "manual mode: the distance given is the reference";
+  EXPECT_NEAR(o.result.encoder_distance_mm, 100.0, request_.tolerance_mm);
+  EXPECT_EQ(encoder::load_eeprom(dir_ / "encoder.eeprom").taught_units, o.result.total_resolution);
+  EXPECT_EQ(o.taught.parameters.measuring_units, o.result.total_resolution);
+  EXPECT_NEAR(run.state().axes[0].scu_mm, 5.0, 0.05) << "the rod is back at the start mark";
 }
 
 TEST_F(TeachInTest, ManualModeGuidesTheOperatorAndAnEndWithoutTravelRestoresTheEncoder) {
