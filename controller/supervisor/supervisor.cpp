@@ -256,6 +256,7 @@ void Supervisor::sample(const cell::CellState& s, double t) {
 }
 
 void Supervisor::step(const cell::CellState& s, std::optional<config::StopCategory> demanded, double t) {
+  const State before = state_;
   intents_.spindle.reset = device_reset_requested_;
   device_reset_requested_ = false;
   if (pending_) {
@@ -411,7 +412,14 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
       enter(State::idle, t, Text::format("reset done"));
       break;
   }
-  if (is_running_state(state_) || state_ == State::stopping || state_ == State::aborting) sample(s, t);
+  if (is_running_state(state_) || state_ == State::stopping || state_ == State::aborting) {
+    sample(s, t);
+  } else if (is_final(state_) && !is_final(before)) {
+    // The cell as the run ended, whatever the sample period: else the record's last sample may show
+    // a spindle still running down that stood still before the end.
+    next_sample_t_ = t;
+    sample(s, t);
+  }
 }
 
 }  // namespace cellctl::supervisor

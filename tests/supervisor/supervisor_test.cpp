@@ -112,7 +112,12 @@ TEST_F(SupervisorTest, RunsARecipeToComplete) {
   const auto ends = rec_.all<journal::RunEnded>();
   ASSERT_EQ(ends.size(), 1u);
   EXPECT_EQ(ends[0].second.outcome, "complete");
-  EXPECT_FALSE(rec_.all<journal::Sample>().empty());
+  const auto samples = rec_.all<journal::Sample>();
+  ASSERT_FALSE(samples.empty());
+  // The record's last sample is the cell as the run ended: taken when it did, the spindle at rest.
+  EXPECT_GE(samples.back().first, ends[0].first);
+  EXPECT_EQ(samples.back().second.spindle_actual_hz, 0.0f);
+  EXPECT_NEAR(samples.back().second.scu_mm[1], 20.0f, 0.1f);
 }
 
 TEST_F(SupervisorTest, CoordinatedAxesArriveTogether) {
