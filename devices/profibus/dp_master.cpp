@@ -489,13 +489,8 @@ void DpMaster::on_no_reply(link::TimePoint now) {
     return;
   }
   if (state_ == DpState::clearing) return;  // deactivating: the Clear_Data goes out regardless
-  if (state_ == DpState::data_exchange || state_ == DpState::diag_cyclic) {
-    if (health_.silent_for(now, state_since_) >= config_.lost_slave_time) {
-      ++stats_.lost;
-      restart(now, kSlaveLost);
-    }
-    return;
-  }
+  // In data exchange an unanswered request is retried; poll() judges lost_slave_time, every poll.
+  if (state_ == DpState::data_exchange || state_ == DpState::diag_cyclic) return;
   restart(now, "no reply during start-up");
 }
 
