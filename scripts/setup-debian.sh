@@ -1,19 +1,36 @@
 #!/usr/bin/env bash
-# Installs what cellctl needs to build and test on Debian 12, from Debian's packages only.
+# Installs what cellctl needs on Debian 12, from Debian's packages only.
 # Safe to run again: when everything is there it installs nothing and says so.
-# --fuzz adds clang with libFuzzer for the fuzz preset (fuzz/README.md); the build, the demo and the
-# test suite do not need it.
+#   scripts/setup-debian.sh          the build, the test suite and the benchmarks (what CI runs)
+#   scripts/setup-debian.sh --demo   only what building cellctl needs (the README's demo command):
+#                                    no test frameworks, no mosquitto broker, no chromium
+#   scripts/setup-debian.sh --fuzz   all of the first, plus clang with libFuzzer for the fuzz preset
+#                                    (fuzz/README.md)
 set -euo pipefail
 
-packages=(
+# cellctl itself: compilers, CMake, and the libraries it links (OpenSSL for the records' SHA-256,
+# libmosquitto for the plant link, cpp-httplib for the web page).
+build=(
   build-essential g++ cmake ninja-build pkg-config git
-  libeigen3-dev libyaml-cpp-dev libspdlog-dev libfmt-dev libcli11-dev nlohmann-json3-dev
+  libeigen3-dev libyaml-cpp-dev libspdlog-dev libfmt-dev libcli11-dev nlohmann-json3-dev libssl-dev
+  libmosquitto-dev libcpp-httplib-dev
+)
+# The test suite and the benchmarks: the frameworks, and the real programs the tests drive (a
+# broker, a browser, an SVG renderer, socat).
+tests=(
   libgtest-dev libgmock-dev libbenchmark-dev
   socat python3 librsvg2-bin
-  libmosquitto-dev mosquitto libcpp-httplib-dev
-  chromium chromium-driver python3-selenium
+  mosquitto chromium chromium-driver python3-selenium
 )
-if [ "${1:-}" = "--fuzz" ]; then packages+=(clang libclang-rt-14-dev); fi
+case "${1:-}" in
+  "") packages=("${build[@]}" "${tests[@]}") ;;
+  --demo) packages=("${build[@]}") ;;
+  --fuzz) packages=("${build[@]}" "${tests[@]}" clang libclang-rt-14-dev) ;;
+  *)
+    echo "usage: scripts/setup-debian.sh [--demo | --fuzz]" >&2
+    exit 2
+    ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do
