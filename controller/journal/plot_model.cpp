@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 
 namespace cellctl::journal {
 namespace {
@@ -40,14 +42,41 @@ bool is_move(const RunRecord& run, const StepRun& s) {
   return (*it)[static_cast<std::size_t>(s.step - 1)].value("kind", "") == "move";
 }
 
+// A curve has at most this many buckets of samples. A long run (8 h is 1.4 M samples) is drawn as
+// each bucket's lowest and highest value in their order, and its first gap, so peaks and gaps
+// survive while plot.svg and plot.html stay small enough to open. The record keeps every sample
+// (`cellctl report --csv` exports them).
+constexpr std::size_t kMaxBuckets = 4000;
+
 template <class Get>
 PlotSeries series(const RunRecord& run, std::string name, std::string colour, std::string dash, Get get) {
   PlotSeries s{std::move(name), std::move(colour), std::move(dash), {}, {}};
-  s.t.reserve(run.samples().size());
-  s.v.reserve(run.samples().size());
-  for (std::size_t i = 0; i < run.samples().size(); ++i) {
-    s.t.push_back(run.samples()[i].t - run.start());
-    s.v.push_back(get(i, run.samples()[i]));
+  const auto& samples = run.samples();
+  const std::size_t n = samples.size();
+  const std::size_t per = n <= 2 * kMaxBuckets ? 1 : (n + kMaxBuckets - 1) / kMaxBuckets;
+  s.t.reserve(std::min(n, 3 * kMaxBuckets));
+  s.v.reserve(std::min(n, 3 * kMaxBuckets));
+  const auto add = [&](std::size_t i, double v) {
+    s.t.push_back(samples[i].t - run.start());
+    s.v.push_back(v);
+  };
+  for (std::size_t first = 0; first < n; first += per) {
+    const std::size_t end = std::min(n, first + per);
+    std::size_t lo = n, hi = n, gap = n;
+    for (std::size_t i = first; i < end; ++i) {
+      const double v = get(i, samples[i]);
+      if (std::isnan(v)) {
+        gap = std::min(gap, i);
+      } else {
+        if (lo == n || v < get(lo, samples[lo])) lo = i;
+        if (hi == n || v > get(hi, samples[hi])) hi = i;
+      }
+    }
+    // The run's first and last samples too, so that a curve spans the whole run.
+    std::array<std::size_t, 5> keep = {lo, hi, gap, first == 0 ? std::size_t{0} : n, end == n ? n - 1 : n};
+    std::sort(keep.begin(), keep.end());
+    for (std::size_t k = 0; k < keep.size(); ++k)
+      if (keep[k] != n && (k == 0 || keep[k] != keep[k - 1])) add(keep[k], get(keep[k], samples[keep[k]]));
   }
   return s;
 }
@@ -65,13 +94,16 @@ std::vector<double> following_error(const RunRecord& run, std::size_t axis) {
   const auto& samples = run.samples();
   std::vector<double> err(samples.size(), kNoValue);
   const auto measured = run.measured_axis();
+  // Samples and steps are both in time order: one pass over each (a long run has many of both).
+  std::size_t i = 0;
   for (const auto& step : run.steps()) {
+    while (i < samples.size() && samples[i].t < step.start) ++i;
     if (!is_move(run, step)) continue;
-    for (std::size_t i = 0; i < samples.size(); ++i) {
-      const auto& p = samples[i];
-      if (p.t < step.start || p.t > step.end || axis >= p.planned_mm.size()) continue;
+    for (std::size_t k = i; k < samples.size() && samples[k].t <= step.end; ++k) {
+      const auto& p = samples[k];
+      if (axis >= p.planned_mm.size()) continue;
       const double actual = measured == axis ? p.encoder_mm : p.scu_mm[axis];
-      err[i] = p.planned_mm[axis] - actual;
+      err[k] = p.planned_mm[axis] - actual;
     }
   }
   return err;

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -99,6 +100,47 @@ TEST(PlotModel, FollowingErrorOnlyDuringMoves) {
   ASSERT_EQ(err.size(), 2u);
   EXPECT_TRUE(std::isnan(err[0]));
   EXPECT_DOUBLE_EQ(err[1], -40.0);
+}
+
+TEST(PlotModel, ALongRunIsDrawnByEachBucketsExtremesKeepingPeaksAndGaps) {
+  // 100 000 samples (33 min at 20 ms): one spindle spike, and a move in the middle (following error
+  // only there, a gap around it).
+  RunRecord r;
+  constexpr int kSamples = 100000;
+  constexpr int kSpike = 54321;
+  for (int i = 0; i < kSamples; ++i) {
+    if (i == 40000) r.add(to_json({i * 0.02, StepStarted{0, "move"}}));
+    Sample s;
+    s.axes = 1;
+    s.planned_mm = {static_cast<float>(i % 7)};
+    s.scu_mm = {0.0f};
+    s.spindle_actual_hz = i == kSpike ? 400.0f : 10.0f;
+    r.add(to_json({i * 0.02, s}));
+    if (i == 60000) r.add(to_json({i * 0.02, StepEnded{0, "move", true, {}}}));
+  }
+  r.finish();
+  const auto m = plot_model({&r});
+  const auto& spindle = m.panels[2].series[1];
+  ASSERT_EQ(spindle.name, "spindle actual");
+  EXPECT_LE(spindle.v.size(), 12000u);
+  EXPECT_DOUBLE_EQ(spindle.t.front(), 0.0);
+  EXPECT_NEAR(spindle.t.back(), (kSamples - 1) * 0.02, 0.1);
+  const auto peak = std::max_element(spindle.v.begin(), spindle.v.end());
+  EXPECT_DOUBLE_EQ(*peak, 400.0);
+  EXPECT_NEAR(spindle.t[static_cast<std::size_t>(peak - spindle.v.begin())], kSpike * 0.02, 1e-9);
+  const auto& err = m.panels[1].series[0];
+  EXPECT_LE(err.v.size(), 12000u);
+  EXPECT_TRUE(std::isnan(err.v.front()));
+  EXPECT_TRUE(std::isnan(err.v.back()));
+  std::size_t values = 0;
+  double highest = -1.0;
+  for (const double v : err.v) {
+    if (std::isnan(v)) continue;
+    ++values;
+    highest = std::max(highest, v);
+  }
+  EXPECT_GT(values, 1000u);
+  EXPECT_DOUBLE_EQ(highest, 6.0);  // planned i % 7 against an SCU at 0: every bucket keeps its 6
 }
 
 TEST(Plots, SvgEscapesLabelsAndHtmlIsOffline) {
