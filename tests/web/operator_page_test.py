@@ -14,6 +14,7 @@ every device's exchanges and errors; saves a
 screenshot (OUT_DIR/operator_page.png); then stops the run through the page (exit 130). Every wait is
 on a condition with a time-out.
 """
+import atexit
 import json
 import os
 import re
@@ -103,6 +104,8 @@ log = open(os.path.join(out, "cellctl.out"), "w")
 proc = subprocess.Popen([cellctl, "-c", config, "run", recipe, "--virtual-time", "--journal", os.path.join(out, "run"),
                          "--http", f"127.0.0.1:{port}", "--http-token-file", os.path.join(out, "token")],
                         stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT)
+# A failed assertion must not leave the run serving (a --virtual-time run with a hold never ends).
+atexit.register(lambda: proc.poll() is None and proc.kill())
 
 
 until(lambda: urllib.request.urlopen(base, timeout=2).status == 200, "the page to be served")
