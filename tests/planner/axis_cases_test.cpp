@@ -206,6 +206,30 @@ TEST(VelocityGap, ATargetAccelerationIsReachedBeforeAndAfterItsGap) {
   }
 }
 
+// Random problem 4547520 of seed 4 (AxisProfileRandom.AcceleratingTarget): between the reach time
+// (0.161 s) and the velocity gap (from 0.229 s) the reachable positions are a band a few mm wide
+// that sweeps past the target; it holds the target only from 0.20066 s to 0.20164 s, between two
+// of the window's samples. The window was missed and the plan took 2.412 s, after the gap.
+TEST(VelocityGap, ANarrowWindowBeforeTheGapIsFound) {
+  const AxisLimits l = AxisLimits::symmetric(3.5252641335309685, 7.6619003947801581, 29.016758454444684);
+  const MotionState start{2.4614213818503234, -2.6600606648941278, -6.4059175897196514};
+  const MotionState target{1.8332351983424058, -3.4279728176806081, -2.4460850266879035};
+  const oracle::Problem p = problem(start, target, l);
+  AxisProfile axis;
+  ASSERT_EQ(axis.plan(start, target, l), AxisStatus::ok);
+  EXPECT_TRUE(oracle::confirms_min_duration(p, axis.min_duration(), 1e-9))
+      << "planned " << axis.min_duration() << " s";
+  EXPECT_NEAR(axis.min_duration(), 0.2006585562, 1e-9);
+  ASSERT_EQ(axis.blocked_count(), 1u);
+  const Interval& b = axis.blocked(0);
+  EXPECT_NEAR(b.lo, 0.2016377913, 1e-9);
+  EXPECT_NEAR(b.hi, 2.4122944200917, 1e-12);
+  EXPECT_FALSE(oracle::feasible(p, 0.5 * (b.lo + b.hi)));
+  EXPECT_TRUE(oracle::feasible(p, b.lo * (1 - 1e-12)));
+  EXPECT_TRUE(oracle::feasible(p, b.hi * (1 + 1e-12)));
+  plan_checked(start, target, l, "problem 4547520 of seed 4");
+}
+
 TEST(LimitsAtExtremes, StatesExactlyOnTheLimits) {
   const double ramp = 2.0 * 2.0 / (2.0 * 10.0);  // velocity change of a full acceleration ramp
   const MotionState starts[] = {
