@@ -162,11 +162,7 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
 bool AxisProfile::feasible_window(double lo, double hi, Interval& window) const noexcept {
   // Both extremes are one profile at both ends (only one way to the target's velocity and
   // acceleration there), so the window, if any, lies inside: samples crowd towards both ends.
-  const auto h = [&](double T) {
-    const double up = extremes_[0].position(T) - target_offset_;
-    const double down = extremes_[1].position(T) + target_offset_;
-    return std::isnan(up) || std::isnan(down) ? -kInfinity : std::min(up, down);
-  };
+  const auto h = [&](double T) { return margin(T); };
   std::array<double, 2 * kSampleAt.size() - 1> at{};
   for (std::size_t k = 0; k < kSampleAt.size(); ++k) {
     at[k] = lo + (hi - lo) * kSampleAt[k] / 2.0;
@@ -182,10 +178,41 @@ bool AxisProfile::feasible_window(double lo, double hi, Interval& window) const 
       last = k;
     }
   }
-  if (first == at.size()) return false;
+  if (first == at.size()) {
+    for (std::size_t k = 0; k + 1 < at.size(); ++k) {
+      if (narrow_window(at[k], at[k + 1], window)) return true;
+    }
+    return false;
+  }
   window.lo = first == 0 ? at[0] : find_root(h, at[first - 1], at[first], false);
   window.hi = last + 1 == at.size() ? at[last] : find_root(h, at[last], at[last + 1], true);
   return true;
+}
+
+bool AxisProfile::narrow_window(double a, double b, Interval& window) const noexcept {
+  // Where the target crosses the middle of the reachable positions it is inside them (their width
+  // is >= 0), however briefly: seed 4 problem 4547520 had a window of 1e-3 s between samples
+  // 4e-3 s apart. At both ends of the range the extremes are one profile, so a target on different
+  // sides of it there is crossed for certain.
+  const auto middle = [&](double T) {
+    return extremes_[0].position(T) - extremes_[1].position(T) - 2.0 * target_offset_;
+  };
+  const double ma = middle(a);
+  const double mb = middle(b);
+  if (!(ma >= 0.0 && mb < 0.0) && !(ma < 0.0 && mb >= 0.0)) return false;  // no crossing (or NaN)
+  const double crossing = find_root(middle, a, b, ma >= 0.0);
+  // A band no wider than rounding there is no window.
+  if (!(margin(crossing) >= 0.0)) return false;
+  const auto h = [&](double T) { return margin(T); };
+  window.lo = find_root(h, a, crossing, false);
+  window.hi = find_root(h, crossing, b, true);
+  return true;
+}
+
+double AxisProfile::margin(double T) const noexcept {
+  const double up = extremes_[0].position(T) - target_offset_;
+  const double down = extremes_[1].position(T) + target_offset_;
+  return std::isnan(up) || std::isnan(down) ? -kInfinity : std::min(up, down);
 }
 
 AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double target, double slope,

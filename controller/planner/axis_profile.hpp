@@ -77,8 +77,14 @@ class AxisProfile {
   [[nodiscard]] ShortSet short_set(const FarthestProfile& f, double target, double slope,
                                    double t0) const noexcept;
   // The durations in [lo, hi] (between the reach time and a velocity gap) that reach the target,
-  // taken as one window; false when the samples find none.
+  // taken as one window; false when neither the samples nor narrow_window between them find one.
   [[nodiscard]] bool feasible_window(double lo, double hi, Interval& window) const noexcept;
+  // The window between two samples a and b, neither in it, that holds the target where it crosses
+  // the middle of the reachable positions; false when it does not cross there.
+  [[nodiscard]] bool narrow_window(double a, double b, Interval& window) const noexcept;
+  // By how much the reachable positions at T (after the brake) hold the target: negative when
+  // they miss it, -infinity when T has no extreme profile.
+  [[nodiscard]] double margin(double T) const noexcept;
 
   JerkProfile brake_;
   MotionState main_start_;

@@ -133,11 +133,19 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t) const noexcept {
     t2 = std::max(t2, 0.0);
     t6 = std::max(t6, 0.0);
     const double t1 = (a1 - a0) / j;
+    double t3 = (a1 - a3) / j;
     const double t7 = (af - a3) / j;
-    const double middle = T - t1 - t2 - t6 - t7;
-    if (middle < -tol_t) return false;
+    // What T leaves over these durations: rounding, or what the clamping moved.
+    const double left = T - t1 - t2 - t3 - t6 - t7;
+    if (t3 + left < -tol_t) return false;
+    // A hold takes it if there is one: there it costs a velocity of a * left. The -J segment would
+    // turn it into an acceleration error J * left, which the rest of the profile (R long) makes
+    // J * left * R^2 / 2 of position: from T's rounding alone, 4e-14 m, enough to move the start of
+    // a shallow dip by 1e-12 relative (seed 3 problem 3963501). Without a hold the profile is short.
+    double& taker = t6 > 0.0 && t6 + left >= 0.0 ? t6 : t2 > 0.0 && t2 + left >= 0.0 ? t2 : t3;
+    taker = std::max(taker + left, 0.0);
     if (a1 > 0.0 && a3 < 0.0 && !peak_within_velocity(a1, t2)) return false;
-    t = SevenDurations{t1, t2, std::max(middle, 0.0), 0.0, 0.0, t6, t7};
+    t = SevenDurations{t1, t2, t3, 0.0, 0.0, t6, t7};
     return true;
   };
 

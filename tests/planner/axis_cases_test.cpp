@@ -137,6 +137,32 @@ TEST(BlockedInterval, RightAfterAShortReachIsFound) {
   plan_checked(start, target, l, "problem 258555 of seed 3");
 }
 
+// Random problem 3963501 of seed 3 (AxisProfileRandom.MovingTarget): feasible from about 1.014 s,
+// then blocked from about 1.5751 s by a shallow dip of the farthest profile (it falls short of the
+// target by at most about 4e-4 m, its position changing 0.02 m per second at the dip's start). The
+// dip's start was found 1.7e-12 s late: the oracle already had this duration infeasible.
+TEST(BlockedInterval, AShallowDipStartsWhereTheOptimumSays) {
+  const AxisLimits l = AxisLimits::symmetric(2.0400044842901641, 1.4493043906358487, 198.59997631908863);
+  const MotionState start{0.178551089669722, -0.50512314099304922, 1.2331705616455899};
+  const MotionState target{-1.0567778560518013, -1.8185815274679704, 0.0};
+  const oracle::Problem p = problem(start, target, l);
+  AxisProfile axis;
+  ASSERT_EQ(axis.plan(start, target, l), AxisStatus::ok);
+  EXPECT_TRUE(oracle::confirms_min_duration(p, axis.min_duration(), 1e-9));
+  ASSERT_EQ(axis.blocked_count(), 1u);
+  const Interval& b = axis.blocked(0);
+  EXPECT_NEAR(b.lo, 1.57512138976815, 5e-13);  // the farthest profile evaluated in long double
+  EXPECT_FALSE(oracle::feasible(p, 0.5 * (b.lo + b.hi)));
+  EXPECT_TRUE(oracle::feasible(p, b.lo * (1 - 1e-12)));
+  EXPECT_TRUE(oracle::feasible(p, b.hi * (1 + 1e-12)));
+  for (const double T : {b.lo, b.hi}) {
+    JerkProfile profile;
+    ASSERT_TRUE(axis.build(T, profile)) << T;
+    EXPECT_NEAR(profile.end().position, target.position, 1e-8) << T;
+  }
+  plan_checked(start, target, l, "problem 3963501 of seed 3");
+}
+
 // Accelerating at 1 towards a target accelerating at 1, 0.02 faster: held at 1 the acceleration
 // makes it in 0.02 s; from about 0.0211 s to 0.3789 s even the deepest dip of the acceleration
 // gains more than 0.02 (velocity_gap), so no profile exists; later one does again. A target
@@ -178,6 +204,30 @@ TEST(VelocityGap, ATargetAccelerationIsReachedBeforeAndAfterItsGap) {
     }
     plan_checked(start, target, l, what);
   }
+}
+
+// Random problem 4547520 of seed 4 (AxisProfileRandom.AcceleratingTarget): between the reach time
+// (0.161 s) and the velocity gap (from 0.229 s) the reachable positions are a band a few mm wide
+// that sweeps past the target; it holds the target only from 0.20066 s to 0.20164 s, between two
+// of the window's samples. The window was missed and the plan took 2.412 s, after the gap.
+TEST(VelocityGap, ANarrowWindowBeforeTheGapIsFound) {
+  const AxisLimits l = AxisLimits::symmetric(3.5252641335309685, 7.6619003947801581, 29.016758454444684);
+  const MotionState start{2.4614213818503234, -2.6600606648941278, -6.4059175897196514};
+  const MotionState target{1.8332351983424058, -3.4279728176806081, -2.4460850266879035};
+  const oracle::Problem p = problem(start, target, l);
+  AxisProfile axis;
+  ASSERT_EQ(axis.plan(start, target, l), AxisStatus::ok);
+  EXPECT_TRUE(oracle::confirms_min_duration(p, axis.min_duration(), 1e-9))
+      << "planned " << axis.min_duration() << " s";
+  EXPECT_NEAR(axis.min_duration(), 0.2006585562, 1e-9);
+  ASSERT_EQ(axis.blocked_count(), 1u);
+  const Interval& b = axis.blocked(0);
+  EXPECT_NEAR(b.lo, 0.2016377913, 1e-9);
+  EXPECT_NEAR(b.hi, 2.4122944200917, 1e-12);
+  EXPECT_FALSE(oracle::feasible(p, 0.5 * (b.lo + b.hi)));
+  EXPECT_TRUE(oracle::feasible(p, b.lo * (1 - 1e-12)));
+  EXPECT_TRUE(oracle::feasible(p, b.hi * (1 + 1e-12)));
+  plan_checked(start, target, l, "problem 4547520 of seed 4");
 }
 
 TEST(LimitsAtExtremes, StatesExactlyOnTheLimits) {
