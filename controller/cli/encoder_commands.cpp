@@ -19,7 +19,7 @@ namespace {
 
 using namespace std::chrono_literals;
 
-enum class Action { status, diag, preset, direction, set_address };
+enum class EncoderAction { status, diag, preset, direction, set_address };
 
 struct EncoderOptions : DeviceOptions {
   EncoderOptions() { timeout_s = 10.0; }
@@ -125,18 +125,19 @@ int record(const std::filesystem::path& config, const std::vector<config::KeyCha
 class EncoderCommissioning {
  public:
   EncoderCommissioning(const GlobalOptions& global, const EncoderOptions& options,
-                       const config::EncoderSection& section, Action action)
+                       const config::EncoderSection& section, EncoderAction action)
       : global_(global),
         options_(options),
         c_(global, options, section.port, "encoder", session_config(section.session, action)) {}
 
-  int run(Action action) {
+  int run(EncoderAction action) {
     // A preset beyond this encoder's scaling is a bad argument (manual 4.3.2): refused before the bus.
-    if (const auto range = session_.scaling().range(); action == Action::preset && options_.value >= range) {
+    if (const auto range = session_.scaling().range();
+        action == EncoderAction::preset && options_.value >= range) {
       spdlog::error("preset {}: must be 0 … {} (the total measuring range − 1)", options_.value, range - 1);
       return kExitUsage;
     }
-    if (action == Action::direction)
+    if (action == EncoderAction::direction)
       if (const auto why = encoder::manufacturer_functions_unavailable(session_.config().parameters);
           !why.empty()) {
         spdlog::error("encoder direction: {}; set code_sequence in the config's encoder section instead",
@@ -144,15 +145,15 @@ class EncoderCommissioning {
         return kExitFailed;
       }
     c_.activate();
-    if (action == Action::set_address) return set_address();
+    if (action == EncoderAction::set_address) return set_address();
     if (!drive([&] { return snapshot().data_exchange && snapshot().exchanges > 2; }))
       return failed_to("exchange data");
     switch (action) {
-      case Action::preset:
+      case EncoderAction::preset:
         if (!session_.preset(options_.value)) return refuse("preset");
         if (!finish_command()) return failed_to("acknowledge the preset");
         return record_offset();
-      case Action::direction:
+      case EncoderAction::direction:
         if (!session_.set_direction(options_.direction == "ccw" ? encoder::CodeSequence::ccw
                                                                 : encoder::CodeSequence::cw))
           return refuse("change direction");
@@ -170,7 +171,7 @@ class EncoderCommissioning {
     }
     (void)c_.drive_for(20ms);
     print_status(session_);
-    if (action == Action::diag) print_diag(snapshot());
+    if (action == EncoderAction::diag) print_diag(snapshot());
     if (const auto& d = snapshot().diagnosis; d && d->detail && d->detail->offset != configured_offset_)
       fmt::print(
           "WARNING        the encoder holds preset offset {}, the config expects preset_offset: {}: a run "
@@ -180,14 +181,14 @@ class EncoderCommissioning {
   }
 
  private:
-  encoder::SessionConfig session_config(encoder::SessionConfig c, Action action) {
+  encoder::SessionConfig session_config(encoder::SessionConfig c, EncoderAction action) {
     // Commissioning reads and changes the stored offset: it is compared here, not refused.
     configured_offset_ = c.expected_offset.value_or(0);
     c.expected_offset.reset();
     // Set_Slave_Add is only possible for an encoder whose switches are at 126 (manual 3.4).
-    if (action == Action::set_address) c.station_address = 126;
+    if (action == EncoderAction::set_address) c.station_address = 126;
     // A direction change on the fly needs commissioning mode (4.4): switched on for this command only.
-    if (action == Action::direction) c.parameters = encoder::commissioning_parameters(c.parameters);
+    if (action == EncoderAction::direction) c.parameters = encoder::commissioning_parameters(c.parameters);
     return c;
   }
 
@@ -276,7 +277,7 @@ class EncoderCommissioning {
   encoder::Session& session_ = c_.session();
 };
 
-int run_encoder(const GlobalOptions& global, const EncoderOptions& options, Action action) {
+int run_encoder(const GlobalOptions& global, const EncoderOptions& options, EncoderAction action) {
   const auto cell = config::load_cell_config(global.config);
   if (!cell.encoder) {
     spdlog::error("{} has no encoder: section (the parameters and scaling come from there)", global.config);
@@ -292,29 +293,29 @@ void add_encoder_commands(CLI::App& app, Commands& commands) {
   auto options = std::make_shared<EncoderOptions>();
   DeviceGroup group(app, "encoder", "Commission the Scancon SCH88BEX encoder (PROFIBUS DP, 8E1)", *options,
                     "Seconds to wait for the encoder");
-  auto add = [&](const char* name, const char* help, Action action) {
+  auto add = [&](const char* name, const char* help, EncoderAction action) {
     auto* sub = group.add_action(name, help);
     commands.on(sub, [&commands, options, action] { return run_encoder(commands.global, *options, action); });
     return sub;
   };
-  add("status", "Start the encoder up and print position, velocity and status bits", Action::status);
+  add("status", "Start the encoder up and print position, velocity and status bits", EncoderAction::status);
   add("diag", "Print status and the decoded diagnosis (alarms, warnings, resolution, versions, …)",
-      Action::diag);
+      EncoderAction::diag);
   auto* preset = add("preset",
                      "Preset the position to a value (in measuring units); the encoder's new offset is "
                      "recorded as preset_offset in the config (backup: FILE.bak), which every run checks",
-                     Action::preset);
+                     EncoderAction::preset);
   preset->add_option("value", options->value, "New position in measuring units")->required();
   auto* direction =
       add("direction",
           "Change the counting direction on the fly (the encoder is put in commissioning mode for it) and "
           "record it as code_sequence in the config (backup: FILE.bak)",
-          Action::direction);
+          EncoderAction::direction);
   direction->add_option("sequence", options->direction, "cw or ccw: the direction in which counts increase")
       ->required()
       ->check(CLI::IsMember({"cw", "ccw"}));
-  auto* address =
-      add("set-address", "Give an encoder at station 126 a new address (Set_Slave_Add)", Action::set_address);
+  auto* address = add("set-address", "Give an encoder at station 126 a new address (Set_Slave_Add)",
+                      EncoderAction::set_address);
   address->add_option("address", options->value, "New station address")
       ->required()
       ->check(CLI::Range(1, 125));

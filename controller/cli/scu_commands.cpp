@@ -15,7 +15,7 @@
 namespace cellctl::cli {
 namespace {
 
-enum class Action { status, move, stop };
+enum class ScuAction { status, move, stop };
 
 struct ScuOptions : DeviceOptions {
   ScuOptions() { timeout_s = 60.0; }
@@ -58,18 +58,18 @@ class ScuCommissioning {
   ScuCommissioning(const GlobalOptions& global, const ScuOptions& options, const config::ScuSection& section)
       : options_(options), c_(global, options, section.port, "SCU", section.session) {}
 
-  int run(Action action) {
+  int run(ScuAction action) {
     c_.activate();
     if (!c_.drive([&] { return c_.session().lifecycle() == link::Lifecycle::active; }))
       return c_.failed_to("open remote mode");
     int code = kExitOk;
     switch (action) {
-      case Action::status:
+      case ScuAction::status:
         break;
-      case Action::move:
+      case ScuAction::move:
         code = move();
         break;
-      case Action::stop:
+      case ScuAction::stop:
         if (!c_.session().stop(options_.function, !options_.fast)) {
           spdlog::error("F{} is not a function of this SCU: check scu.functions in the cell config",
                         options_.function);
@@ -133,7 +133,7 @@ class ScuCommissioning {
   Commissioning<scu::Session> c_;
 };
 
-int run_scu(const GlobalOptions& global, const ScuOptions& options, Action action) {
+int run_scu(const GlobalOptions& global, const ScuOptions& options, ScuAction action) {
   const auto cell = config::load_cell_config(global.config);
   if (!cell.scu) {
     spdlog::error("{} has no scu: section; add one (port, actuators, functions)", global.config);
@@ -150,14 +150,14 @@ void add_scu_commands(CLI::App& app, Commands& commands) {
   DeviceGroup group(app, "scu", "Commission the Ewellix SCU control unit and its actuators (RS232)", *options,
                     "Seconds to wait for the SCU or the motion");
 
-  auto add = [&](const char* name, const char* help, Action action) {
+  auto add = [&](const char* name, const char* help, ScuAction action) {
     auto* sub = group.add_action(name, help);
     commands.on(sub, [&commands, options, action] { return run_scu(commands.global, *options, action); });
     return sub;
   };
-  add("status", "Print positions, actuator status and the error word", Action::status);
+  add("status", "Print positions, actuator status and the error word", ScuAction::status);
   auto* move =
-      add("move", "Move one actuator to a position in mm, wait for the end, close with RS", Action::move);
+      add("move", "Move one actuator to a position in mm, wait for the end, close with RS", ScuAction::move);
   move->add_option("--function", options->function, "Function F1..F10 that moves the actuator")
       ->check(CLI::Range(1, 10))
       ->capture_default_str();
@@ -172,7 +172,7 @@ void add_scu_commands(CLI::App& app, Commands& commands) {
       ->check(CLI::Range(0.001, 1000.0))
       ->capture_default_str();
   move->add_flag("--fast", options->fast, "Fast start/stop (no ramps)");
-  auto* stop = add("stop", "Stop a function (soft unless --fast)", Action::stop);
+  auto* stop = add("stop", "Stop a function (soft unless --fast)", ScuAction::stop);
   stop->add_option("--function", options->function, "Function F1..F10")
       ->check(CLI::Range(1, 10))
       ->capture_default_str();

@@ -19,7 +19,7 @@ namespace {
 
 using namespace std::chrono_literals;
 
-enum class Action { status, start, stop, set, reset };
+enum class SpindleAction { status, start, stop, set, reset };
 
 struct SpindleOptions : DeviceOptions {
   SpindleOptions() { timeout_s = 30.0; }
@@ -58,7 +58,7 @@ class SpindleCommissioning {
                        const config::SpindleSection& section)
       : options_(options), c_(global, options, section.port, "spindle", section.session) {}
 
-  int run(Action action) {
+  int run(SpindleAction action) {
     c_.activate();
     const bool up = c_.drive([&] {
       const auto& s = snapshot();
@@ -66,9 +66,9 @@ class SpindleCommissioning {
     });
     if (!up) return failed_to("reach the converter");
     switch (action) {
-      case Action::status:
+      case SpindleAction::status:
         break;
-      case Action::start: {
+      case SpindleAction::start: {
         const auto dir = options_.direction == "ccw" ? spindle::Direction::counter_clockwise
                                                      : spindle::Direction::clockwise;
         if (!session_.start(options_.frequency_hz, dir)) return refuse("start");
@@ -84,25 +84,25 @@ class SpindleCommissioning {
         }
         break;
       }
-      case Action::stop:
+      case SpindleAction::stop:
         if (!session_.stop()) return refuse("stop");
         if (!c_.drive_showing([&] { return snapshot().at_rest && !session_.commands_pending(); },
                               [&] { return frequency_progress("running down"); }))
           return failed_to("come to rest");
         break;
-      case Action::set:
+      case SpindleAction::set:
         if (!session_.set_frequency(options_.frequency_hz)) return refuse("set the frequency");
         if (!c_.drive([&] { return !session_.commands_pending(); }))
           return failed_to("acknowledge the set-point");
         break;
-      case Action::reset:
+      case SpindleAction::reset:
         if (!session_.reset()) return refuse("reset");
         if (!c_.drive([&] { return !session_.commands_pending(); }))
           return failed_to("acknowledge the reset");
         break;
     }
     // The measured values are polled slower than the flags: wait for a set taken after the command.
-    if (action != Action::status && !c_.drive_for(session_.config().values_poll + 100ms))
+    if (action != SpindleAction::status && !c_.drive_for(session_.config().values_poll + 100ms))
       return failed_to("keep answering");
     print_snapshot(snapshot());
     return snapshot().fault() ? kExitFailed : kExitOk;
@@ -147,7 +147,7 @@ class SpindleCommissioning {
   spindle::Session& session_ = c_.session();
 };
 
-int run_spindle(const GlobalOptions& global, const SpindleOptions& options, Action action) {
+int run_spindle(const GlobalOptions& global, const SpindleOptions& options, SpindleAction action) {
   const auto cell = config::load_cell_config(global.config);
   if (!cell.spindle && !options.port) {
     spdlog::error("{} has no spindle: section; add one or give --port", global.config);
@@ -164,25 +164,26 @@ void add_spindle_commands(CLI::App& app, Commands& commands) {
   DeviceGroup group(app, "spindle", "Commission the SycoTec spindle converter (RS232)", *options,
                     "Seconds to wait for the converter");
 
-  auto add = [&](const char* name, const char* help, Action action) {
+  auto add = [&](const char* name, const char* help, SpindleAction action) {
     auto* sub = group.add_action(name, help);
     commands.on(sub, [&commands, options, action] { return run_spindle(commands.global, *options, action); });
     return sub;
   };
-  add("status", "Read and print the converter's status, values and identification", Action::status);
-  auto* start = add("start", "Start the spindle and wait until it is at speed", Action::start);
+  add("status", "Read and print the converter's status, values and identification", SpindleAction::status);
+  auto* start = add("start", "Start the spindle and wait until it is at speed", SpindleAction::start);
   start->add_option("--frequency", options->frequency_hz, "Set-point in Hz")
       ->required()
       ->check(CLI::Range(1.0, 65535.0));
   start->add_option("--direction", options->direction, "cw (Rechtslauf) or ccw (Linkslauf)")
       ->check(CLI::IsMember({"cw", "ccw"}))
       ->capture_default_str();
-  add("stop", "Stop the spindle and wait until it is at rest", Action::stop);
-  auto* set = add("set", "Change the frequency set-point (takes effect at once while running)", Action::set);
+  add("stop", "Stop the spindle and wait until it is at rest", SpindleAction::stop);
+  auto* set =
+      add("set", "Change the frequency set-point (takes effect at once while running)", SpindleAction::set);
   set->add_option("--frequency", options->frequency_hz, "Set-point in Hz")
       ->required()
       ->check(CLI::Range(1.0, 65535.0));
-  add("reset", "Reset a converter fault (CMD System Reset) and show the result", Action::reset);
+  add("reset", "Reset a converter fault (CMD System Reset) and show the result", SpindleAction::reset);
 }
 
 }  // namespace cellctl::cli
