@@ -32,7 +32,7 @@ LIST = ROOT / "tools" / "safety_mutations.txt"
 
 # Left out of every selection: real-time runs of a minute and more, and suites that never touch the
 # safety code (the bad-input corpus, fuzz replays, the planner's random problems).
-SLOW = r"cli\.demo_emulated|cli\.emulate_commissioning|cli\.operator_console|bad_input|Fuzz|AxisProfileRandom"
+SLOW = r"cli\.demo_emulated|cli\.demo_preset_builds|cli\.emulate_commissioning|cli\.operator_console|bad_input|Fuzz|AxisProfileRandom"
 TEST_TIMEOUT_S = 120  # a mutation that makes a test hang counts as killed by the time-out
 
 
@@ -120,10 +120,15 @@ def build(build_dir: pathlib.Path, jobs: int) -> tuple[bool, str]:
     return r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
 
 
-def set_test_timeout(build_dir: pathlib.Path, seconds: str) -> None:
+def set_test_timeout(build_dir: pathlib.Path, seconds: str) -> bool:
     # CTest's --timeout yields to a test's TIMEOUT property, which the GoogleTest cases carry; the property
-    # comes from this cache variable, so a hung mutant is ended after TEST_TIMEOUT_S and not 300 s.
-    subprocess.run(["cmake", f"-DCELLCTL_TEST_TIMEOUT={seconds}", str(build_dir)], capture_output=True, check=True)
+    # comes from this cache variable (written into the test lists when the tests are built), so a hung
+    # mutant is ended after TEST_TIMEOUT_S and not 300 s.
+    r = subprocess.run(["cmake", f"-DCELLCTL_TEST_TIMEOUT={seconds}", str(build_dir)], capture_output=True, text=True)
+    if r.returncode != 0:
+        print(f"cmake could not set CELLCTL_TEST_TIMEOUT={seconds} in {build_dir}:\n{r.stdout[-2000:]}{r.stderr[-2000:]}",
+              file=sys.stderr)
+    return r.returncode == 0
 
 
 def cached_test_timeout(build_dir: pathlib.Path) -> str:
@@ -179,12 +184,18 @@ def main() -> int:
 
     build_dir = (ROOT / args.build).resolve()
     signal.signal(signal.SIGTERM, interrupted)
+    if not (build_dir / "CMakeCache.txt").is_file():
+        print(f"{build_dir} is not a configured build directory (cmake --preset release first)", file=sys.stderr)
+        return 2
     timeout_before = cached_test_timeout(build_dir)
-    set_test_timeout(build_dir, str(TEST_TIMEOUT_S))
+    if not set_test_timeout(build_dir, str(TEST_TIMEOUT_S)):
+        return 2
     try:
         return judge(mutations, build_dir, args.jobs)
     finally:
+        # The source is unmutated again here; the rebuild also writes the old time-out into the test lists.
         set_test_timeout(build_dir, timeout_before)
+        build(build_dir, args.jobs)
 
 
 def judge(mutations: list[Mutation], build_dir: pathlib.Path, jobs: int) -> int:
@@ -218,9 +229,7 @@ def judge(mutations: list[Mutation], build_dir: pathlib.Path, jobs: int) -> int:
                 rows.append((m, "survived (explained)" if m.survives else "SURVIVED", [m.survives or f"{ran} tests passed"]))
     except KeyboardInterrupt:
         print("interrupted: the source is restored; rebuilding it", file=sys.stderr)
-        build(build_dir, jobs)
         return 1
-    build(build_dir, jobs)  # the build directory matches the source again
 
     print()
     print(f"{'mutation':42} {'result':20} evidence")

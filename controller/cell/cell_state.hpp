@@ -70,6 +70,10 @@ struct SpindleState {
 
 enum class Device : std::uint8_t { scu, spindle, encoder };
 inline constexpr std::size_t kDevices = 3;
+// A device's place in the arrays indexed by device (links, sessions).
+[[nodiscard]] constexpr std::size_t slot(Device d) noexcept {
+  return static_cast<std::size_t>(d);
+}
 [[nodiscard]] constexpr const char* to_string(Device d) noexcept {
   return d == Device::scu ? "scu" : d == Device::spindle ? "spindle" : "encoder";
 }

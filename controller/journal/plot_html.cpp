@@ -10,7 +10,7 @@ namespace {
 
 using nlohmann::json;
 
-json tidy(double v) {
+json rounded(double v) {
   if (std::isnan(v)) return nullptr;
   return std::round(v * 1e4) / 1e4;
 }
@@ -21,7 +21,8 @@ json model_json(const PlotModel& m) {
   j["subtitle"] = m.subtitle;
   j["t_lo"] = m.t_lo;
   j["t_hi"] = m.t_hi;
-  // Series of one run share their time stamps: written once, referred to by index.
+  // Series with the same time stamps (one run's, or a long run's curves bucketed alike) share them:
+  // written once, referred to by index.
   std::vector<const std::vector<double>*> times;
   j["times"] = json::array();
   j["panels"] = json::array();
@@ -33,11 +34,11 @@ json model_json(const PlotModel& m) {
       if (ti == times.size()) {
         times.push_back(&s.t);
         json t = json::array();
-        for (const double v : s.t) t.push_back(tidy(v));
+        for (const double v : s.t) t.push_back(rounded(v));
         j["times"].push_back(std::move(t));
       }
       json v = json::array();
-      for (const double x : s.v) v.push_back(tidy(x));
+      for (const double x : s.v) v.push_back(rounded(x));
       panel["series"].push_back(
           {{"name", s.name}, {"colour", s.colour}, {"dash", s.dash}, {"t", ti}, {"v", v}});
     }
@@ -45,10 +46,10 @@ json model_json(const PlotModel& m) {
   }
   j["steps"] = json::array();
   for (const auto& s : m.steps)
-    j["steps"].push_back({{"t", tidy(s.t)}, {"step", s.step}, {"name", s.name}, {"full", s.full}});
+    j["steps"].push_back({{"t", rounded(s.t)}, {"step", s.step}, {"name", s.name}, {"full", s.full}});
   j["marks"] = json::array();
   for (const auto& mk : m.marks)
-    j["marks"].push_back({{"t", tidy(mk.t)}, {"kind", mk.kind}, {"text", mk.text}, {"colour", mk.colour}});
+    j["marks"].push_back({{"t", rounded(mk.t)}, {"kind", mk.kind}, {"text", mk.text}, {"colour", mk.colour}});
   return j;
 }
 

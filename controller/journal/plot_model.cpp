@@ -42,9 +42,10 @@ bool is_move(const RunRecord& run, const StepRun& s) {
   return (*it)[static_cast<std::size_t>(s.step - 1)].value("kind", "") == "move";
 }
 
-// A curve has at most this many buckets of samples. A long run (8 h is 1.4 M samples) is drawn as
-// each bucket's lowest and highest value in their order, and its first gap, so peaks and gaps
-// survive while plot.svg and plot.html stay small enough to open. The record keeps every sample
+// A run of more than twice this many samples (2 h 40 min at 20 ms) is drawn in this many buckets:
+// each bucket by its lowest and highest value in their order, its first gap and the first gap after
+// its last value, so peaks survive and a gap on either side of a short stretch of values stays a
+// gap, while plot.svg and plot.html stay small enough to open. The record keeps every sample
 // (`cellctl report --csv` exports them).
 constexpr std::size_t kMaxBuckets = 4000;
 
@@ -54,29 +55,31 @@ PlotSeries series(const RunRecord& run, std::string name, std::string colour, st
   const auto& samples = run.samples();
   const std::size_t n = samples.size();
   const std::size_t per = n <= 2 * kMaxBuckets ? 1 : (n + kMaxBuckets - 1) / kMaxBuckets;
-  s.t.reserve(std::min(n, 3 * kMaxBuckets));
-  s.v.reserve(std::min(n, 3 * kMaxBuckets));
-  const auto add = [&](std::size_t i, double v) {
-    s.t.push_back(samples[i].t - run.start());
-    s.v.push_back(v);
-  };
+  s.t.reserve(std::min(n, 6 * kMaxBuckets));
+  s.v.reserve(std::min(n, 6 * kMaxBuckets));
   for (std::size_t first = 0; first < n; first += per) {
     const std::size_t end = std::min(n, first + per);
-    std::size_t lo = n, hi = n, gap = n;
+    std::size_t lo = n, hi = n, gap = n, gap_after = n;
     for (std::size_t i = first; i < end; ++i) {
       const double v = get(i, samples[i]);
       if (std::isnan(v)) {
         gap = std::min(gap, i);
+        gap_after = std::min(gap_after, i);
       } else {
         if (lo == n || v < get(lo, samples[lo])) lo = i;
         if (hi == n || v > get(hi, samples[hi])) hi = i;
+        gap_after = n;
       }
     }
     // The run's first and last samples too, so that a curve spans the whole run.
-    std::array<std::size_t, 5> keep = {lo, hi, gap, first == 0 ? std::size_t{0} : n, end == n ? n - 1 : n};
+    std::array<std::size_t, 6> keep = {
+        lo, hi, gap, gap_after, first == 0 ? std::size_t{0} : n, end == n ? n - 1 : n};
     std::sort(keep.begin(), keep.end());
-    for (std::size_t k = 0; k < keep.size(); ++k)
-      if (keep[k] != n && (k == 0 || keep[k] != keep[k - 1])) add(keep[k], get(keep[k], samples[keep[k]]));
+    for (std::size_t k = 0; k < keep.size(); ++k) {
+      if (keep[k] == n || (k > 0 && keep[k] == keep[k - 1])) continue;
+      s.t.push_back(samples[keep[k]].t - run.start());
+      s.v.push_back(get(keep[k], samples[keep[k]]));
+    }
   }
   return s;
 }

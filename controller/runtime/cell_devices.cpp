@@ -16,10 +16,6 @@ cell::LinkState link_state(const link::DeviceSession& s, link::TimePoint now) {
                      .refusals = h.error_replies}};
 }
 
-std::size_t slot(cell::Device d) {
-  return static_cast<std::size_t>(d);
-}
-
 }  // namespace
 
 CellDevices::CellDevices(const config::CellConfig& cell, DeviceLinks links) : cell_(cell) {

@@ -9,10 +9,6 @@
 namespace cellctl::runtime {
 namespace {
 
-std::size_t slot(cell::Device d) noexcept {
-  return static_cast<std::size_t>(d);
-}
-
 // Every fitted actuator's last refresh showed no motion.
 bool all_at_rest(const scu::Session& s) noexcept {
   const auto& snap = s.snapshot();

@@ -117,6 +117,9 @@ TEST(PlotModel, ALongRunIsDrawnByEachBucketsExtremesKeepingPeaksAndGaps) {
     s.spindle_actual_hz = i == kSpike ? 400.0f : 10.0f;
     r.add(to_json({i * 0.02, s}));
     if (i == 60000) r.add(to_json({i * 0.02, StepEnded{0, "move", true, {}}}));
+    // A move shorter than a bucket (25 samples each here): gap, values, gap within one bucket.
+    if (i == 80005) r.add(to_json({i * 0.02, StepStarted{1, "move"}}));
+    if (i == 80010) r.add(to_json({i * 0.02, StepEnded{1, "move", true, {}}}));
   }
   r.finish();
   const auto m = plot_model({&r});
@@ -141,6 +144,16 @@ TEST(PlotModel, ALongRunIsDrawnByEachBucketsExtremesKeepingPeaksAndGaps) {
   }
   EXPECT_GT(values, 1000u);
   EXPECT_DOUBLE_EQ(highest, 6.0);  // planned i % 7 against an SCU at 0: every bucket keeps its 6
+  // The short move's values are drawn with a gap on both sides, not joined to what follows.
+  std::size_t k = 0;
+  while (k < err.t.size() && (std::isnan(err.v[k]) || err.t[k] < 80000 * 0.02)) ++k;
+  ASSERT_LT(k, err.t.size());
+  ASSERT_GT(k, 0u);
+  EXPECT_NEAR(err.t[k], 80009 * 0.02, 1e-9) << "the short move's highest value";
+  EXPECT_TRUE(std::isnan(err.v[k - 1])) << "a gap before the short move";
+  while (k < err.t.size() && !std::isnan(err.v[k])) ++k;
+  ASSERT_LT(k, err.t.size());
+  EXPECT_NEAR(err.t[k], 80011 * 0.02, 1e-9) << "the gap after the short move, kept in its bucket";
 }
 
 TEST(Plots, SvgEscapesLabelsAndHtmlIsOffline) {

@@ -15,9 +15,11 @@ screenshot (OUT_DIR/operator_page.png); then stops the run through the page (exi
 on a condition with a time-out.
 """
 import atexit
+import ctypes
 import json
 import os
 import re
+import signal
 import socket
 import subprocess
 import sys
@@ -30,6 +32,8 @@ from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support import expected_conditions as EC
 from selenium.webdriver.support.ui import WebDriverWait
+
+PR_SET_PDEATHSIG = 1  # <sys/prctl.h>
 
 cellctl, config, out = sys.argv[1:4]
 os.makedirs(out, exist_ok=True)
@@ -103,8 +107,10 @@ driver.get("about:blank")
 log = open(os.path.join(out, "cellctl.out"), "w")
 proc = subprocess.Popen([cellctl, "-c", config, "run", recipe, "--virtual-time", "--journal", os.path.join(out, "run"),
                          "--http", f"127.0.0.1:{port}", "--http-token-file", os.path.join(out, "token")],
-                        stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT)
-# A failed assertion must not leave the run serving (a --virtual-time run with a hold never ends).
+                        stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
+                        preexec_fn=lambda: ctypes.CDLL("libc.so.6").prctl(PR_SET_PDEATHSIG, signal.SIGTERM))
+# A failed assertion must not leave the run serving (a --virtual-time run with a hold never ends); the
+# kernel's parent-death signal covers this script being killed itself (a CTest time-out).
 atexit.register(lambda: proc.poll() is None and proc.kill())
 
 
