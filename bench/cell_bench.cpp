@@ -289,8 +289,8 @@ void BM_CellVirtualTime(benchmark::State& state) {
     std::unique_ptr<plant_link::PlantLink> link;
     std::unique_ptr<web::OperatorPage> page;
     if (plant_on) {
-      const plant_link::RunAccess access{[&run](supervisor::Command c) { run.request(c); }, &run.status(),
-                                         "virtual-time"};
+      const auto access = plant_link::fixed_run([&run](supervisor::Command c) { run.request(c); },
+                                                run.status(), "virtual-time");
       plant_link::LinkConfig lc;
       lc.cell = setup.cell.name;
       lc.client_id = "cell-bench";

@@ -5,13 +5,13 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "cli/exit_codes.hpp"
+#include "cli/home_job.hpp"
 #include "cli/run_command.hpp"
 #include "cli/run_record_info.hpp"
 #include "config/cell_config.hpp"
@@ -68,33 +68,13 @@ int home(const GlobalOptions& global, const HomeArgs& args) {
     spdlog::error("{}", problem);
     return kExitUsage;
   }
-  std::vector<std::size_t> axes;
-  for (const auto& name : args.axes) {
-    const auto* a = cell.axis(name);
-    if (!a) {
-      spdlog::error("home: the cell has no axis '{}'", name);
-      return kExitUsage;
-    }
-    if (a->homing.strategy == config::HomingStrategy::none) {
-      spdlog::error("home: axis {} has no homing in {} (axes[].homing.strategy)", name, global.config);
-      return kExitUsage;
-    }
-    const auto i = static_cast<std::size_t>(a - cell.axes.data());
-    if (std::find(axes.begin(), axes.end(), i) == axes.end()) axes.push_back(i);
-  }
-  if (args.axes.empty())
-    for (std::size_t i = 0; i < cell.axes.size(); ++i)
-      if (cell.axes[i].homing.strategy != config::HomingStrategy::none) axes.push_back(i);
-  if (axes.empty()) {
-    spdlog::error("home: no axis in {} has homing (axes[].homing.strategy)", global.config);
+  const auto chosen = homing_axes(cell, global.config, args.axes);
+  if (const auto* why = std::get_if<std::string>(&chosen)) {
+    spdlog::error("home: {}", *why);
     return kExitUsage;
   }
-  std::stable_sort(axes.begin(), axes.end(), [&](std::size_t l, std::size_t r) {
-    return cell.axes[l].homing.sequence < cell.axes[r].homing.sequence;
-  });
+  const auto& axes = std::get<std::vector<std::size_t>>(chosen);
 
-  std::vector<std::string> names;
-  for (auto i : axes) names.push_back(cell.axes[i].name);
   const auto state_dir =
       args.run.state_dir.empty() ? cell.state_dir : std::filesystem::path(args.run.state_dir);
   const auto mode = args.run.virtual_time ? std::string_view("virtual-time")
@@ -120,32 +100,17 @@ int home(const GlobalOptions& global, const HomeArgs& args) {
     }
   }
 
-  // The one-step recipe, kept with the run record: `cellctl run <dir>/home.yaml` does the same again.
   const auto run_dir =
       args.run.journal_dir.empty() ? default_run_dir("home") : std::filesystem::path(args.run.journal_dir);
-  std::filesystem::create_directories(run_dir);
-  const auto recipe_file = run_dir / "home.yaml";
-  {
-    std::ofstream out(recipe_file);
-    out << fmt::format(
-        "# Written by cellctl home: the homing this run record is of.\n"
-        "recipe: {{name: home, version: \"1\", cell: {}, description: \"cellctl home {}\"}}\n"
-        "limits: {{axes: {{}}}}\n"
-        "steps:\n"
-        "  - name: home {}\n"
-        "    home: [{}]\n",
-        cell.name, fmt::join(names, " "), fmt::join(names, ", "), fmt::join(names, ", "));
-    if (!out) {
-      spdlog::error("home: cannot write {}", recipe_file.string());
-      return kExitFailed;
-    }
-  }
   recipe::Recipe recipe;
   try {
-    recipe = recipe::load_recipe(recipe_file, cell);
+    recipe = write_homing_recipe(cell, axes, run_dir);
   } catch (const recipe::RecipeErrors& e) {
     for (const auto& err : e.errors()) spdlog::error("{}", err.what());
     return kExitConfig;
+  } catch (const std::runtime_error& e) {
+    spdlog::error("home: {}", e.what());
+    return kExitFailed;
   }
   return run_loaded_recipe(global, cell, recipe, args.run, run_dir);
 }

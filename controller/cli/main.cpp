@@ -19,6 +19,7 @@
 #include "cli/report_command.hpp"
 #include "cli/run_command.hpp"
 #include "cli/scu_commands.hpp"
+#include "cli/serve_command.hpp"
 #include "cli/spindle_commands.hpp"
 #include "cli/teach_in_command.hpp"
 #include "config/yaml_node.hpp"
@@ -63,6 +64,7 @@ int main(int argc, char** argv) {
   add_spindle_commands(app, commands);
   add_encoder_commands(app, commands);
   add_teach_in_command(app, commands);
+  add_serve_command(app, commands);
   add_scu_commands(app, commands);
   add_report_command(app, commands);
   add_compare_command(app, commands);

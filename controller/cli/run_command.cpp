@@ -12,6 +12,7 @@
 #include "cli/drive.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/operator_console.hpp"
+#include "cli/plant_facing.hpp"
 #include "cli/run_narrator.hpp"
 #include "cli/run_record_info.hpp"
 #include "cli/status_printer.hpp"
@@ -20,18 +21,13 @@
 #include "journal/record_header.hpp"
 #include "journal/run_record.hpp"
 #include "plant_link/link_config.hpp"
-#include "plant_link/plant_link.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "runtime/cell_run.hpp"
 #include "runtime/fault_rehearsal.hpp"
 #include "runtime/fault_spec.hpp"
-#include "web/operator_page.hpp"
-#include "web/page_token.hpp"
 
 namespace cellctl::cli {
-namespace {
 
-// --http's validator: ADDR:PORT or PORT (loopback).
 CLI::Validator listen_validator(std::optional<web::PageOptions>& out) {
   return CLI::Validator(
       [&out](std::string& text) -> std::string {
@@ -41,6 +37,8 @@ CLI::Validator listen_validator(std::optional<web::PageOptions>& out) {
       },
       "ADDR:PORT");
 }
+
+namespace {
 
 // What Ctrl-C will do, as the cell's config has it.
 std::string ctrl_c_hint(config::StopCategory operator_stop) {
@@ -120,29 +118,14 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
     TerminalScreen screen;
     RunNarrator narrator(screen);
     // The plant link and the web page command through the operator's path, as the console does.
-    const plant_link::RunAccess access{[&run](supervisor::Command c) { run.request(c); }, &run.status(),
-                                       to_string(options.mode)};
-    std::unique_ptr<plant_link::PlantLink> link;  // before the run ends, gone before the run is
-    if (plant_link) {
-      link = std::make_unique<plant_link::PlantLink>(*plant_link, cell, access);
-      screen.message(fmt::format("  plant link: MQTT {}:{} as '{}', tags under {}", plant_link->host,
-                                 plant_link->port, plant_link->client_id, plant_link->topic("")));
-    }
-    std::unique_ptr<web::OperatorPage> page;
-    if (args.http) {
-      auto page_options = *args.http;
-      const auto token = web::page_token(args.http_token_file);
-      page_options.token = token.token;
-      page_options.recipes = plant_link ? plant_link->recipes : std::filesystem::path("recipes");
-      page = std::make_unique<web::OperatorPage>(page_options, cell, access);
-      screen.message(fmt::format("  operator page: http://{}:{}/ — command token ({}): {}",
-                                 page_options.address, page->port(), token.origin,
-                                 token.origin == "generated" ? token.token : "as given"));
-    }
-    run.on_journal_line([&narrator, &link, &page](const nlohmann::json& line) {
+    const auto access = plant_link::fixed_run([&run](supervisor::Command c) { run.request(c); }, run.status(),
+                                              to_string(options.mode));
+    auto facing = open_plant_facing(cell, plant_link, args.http, args.http_token_file,
+                                    plant_link ? plant_link->recipes : std::filesystem::path("recipes"),
+                                    access, [&screen](const std::string& line) { screen.message(line); });
+    run.on_journal_line([&narrator, &facing](const nlohmann::json& line) {
       narrator(line);
-      if (link) link->on_journal_line(line);
-      if (page) page->on_journal_line(line);
+      facing.on_journal_line(line);
     });
     fmt::print("  {}\n", ctrl_c_hint(cell.stops.operator_stop));
     std::vector<std::optional<double>> planned;
@@ -153,8 +136,7 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
       screen.message("  type hold, unhold, stop, abort or reset (h, u, s, a, r) and Enter");
     result = run.run(g_interrupted, &g_terminated);
     run.on_journal_line({});
-    link.reset();  // its last tags out (the run's end), then a clean goodbye
-    page.reset();
+    facing.close();  // the link's last tags out (the run's end), then a clean goodbye
   }
   for (const auto& w : run.realtime_warnings()) spdlog::warn("real-time: {}", w);
   fmt::print("\n{}", result.summary_text);

@@ -42,6 +42,8 @@ void add_run_options(CLI::App* sub, RunArgs& args);
 [[nodiscard]] std::string run_args_problem(const RunArgs& args, const config::CellConfig& cell);
 
 void add_run_command(CLI::App& app, Commands& commands);
+// --http's validator (run and serve): ADDR:PORT, or PORT alone for loopback, into `out`.
+[[nodiscard]] CLI::Validator listen_validator(std::optional<web::PageOptions>& out);
 // --fault's validator (run and teach-in): the text becomes a FaultSpec in `out`, or the reason is
 // CLI11's error (exit 2).
 [[nodiscard]] CLI::Validator fault_spec_validator(std::vector<runtime::FaultSpec>& out);

@@ -15,9 +15,9 @@
 #include "cli/exit_codes.hpp"
 #include "cli/run_command.hpp"
 #include "cli/run_record_info.hpp"
+#include "cli/teach_in_job.hpp"
 #include "cli/terminal_screen.hpp"
 #include "config/cell_config.hpp"
-#include "config/config_edit.hpp"
 #include "runtime/fault_rehearsal.hpp"
 #include "runtime/teach_in_run.hpp"
 
@@ -54,26 +54,11 @@ std::filesystem::path default_dir(const std::string& axis) {
   return std::filesystem::path("runs") / fmt::format("teach-in-{}-{}", axis, stamp);
 }
 
-std::string number(double v) {
-  return fmt::format("{:.6g}", v);
-}
-
-// The taught resolution into the config's encoder section, as the manual asks (4.4.2.1 "End": into
-// Maximum Desired Measuring Units), with the unit per mm it counts in.
+// The verified result into the config, the changes printed.
 int write_result(const std::filesystem::path& config_file, const config::CellConfig& cell,
                  const runtime::TeachInOutcome& o) {
-  std::vector<config::KeyChange> changes = {
-      {"scaling", "true"},
-      {"units_select", "per_total_range"},
-      {"measuring_units", std::to_string(o.result.total_resolution)},
-      {"counts_per_mm", number(o.units_per_mm)},
-      {"mm_per_revolution", std::nullopt},
-      {"preset_offset", "0"},
-  };
-  if (cell.encoder->session.zero_offset_mm != 0.0)
-    changes.push_back({"zero_offset_mm", number(o.taught.zero_offset_mm)});
   try {
-    const auto change = config::change_config_file(config_file, "encoder", changes);
+    const auto change = write_teach_in_result(config_file, cell, o);
     for (const auto& line : change.changed) fmt::print("  {}\n", line);
     fmt::print("{} written; the previous config is {}\n", config_file.string(), change.backup.string());
     return kExitOk;
@@ -90,25 +75,13 @@ int teach_in(const GlobalOptions& global, const TeachInArgs& args) {
     spdlog::error("{}", problem);
     return kExitUsage;
   }
-  routines::TeachInRequest request;
-  request.axis = -1;
-  for (std::size_t i = 0; i < cell.axes.size(); ++i)
-    if (cell.axes[i].name == args.axis) request.axis = static_cast<int>(i);
-  if (request.axis < 0) {
-    spdlog::error("teach-in: the cell has no axis '{}'", args.axis);
+  const auto asked = teach_in_request(
+      cell, {args.axis, args.distance_mm, args.from_mm, args.manual, args.speed_mm_s, args.tolerance_mm});
+  if (const auto* why = std::get_if<std::string>(&asked)) {
+    spdlog::error("teach-in: {}", *why);
     return kExitUsage;
   }
-  const auto& axis = cell.axes[static_cast<std::size_t>(request.axis)];
-  if (!axis.encoder) {
-    spdlog::error("teach-in: the encoder does not measure axis {} (encoder: true is on another axis or none)",
-                  args.axis);
-    return kExitUsage;
-  }
-  request.distance_mm = args.distance_mm;
-  request.from_mm = args.from_mm;
-  request.manual = args.manual;
-  request.speed_mm_s = args.speed_mm_s.value_or(std::min(5.0, axis.max_speed_mm_s));
-  request.tolerance_mm = args.tolerance_mm;
+  const auto& request = std::get<routines::TeachInRequest>(asked);
 
   runtime::TeachInRunOptions options;
   options.mode = args.virtual_time ? runtime::RunMode::virtual_time

@@ -20,6 +20,46 @@ bool plain_name(const std::string& n) {
   return true;
 }
 
+// A number field of a start's payload within [lo, hi]; absent: nullopt; otherwise `why` says what is wrong.
+std::optional<double> number_field(const nlohmann::json& body, const char* key, double lo, double hi,
+                                   std::string& why) {
+  const auto it = body.find(key);
+  if (it == body.end()) return std::nullopt;
+  if (!it->is_number() || it->get<double>() < lo || it->get<double>() > hi) {
+    why = fmt::format("'{}' must be a number from {:g} to {:g}", key, lo, hi);
+    return std::nullopt;
+  }
+  return it->get<double>();
+}
+
+std::variant<StartRequest, std::string> routine_start(std::string_view word, const nlohmann::json& body) {
+  std::string why;
+  if (word == "home") {
+    StartHoming h;
+    if (const auto it = body.find("axes"); it != body.end()) {
+      if (!it->is_array()) return std::string("'axes' must be a list of axis names: {\"axes\":[\"x\"]}");
+      for (const auto& a : *it) {
+        if (!a.is_string()) return std::string("'axes' must be a list of axis names: {\"axes\":[\"x\"]}");
+        h.axes.push_back(a.get<std::string>());
+      }
+    }
+    return h;
+  }
+  StartTeachIn t;
+  const auto axis = body.find("axis");
+  if (axis == body.end() || !axis->is_string())
+    return std::string("teach-in needs the axis and the distance: {\"axis\":\"x\",\"distance_mm\":100}");
+  t.axis = axis->get<std::string>();
+  const auto distance = number_field(body, "distance_mm", 0.1, 10000.0, why);
+  if (!distance && why.empty())
+    return std::string("teach-in needs the distance: {\"axis\":\"x\",\"distance_mm\":100}");
+  t.from_mm = number_field(body, "from_mm", -1e6, 1e6, why);
+  t.speed_mm_s = number_field(body, "speed_mm_s", 0.01, 1000.0, why);
+  if (!why.empty()) return why;
+  t.distance_mm = *distance;
+  return t;
+}
+
 }  // namespace
 
 nlohmann::json answer(std::string_view command, const nlohmann::json& id, bool ok, std::string text) {
@@ -29,10 +69,9 @@ nlohmann::json answer(std::string_view command, const nlohmann::json& id, bool o
   return j;
 }
 
-CommandDesk::CommandDesk(const config::CellCore& cell, std::filesystem::path recipes,
-                         std::function<void(supervisor::Command)> request,
+CommandDesk::CommandDesk(const config::CellCore& cell, std::filesystem::path recipes, RunAccess access,
                          std::chrono::milliseconds answer_timeout)
-    : cell_(cell), recipes_(std::move(recipes)), request_(std::move(request)), timeout_(answer_timeout) {}
+    : cell_(cell), recipes_(std::move(recipes)), access_(std::move(access)), timeout_(answer_timeout) {}
 
 std::optional<nlohmann::json> CommandDesk::submit(std::string_view word, std::string_view payload,
                                                   std::string_view source, std::string_view state,
@@ -44,28 +83,29 @@ std::optional<nlohmann::json> CommandDesk::submit(std::string_view word, std::st
       return answer(word, nullptr, false, "the payload is no JSON object (expected {\"id\":…} or nothing)");
   }
   const nlohmann::json id = body.contains("id") ? body["id"] : nlohmann::json();
+  if (word == "start" || word == "home" || word == "teach-in") return start(word, id, body, state);
   using supervisor::Command;
   std::optional<Command> cmd;
-  for (const auto c :
-       {Command::start, Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset})
+  for (const auto c : {Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset})
     if (supervisor::to_string(c) == word) cmd = c;
   if (!cmd)
-    return answer(word, id, false,
-                  fmt::format("'{}' is not a command: hold, unhold, stop, abort, reset or start", word));
-  if (*cmd == Command::start) {
-    const auto it = body.find("recipe");
-    if (it == body.end() || !it->is_string())
-      return answer(word, id, false, "start needs the recipe's name: {\"recipe\":\"demo\"}");
-    return validate_start(id, it->get<std::string>(), state);
-  }
-  if (!request_) return answer(word, id, false, "no run is in progress: there is nothing to command");
-  request_(*cmd);
+    return answer(
+        word, id, false,
+        fmt::format("'{}' is not a command: hold, unhold, stop, abort, reset, start, home or teach-in",
+                    word));
+  if (!access_.request) return answer(word, id, false, "no run is in progress: there is nothing to command");
+  const auto taken = access_.request(*cmd);
+  if (taken.how != Taken::How::by_run) return answer(word, id, taken.how == Taken::How::done, taken.text);
   pending_.push_back({*cmd, id, std::string(source), now + timeout_});
   return std::nullopt;
 }
 
-nlohmann::json CommandDesk::validate_start(const nlohmann::json& id, const std::string& name,
-                                           std::string_view state) const {
+std::variant<StartRequest, nlohmann::json> CommandDesk::recipe_start(const nlohmann::json& id,
+                                                                     const nlohmann::json& body) const {
+  const auto it = body.find("recipe");
+  if (it == body.end() || !it->is_string())
+    return answer("start", id, false, "start needs the recipe's name: {\"recipe\":\"demo\"}");
+  const auto name = it->get<std::string>();
   if (!plain_name(name))
     return answer("start", id, false,
                   fmt::format("'{}' is no recipe name (letters, digits, '-', '_', '.'; no path)", name));
@@ -80,21 +120,44 @@ nlohmann::json CommandDesk::validate_start(const nlohmann::json& id, const std::
   } catch (const config::ConfigError& e) {
     errors.push_back(e.what());
   }
-  if (!errors.empty()) {
+  if (errors.empty()) return StartRecipe{name, path, steps};
+  auto a = answer("start", id, false,
+                  fmt::format("recipe '{}' is not valid for cell '{}': {} problem{} (exit 3); nothing moved",
+                              name, cell_.name, errors.size(), errors.size() == 1 ? "" : "s"));
+  a["exit"] = 3;
+  a["errors"] = errors;
+  return a;
+}
+
+nlohmann::json CommandDesk::start(std::string_view word, const nlohmann::json& id, const nlohmann::json& body,
+                                  std::string_view state) const {
+  StartRequest request;
+  if (word == "start") {
+    auto r = recipe_start(id, body);
+    if (auto* refusal = std::get_if<nlohmann::json>(&r)) return std::move(*refusal);
+    request = std::get<StartRequest>(std::move(r));
+  } else {
+    auto r = routine_start(word, body);
+    if (auto* why = std::get_if<std::string>(&r)) return answer(word, id, false, std::move(*why));
+    request = std::get<StartRequest>(std::move(r));
+  }
+  if (!access_.start) {
+    // cellctl run drives the one recipe it was started with; anything else needs another process.
+    const auto* recipe = std::get_if<StartRecipe>(&request);
     auto a =
-        answer("start", id, false,
-               fmt::format("recipe '{}' is not valid for cell '{}': {} problem{} (exit 3); nothing moved",
-                           name, cell_.name, errors.size(), errors.size() == 1 ? "" : "s"));
-    a["exit"] = 3;
-    a["errors"] = errors;
+        answer(word, id, false,
+               recipe ? fmt::format("recipe '{}' is valid ({} steps), but this cellctl drives one run and it "
+                                    "is in state {}: start it with `cellctl run {}`, or run `cellctl serve`",
+                                    recipe->name, recipe->steps, state, recipe->file.string())
+                      : fmt::format("this cellctl drives one run (state {}): {} needs `cellctl serve` or "
+                                    "`cellctl {}`",
+                                    state, word, word));
+    if (recipe) a["valid"] = true;
     return a;
   }
-  // cellctl run drives the one recipe it was started with; a plant-started run needs a new process.
-  auto a = answer("start", id, false,
-                  fmt::format("recipe '{}' is valid ({} steps), but this cellctl drives one run and it is in "
-                              "state {}: start it with `cellctl run {}`",
-                              name, steps, state, path.string()));
-  a["valid"] = true;
+  const auto taken = access_.start(request);
+  auto a = answer(word, id, taken.how != Taken::How::refused, taken.text);
+  if (std::holds_alternative<StartRecipe>(request)) a["valid"] = true;
   return a;
 }
 

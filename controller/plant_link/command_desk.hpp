@@ -3,9 +3,12 @@
 // one command path (runtime::CellRun::request, as the terminal's) and answered with the outcome the
 // run gives: accepted, or refused and why (the supervisor's and the monitor's own reasons, read from
 // the run's events, as the terminal's narrator reads them). A command the current state does not
-// allow is refused by the run at once, never queued. `start` names a recipe in the recipe folder: it
-// is validated first (every problem file:line:column, as `cellctl check` and exit 3 give them); this
-// cellctl drives one run, so a valid start is refused while that run exists.
+// allow is refused by the run at once, never queued.
+// Starts: `start` names a recipe in the recipe folder, validated first (every problem
+// file:line:column, as `cellctl check` and exit 3 give them); `home` ({"axes":[…]}, or every axis with
+// homing) and `teach-in` ({"axis","distance_mm", optional "from_mm", "speed_mm_s"}) start the cell's
+// routines. A standing controller (cellctl serve, RunAccess::start) starts them when no job is in
+// progress; `cellctl run` drives one run, so it refuses them with the reason.
 // Used on one thread (the link's or the web server's).
 
 #include <chrono>
@@ -16,9 +19,11 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "config/cell_core.hpp"
+#include "plant_link/run_access.hpp"
 #include "plant_link/run_event.hpp"
 #include "supervisor/packml.hpp"
 
@@ -28,13 +33,15 @@ using SteadyTime = std::chrono::steady_clock::time_point;
 
 class CommandDesk {
  public:
-  // `request` is the run's operator command path; empty when there is no run to command.
-  CommandDesk(const config::CellCore& cell, std::filesystem::path recipes,
-              std::function<void(supervisor::Command)> request, std::chrono::milliseconds answer_timeout);
+  // `access`: the operator command path and the starts (run_access.hpp); its request may be empty
+  // when there is no run to command.
+  CommandDesk(const config::CellCore& cell, std::filesystem::path recipes, RunAccess access,
+              std::chrono::milliseconds answer_timeout);
 
-  // `word` is the command (hold, unhold, stop, abort, reset, start); `payload` empty or JSON
-  // {"id":…, "recipe":…}; `source` says who sent it (for the answer). Returns the answer when it is
-  // known at once (a refusal, a start's validation), nullopt when the run will answer (on_event).
+  // `word` is the command (hold, unhold, stop, abort, reset, start, home, teach-in); `payload` empty
+  // or a JSON object ({"id":…} and the start's fields); `source` says who sent it (for the answer).
+  // Returns the answer when it is known at once (a refusal, a start), nullopt when the run will
+  // answer (on_event).
   [[nodiscard]] std::optional<nlohmann::json> submit(std::string_view word, std::string_view payload,
                                                      std::string_view source, std::string_view state,
                                                      SteadyTime now);
@@ -51,12 +58,16 @@ class CommandDesk {
     std::string source;
     SteadyTime deadline;
   };
-  [[nodiscard]] nlohmann::json validate_start(const nlohmann::json& id, const std::string& recipe,
-                                              std::string_view state) const;
+  // The start of a recipe, homing or a Teach-In: its shape checked, then started (or refused).
+  [[nodiscard]] nlohmann::json start(std::string_view word, const nlohmann::json& id,
+                                     const nlohmann::json& body, std::string_view state) const;
+  // A recipe's StartRequest, or the answer that refuses it (not a name, not valid for the cell).
+  [[nodiscard]] std::variant<StartRequest, nlohmann::json> recipe_start(const nlohmann::json& id,
+                                                                        const nlohmann::json& body) const;
 
   const config::CellCore& cell_;
   std::filesystem::path recipes_;
-  std::function<void(supervisor::Command)> request_;
+  RunAccess access_;
   std::chrono::milliseconds timeout_;
   std::deque<Pending> pending_;
 };

@@ -31,12 +31,4 @@ UnitMode unit_mode(std::string_view run_mode) noexcept {
   return {0, "none"};
 }
 
-std::optional<supervisor::Command> command_of_topic_word(std::string_view w) noexcept {
-  using supervisor::Command;
-  for (const auto c :
-       {Command::start, Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset})
-    if (supervisor::to_string(c) == w) return c;
-  return std::nullopt;
-}
-
 }  // namespace cellctl::plant_link

@@ -33,7 +33,4 @@ struct UnitMode {
 [[nodiscard]] UnitMode unit_mode(
     std::string_view run_mode) noexcept;  // "hardware", "emulated", "virtual-time"
 
-// A command word of a cmd/<word> topic: start or one of the operator's commands; nullopt otherwise.
-[[nodiscard]] std::optional<supervisor::Command> command_of_topic_word(std::string_view word) noexcept;
-
 }  // namespace cellctl::plant_link

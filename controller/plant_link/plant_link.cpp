@@ -60,7 +60,7 @@ LinkCounters PlantLink::counters() const noexcept {
 void PlantLink::run_thread() {
   MqttClient client(options_of(config_));
   CellMirror mirror(cell_, run_.mode);
-  CommandDesk desk(cell_, config_.recipes, run_.request, config_.answer_timeout);
+  CommandDesk desk(cell_, config_.recipes, run_, config_.answer_timeout);
   bool socket = false;
   auto backoff = config_.reconnect_min;
   auto next_attempt = Clock::now();
@@ -124,10 +124,8 @@ void PlantLink::run_thread() {
   };
   const auto status = [&] {
     LiveStatus live;
-    if (run_.board) {
-      const auto v = run_.board->read();
-      live = {true, v.t, v.step, v.steps, std::string(v.label), v.jitter_max_us};
-    }
+    if (const auto r = run_.status())
+      live = {true, r->view.t, r->view.step, r->view.steps, r->label, r->view.jitter_max_us};
     auto j = mirror.status_tag(live);
     j["link"] = {{"reconnects", connects_.load() > 0 ? connects_.load() - 1 : 0},
                  {"dropped_status", dropped_status_.load()},

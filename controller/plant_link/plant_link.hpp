@@ -20,18 +20,10 @@
 #include <vector>
 
 #include "plant_link/link_config.hpp"
+#include "plant_link/run_access.hpp"
 #include "plant_link/run_event_feed.hpp"
-#include "runtime/status_view.hpp"
-#include "supervisor/packml.hpp"
 
 namespace cellctl::plant_link {
-
-// What the link may reach of the run; all empty for cellctl emulate (no run).
-struct RunAccess {
-  std::function<void(supervisor::Command)> request;  // the operator command path (CellRun::request)
-  const runtime::StatusBoard* board = nullptr;
-  std::string mode;  // "hardware", "emulated", "virtual-time"; "" without a run
-};
 
 struct LinkCounters {
   bool connected = false;

@@ -217,14 +217,13 @@ void TeachIn::step(const cell::CellState& s, std::optional<config::StopCategory>
       const double lo = n0 - request_.native_zero_margin_mm;
       const double hi = n0 + request_.distance_mm * 1.02 + request_.native_zero_margin_mm;
       if (lo <= 0.0 && hi >= 0.0) {
-        fail(
-            t,
-            journal::Text::format(
-                "the encoder's native zero lies at axis {} ≈ {:.2f} mm, inside the travel {:.2f} … {:.2f} mm "
-                "(with a {:g} mm margin): Teach-In must not cross it (manual 4.4.2.1); start at {:.1f} mm or "
-                "above (--from)",
-                cell_.axes[a].name, axis.scu_mm - n0, axis.scu_mm, axis.scu_mm + request_.distance_mm,
-                request_.native_zero_margin_mm, axis.scu_mm - n0 + request_.native_zero_margin_mm + 0.5));
+        fail(t, journal::Text::format(
+                    // Fits journal::Text's 160 octets with the widest numbers a travel gives.
+                    "encoder native zero at {} {:.2f} mm, inside the travel {:.2f} to {:.2f} mm (margin "
+                    "{:g}): must "
+                    "not be crossed (manual 4.4.2.1); start at {:.1f} mm or above",
+                    cell_.axes[a].name, axis.scu_mm - n0, axis.scu_mm, axis.scu_mm + request_.distance_mm,
+                    request_.native_zero_margin_mm, axis.scu_mm - n0 + request_.native_zero_margin_mm + 0.5));
         break;
       }
       scu_at_start_ = axis.scu_mm;

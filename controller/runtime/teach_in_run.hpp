@@ -77,6 +77,10 @@ class TeachInRun {
   // `progress` is called on the loop's thread at each phase change and every 0.5 s.
   TeachInOutcome run(std::atomic<bool>& interrupt,
                      const std::function<void(const TeachInProgress&)>& progress = {});
+  // Every journal line as it is written, on the journal's thread (journal::Journal::on_line).
+  void on_journal_line(std::function<void(const nlohmann::json&)> listener) {
+    journal_.on_line(std::move(listener));
+  }
   // Manual mode: the operator did what the prompt asked (any thread).
   void confirm() noexcept { confirm_.store(true); }
 

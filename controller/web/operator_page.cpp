@@ -63,7 +63,7 @@ OperatorPage::OperatorPage(PageOptions options, const config::CellCore& cell, pl
       cell_(cell),
       run_(std::move(run)),
       mirror_(cell, run_.mode),
-      desk_(cell, options_.recipes, run_.request, std::chrono::milliseconds(2000)),
+      desk_(cell, options_.recipes, run_, std::chrono::milliseconds(2000)),
       server_(std::make_unique<httplib::Server>()) {
   if (options_.token.empty()) throw std::invalid_argument("the operator page needs a token for commands");
   auto& s = *server_;
@@ -111,7 +111,7 @@ OperatorPage::OperatorPage(PageOptions options, const config::CellCore& cell, pl
           "application/json");
       return;
     }
-    res.set_content(command(word).dump(), "application/json");
+    res.set_content(command(word, req.body).dump(), "application/json");
   });
   s.Get("/metrics", [this](const httplib::Request&, httplib::Response& res) {
     res.set_content(metrics_text(), "text/plain; version=0.0.4");
@@ -157,12 +157,19 @@ void OperatorPage::pump() {
   }
 }
 
-nlohmann::json OperatorPage::command(const std::string& word) {
+nlohmann::json OperatorPage::command(const std::string& word, const std::string& body) {
   std::unique_lock lock(mutex_);
   ++commands_;
   const auto id = next_id_++;
-  auto immediate = desk_.submit(word, nlohmann::json{{"id", id}}.dump(), "web page", mirror_.state(),
-                                std::chrono::steady_clock::now());
+  // The body's fields (a start's recipe, axes, distance), with the page's own id for the answer.
+  auto payload = body.empty() ? nlohmann::json::object() : nlohmann::json::parse(body, nullptr, false);
+  if (payload.is_discarded() || !payload.is_object()) {
+    ++refused_;
+    return plant_link::answer(word, id, false, "the request body is no JSON object");
+  }
+  payload["id"] = id;
+  auto immediate =
+      desk_.submit(word, payload.dump(), "web page", mirror_.state(), std::chrono::steady_clock::now());
   if (!immediate) {
     // The desk times out unanswered commands itself; the wait's own bound is a little longer.
     const nlohmann::json mine = id;
@@ -184,10 +191,8 @@ nlohmann::json OperatorPage::command(const std::string& word) {
 
 nlohmann::json OperatorPage::status_json() {
   plant_link::LiveStatus live;
-  if (run_.board) {
-    const auto v = run_.board->read();
-    live = {true, v.t, v.step, v.steps, std::string(v.label), v.jitter_max_us};
-  }
+  if (const auto r = run_.status())
+    live = {true, r->view.t, r->view.step, r->view.steps, r->label, r->view.jitter_max_us};
   std::lock_guard lock(mutex_);
   return mirror_.status_tag(live);
 }
@@ -203,8 +208,8 @@ std::string OperatorPage::metrics_text() {
   const auto add = [&](std::string_view name, std::string_view type, std::string_view help) {
     out += fmt::format("# HELP {} {}\n# TYPE {} {}\n", name, help, name, type);
   };
-  if (run_.board) {
-    const auto v = run_.board->read();
+  if (const auto r = run_.status()) {
+    const auto& v = r->view;
     add("cellctl_loop_jitter_seconds", "histogram", "Control loop wake-up minus deadline.");
     for (std::size_t b = 0; b < runtime::kJitterBucketsUs.size(); ++b)
       out += fmt::format("cellctl_loop_jitter_seconds_bucket{{le=\"{:g}\"}} {}\n",

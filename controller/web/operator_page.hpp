@@ -1,7 +1,8 @@
 #pragma once
 // The web operator page (cpp-httplib): `/` the page (page_html.hpp, no network needed), `/events`
 // the live state, step, progress, axes, spindle and faults as server-sent events, `POST /cmd/<word>`
-// the operator's commands (hold, unhold, stop, abort, reset) — each needs the page's token in the
+// the operator's commands (hold, unhold, stop, abort, reset; under `cellctl serve` also start, home
+// and teach-in, their fields in a JSON body) — each needs the page's token in the
 // X-Cellctl-Token header (or Authorization: Bearer), else 401 and nothing is done — and `/metrics`
 // in the Prometheus text format.
 //
@@ -59,7 +60,7 @@ class OperatorPage {
   [[nodiscard]] nlohmann::json status_json();
   [[nodiscard]] nlohmann::json admin_json();
   [[nodiscard]] std::string metrics_text();
-  [[nodiscard]] nlohmann::json command(const std::string& word);
+  [[nodiscard]] nlohmann::json command(const std::string& word, const std::string& body);
 
   PageOptions options_;
   const config::CellCore& cell_;

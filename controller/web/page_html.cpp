@@ -2,10 +2,9 @@
 
 namespace cellctl::web {
 
-// Homing and Teach-In buttons: cellctl's `home` and `teach-in` routines are being built (issues on
-// homing and Teach-In); when they are, they get buttons in the "routines" fieldset below, posting to
-// /cmd/home and /cmd/teach-in through the same CommandDesk (plant_link/command_desk.hpp), with the
-// same confirmation and token.
+// The "routines" fieldset starts jobs — a recipe, homing, a Teach-In — through the same CommandDesk
+// (plant_link/command_desk.hpp), token and confirmation as the operator's commands; `cellctl serve`
+// runs them, `cellctl run` (one run) refuses them with the reason. Each confirmation says what moves.
 std::string_view operator_page_html() noexcept {
   return R"HTML(<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>cellctl operator</title>
@@ -36,7 +35,13 @@ std::string_view operator_page_html() noexcept {
  <label>token <input id="token" type="password" size="24" autocomplete="off"></label>
  <button id="hold" data-cmd="hold">Hold</button><button id="unhold" data-cmd="unhold">Unhold</button>
  <button id="stop" data-cmd="stop">Stop</button><button id="reset" data-cmd="reset">Reset</button>
- <fieldset id="routines" style="display:inline;border:none"><!-- homing and Teach-In: see page_html.cpp --></fieldset>
+ <fieldset id="routines" style="border:none;padding:0">
+  <label>recipe <input id="recipe" size="14" value="demo"></label><button id="start" data-cmd="start">Start</button>
+  <button id="home" data-cmd="home">Home</button>
+  <label>Teach-In axis <input id="ti-axis" size="3" value="x"></label>
+  <label>over <input id="ti-distance" size="6" value="100"> mm</label>
+  <label>from <input id="ti-from" size="6" placeholder="here"> mm</label>
+  <button id="teach-in" data-cmd="teach-in">Teach-In</button></fieldset>
  <div id="answer"></div></div>
 <div class="box" style="margin-top:1em"><canvas id="plot" width="900" height="220"></canvas></div>
 <script>
@@ -70,9 +75,18 @@ es.addEventListener('status',e=>status(JSON.parse(e.data)));
 es.addEventListener('admin',e=>admin(JSON.parse(e.data)));
 es.addEventListener('mode',e=>{const m=JSON.parse(e.data);$('mode').textContent=m.mode+(m.recipe?' — '+m.recipe:'');});
 es.addEventListener('cell',e=>{$('cell').textContent=JSON.parse(e.data).cell;});
+// What a command sends, and what its confirmation asks: the routines say what will move.
+function ask(cmd){if(cmd==='start'){const r=$('recipe').value.trim();
+  return{body:{recipe:r},q:'Start recipe '+r+'? The cell MOVES as the recipe says.'};}
+ if(cmd==='home')return{body:{},q:'Home every axis that has homing? The axes MOVE. Keep clear of the cell.'};
+ if(cmd==='teach-in'){const b={axis:$('ti-axis').value.trim(),distance_mm:parseFloat($('ti-distance').value)};
+  if($('ti-from').value.trim()!=='')b.from_mm=parseFloat($('ti-from').value);
+  return{body:b,q:'Teach-In of the encoder on axis '+b.axis+' over '+b.distance_mm+' mm? The axis MOVES, and the cell config is rewritten once the result is verified.'};}
+ return{body:{},q:cmd+' the cell?'};}
 for(const b of document.querySelectorAll('button[data-cmd]'))b.onclick=async()=>{const cmd=b.dataset.cmd;
- if(!confirm(cmd+' the cell?'))return;$('answer').textContent=cmd+'…';$('answer').className='';
- try{const r=await fetch('cmd/'+cmd,{method:'POST',headers:{'X-Cellctl-Token':$('token').value}});
+ const a0=ask(cmd);if(!confirm(a0.q))return;$('answer').textContent=cmd+'…';$('answer').className='';
+ try{const r=await fetch('cmd/'+cmd,{method:'POST',headers:{'X-Cellctl-Token':$('token').value,
+   'Content-Type':'application/json'},body:JSON.stringify(a0.body)});
   const a=await r.json();$('answer').textContent=cmd+': '+(a.ok?a.outcome:a.reason);
   $('answer').className=a.ok?'accepted':'refused';}catch(e){$('answer').textContent=cmd+': '+e;$('answer').className='refused';}};
 </script></body></html>

@@ -144,6 +144,8 @@ TEST_F(TeachInTest, AStartAtTheNativeZeroIsRefusedBeforeAnyMotion) {
   const auto o = run.run(interrupt_);
   EXPECT_FALSE(o.done);
   EXPECT_NE(o.failure.find("native zero"), std::string::npos) << o.failure;
+  // Whole, with what to do (it once ran past journal::Text's 160 octets and lost its advice).
+  EXPECT_NE(o.failure.find("start at 1.0 mm or above"), std::string::npos) << o.failure;
   EXPECT_LT(farthest, 0.01) << "the axis moved although the Teach-In could not be done";
   expect_encoder_as_configured();
 }

@@ -56,5 +56,47 @@ TEST_F(CommandDeskTest, NamesWordsAndPayloadsThatAreNotCommandsAreRefused) {
   EXPECT_EQ(submit("hold", "")["reason"], "no run is in progress: there is nothing to command");
 }
 
+TEST_F(CommandDeskTest, RoutineStartsAreCheckedForShapeAndRefusedByAOneRunCellctl) {
+  EXPECT_NE(submit("teach-in", R"({"distance_mm":100})")["reason"].get<std::string>().find("needs the axis"),
+            std::string::npos);
+  EXPECT_NE(submit("teach-in", R"({"axis":"x"})")["reason"].get<std::string>().find("needs the distance"),
+            std::string::npos);
+  EXPECT_NE(submit("teach-in", R"({"axis":"x","distance_mm":0})")["reason"].get<std::string>().find(
+                "'distance_mm' must be a number from 0.1 to 10000"),
+            std::string::npos);
+  EXPECT_NE(submit("home", R"({"axes":"x"})")["reason"].get<std::string>().find("list of axis names"),
+            std::string::npos);
+  // Well formed, but this desk belongs to one run (no start): refused with what to use instead.
+  const auto a = submit("home", R"({"axes":["x"]})");
+  EXPECT_EQ(a["ok"], false);
+  EXPECT_NE(a["reason"].get<std::string>().find("needs `cellctl serve`"), std::string::npos) << a.dump();
+}
+
+TEST_F(CommandDeskTest, AStandingControllerIsHandedTheCheckedStart) {
+  std::vector<StartRequest> started;
+  RunAccess access;
+  access.start = [&](const StartRequest& r) {
+    started.push_back(r);
+    return Taken{Taken::How::done, "started"};
+  };
+  CommandDesk desk(cell_, std::filesystem::path(CELLCTL_SOURCE_DIR) / "tests/cli", access,
+                   std::chrono::seconds(1));
+  const auto now = std::chrono::steady_clock::now();
+  EXPECT_EQ(desk.submit("start", R"({"recipe":"short"})", "test", "Idle", now).value()["ok"], true);
+  EXPECT_EQ(desk.submit("start", R"({"recipe":"bad-recipe"})", "test", "Idle", now).value()["exit"], 3);
+  EXPECT_EQ(desk.submit("teach-in", R"({"axis":"x","distance_mm":50,"from_mm":5})", "test", "Idle", now)
+                .value()["ok"],
+            true);
+  ASSERT_EQ(started.size(), 2u) << "an invalid recipe reached the controller";
+  const auto& recipe = std::get<StartRecipe>(started[0]);
+  EXPECT_EQ(recipe.name, "short");
+  EXPECT_EQ(recipe.steps, 6u);
+  const auto& teach = std::get<StartTeachIn>(started[1]);
+  EXPECT_EQ(teach.axis, "x");
+  EXPECT_EQ(teach.distance_mm, 50.0);
+  EXPECT_EQ(teach.from_mm, 5.0);
+  EXPECT_FALSE(teach.speed_mm_s);
+}
+
 }  // namespace
 }  // namespace cellctl::plant_link

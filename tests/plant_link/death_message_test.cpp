@@ -9,7 +9,6 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "plant_test_support.hpp"
 
@@ -27,19 +26,7 @@ TEST(PlantLinkDeath, AKilledCellctlLeavesItsLastWillOnTheBroker) {
   broker.start();
 
   // The default cell, its encoder EEPROM in the test's folder, with a plant_link section.
-  std::ifstream in(std::filesystem::path(CELLCTL_SOURCE_DIR) / "config/cell.yaml");
-  std::stringstream text;
-  text << in.rdbuf();
-  auto cell = text.str();
-  const auto at = cell.find("\n    state_file: ");
-  ASSERT_NE(at, std::string::npos) << "config/cell.yaml has no encoder state_file to move";
-  cell.replace(at, cell.find('\n', at + 1) - at, "\n    state_file: " + (dir / "encoder.eeprom").string());
-  std::ofstream(dir / "password") << "cell-secret\n";
-  cell +=
-      "\nplant_link:\n  port: " + std::to_string(broker.port()) +
-      "\n  client_id: cellctl-dying\n  username: cellctl\n  password_file: " + (dir / "password").string() +
-      "\n  topic_prefix: " + MqttBroker::kPrefix + "\n  status_ms: 100\n";
-  std::ofstream(dir / "cell.yaml") << cell;
+  (void)write_cell_with_plant_link(dir, broker, "cellctl-dying", dir);
   std::ofstream(dir / "slow.yaml") << R"(recipe: {name: slow, version: "1", cell: demo-cell}
 limits:
   axes:

@@ -45,8 +45,8 @@ class PlantLinkTest : public RunFixture {
     auto& run = make_run();
     link_ = std::make_unique<plant_link::PlantLink>(
         link_config_, cell_,
-        plant_link::RunAccess{[&run](supervisor::Command c) { run.request(c); }, &run.status(),
-                              "virtual-time"});
+        plant_link::fixed_run([&run](supervisor::Command c) { run.request(c); }, run.status(),
+                              "virtual-time"));
     run.on_journal_line([this](const nlohmann::json& j) { link_->on_journal_line(j); });
     ASSERT_TRUE(wait_until([&] { return link_->counters().connected; }, 10s)) << "the link never connected";
   }

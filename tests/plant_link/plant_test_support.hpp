@@ -2,7 +2,12 @@
 // What the plant link's tests share: the broker, the probe client, and waiting on a condition.
 
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "mqtt_broker.hpp"
@@ -18,6 +23,28 @@ inline bool wait_until(const std::function<bool()>& condition, std::chrono::mill
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   return true;
+}
+
+// Writes `dir`/cell.yaml: the default cell with its encoder EEPROM in `dir` and a plant_link section
+// for `broker` (user cellctl, password file in `dir`, status every 100 ms, recipes from `recipes`).
+inline std::filesystem::path write_cell_with_plant_link(const std::filesystem::path& dir,
+                                                        const MqttBroker& broker,
+                                                        const std::string& client_id,
+                                                        const std::filesystem::path& recipes) {
+  std::ifstream in(std::filesystem::path(CELLCTL_SOURCE_DIR) / "config/cell.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  auto cell = text.str();
+  const auto at = cell.find("\n    state_file: ");
+  if (at == std::string::npos) throw std::runtime_error("config/cell.yaml has no encoder state_file to move");
+  cell.replace(at, cell.find('\n', at + 1) - at, "\n    state_file: " + (dir / "encoder.eeprom").string());
+  std::ofstream(dir / "password") << "cell-secret\n";
+  cell += "\nplant_link:\n  port: " + std::to_string(broker.port()) + "\n  client_id: " + client_id +
+          "\n  username: cellctl\n  password_file: " + (dir / "password").string() +
+          "\n  topic_prefix: " + MqttBroker::kPrefix + "\n  status_ms: 100\n  recipes: " + recipes.string() +
+          "\n";
+  std::ofstream(dir / "cell.yaml") << cell;
+  return dir / "cell.yaml";
 }
 
 }  // namespace cellctl::testing

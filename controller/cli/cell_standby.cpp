@@ -1,0 +1,293 @@
+#include "cli/cell_standby.hpp"
+
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <chrono>
+#include <memory>
+
+#include "cli/home_job.hpp"
+#include "cli/run_record_info.hpp"
+#include "cli/teach_in_job.hpp"
+#include "journal/record_header.hpp"
+#include "recipe/program.hpp"
+#include "recipe/recipe_loader.hpp"
+#include "runtime/teach_in_run.hpp"
+
+namespace cellctl::cli {
+namespace {
+
+using namespace std::chrono_literals;
+using plant_link::Taken;
+
+// What a start is, in words.
+std::string describe(const plant_link::StartRequest& r) {
+  if (const auto* recipe = std::get_if<plant_link::StartRecipe>(&r))
+    return fmt::format("recipe '{}' ({} steps)", recipe->name, recipe->steps);
+  if (const auto* home = std::get_if<plant_link::StartHoming>(&r))
+    return home->axes.empty() ? std::string("homing of every axis with homing")
+                              : fmt::format("homing of {}", fmt::join(home->axes, ", "));
+  const auto& t = std::get<plant_link::StartTeachIn>(r);
+  return fmt::format("Teach-In of the encoder on axis {} over {:g} mm", t.axis, t.distance_mm);
+}
+
+// A Teach-In asked from outside: moved by the SCU (no operator at the terminal to confirm a hand's
+// move), verified within the command line's default tolerance.
+TeachInAsk ask_of(const plant_link::StartTeachIn& t) {
+  return {t.axis, t.distance_mm, t.from_mm, false, t.speed_mm_s, TeachInAsk{}.tolerance_mm};
+}
+
+}  // namespace
+
+CellStandby::CellStandby(config::CellConfig cell, StandbyOptions options)
+    : cell_(std::move(cell)), options_(std::move(options)) {}
+
+plant_link::RunAccess CellStandby::access() {
+  plant_link::RunAccess a;
+  a.request = [this](supervisor::Command c) { return request(c); };
+  a.status = [this] { return status(); };
+  a.mode = to_string(options_.mode);
+  a.start = [this](const plant_link::StartRequest& r) { return start(r); };
+  return a;
+}
+
+Taken CellStandby::request(supervisor::Command c) {
+  const auto word = supervisor::to_string(c);
+  std::lock_guard lock(mutex_);
+  switch (busy_) {
+    case Busy::run:
+      run_->request(c);
+      return {Taken::How::by_run, {}};
+    case Busy::teach_in:
+      if (c == supervisor::Command::stop || c == supervisor::Command::abort) {
+        teach_abort_->store(true);
+        return {
+            Taken::How::done,
+            fmt::format("{}: the Teach-In is aborted; the encoder's configured parameters are restored and "
+                        "the config is not changed",
+                        word)};
+      }
+      return {Taken::How::refused,
+              fmt::format("{} is not possible during the {}: stop or abort ends it", word, job_)};
+    case Busy::starting:
+      return {Taken::How::refused, fmt::format("{} is not possible while the {} starts", word, job_)};
+    case Busy::none:
+      break;
+  }
+  return {
+      Taken::How::refused,
+      fmt::format("no job is in progress: there is nothing to {}; start a recipe, home or teach-in", word)};
+}
+
+std::optional<plant_link::LiveRun> CellStandby::status() {
+  std::lock_guard lock(mutex_);
+  if (busy_ != Busy::run) return std::nullopt;
+  return plant_link::live_run(run_->status());
+}
+
+Taken CellStandby::start(const plant_link::StartRequest& r) {
+  std::lock_guard lock(mutex_);
+  if (!blocked_.empty()) return {Taken::How::refused, blocked_};
+  if (busy_ != Busy::none)
+    return {
+        Taken::How::refused,
+        fmt::format("the {} is in progress: a start is taken only between jobs (stop it or wait for its end)",
+                    job_)};
+  // Checked here, so that the plant hears why at once; the job itself runs on the serving thread.
+  if (const auto* home = std::get_if<plant_link::StartHoming>(&r)) {
+    const auto axes = homing_axes(cell_, options_.config_file, home->axes);
+    if (const auto* why = std::get_if<std::string>(&axes)) return {Taken::How::refused, "home: " + *why};
+  } else if (const auto* t = std::get_if<plant_link::StartTeachIn>(&r)) {
+    const auto req = teach_in_request(cell_, ask_of(*t));
+    if (const auto* why = std::get_if<std::string>(&req)) return {Taken::How::refused, "teach-in: " + *why};
+  }
+  busy_ = Busy::starting;
+  job_ = describe(r);
+  pending_ = r;
+  started_.notify_all();
+  return {Taken::How::done, "started: " + job_};
+}
+
+void CellStandby::tell(nlohmann::json line) const {
+  if (listener_) listener_(line);
+}
+
+int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminate,
+                       const std::function<void(const std::string&)>& say) {
+  for (;;) {
+    std::optional<plant_link::StartRequest> job;
+    {
+      std::unique_lock lock(mutex_);
+      started_.wait_for(lock, 20ms, [&] { return pending_.has_value(); });
+      job.swap(pending_);
+    }
+    if (terminate.load()) break;
+    if (!job) {
+      if (interrupt.exchange(false)) return blocked_.empty() ? 130 : 5;
+      continue;
+    }
+    std::string what;
+    {
+      std::lock_guard lock(mutex_);
+      what = job_;
+    }
+    say(fmt::format("job {}: {} started", jobs_done_.load() + 1, what));
+    const auto outcome = run_job(*job, interrupt, terminate);
+    say(fmt::format("job {}: {}", ++jobs_done_, outcome));
+    {
+      std::lock_guard lock(mutex_);
+      busy_ = Busy::none;
+      job_.clear();
+    }
+    interrupt.store(false);  // a Ctrl-C during the job was the job's
+    if (terminate.load()) break;
+  }
+  return blocked_.empty() ? 0 : 5;
+}
+
+std::string CellStandby::run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt,
+                                 std::atomic<bool>& terminate) {
+  const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  // Each job its own folder, even two in one second (a virtual-time run takes a fraction of one).
+  const auto job_dir = [&](const std::string& stem) {
+    return options_.runs_dir /
+           fmt::format("{}-{:%Y%m%d-%H%M%S}-job{}", stem, fmt::localtime(now), jobs_done_.load() + 1);
+  };
+  if (const auto* t = std::get_if<plant_link::StartTeachIn>(&r)) return run_teach_in(*t, interrupt);
+  try {
+    if (const auto* recipe = std::get_if<plant_link::StartRecipe>(&r))
+      return run_recipe(recipe::load_recipe(recipe->file, cell_), job_dir(recipe->file.stem().string()),
+                        interrupt, terminate);
+    const auto& home = std::get<plant_link::StartHoming>(r);
+    const auto axes = homing_axes(cell_, options_.config_file, home.axes);
+    if (const auto* why = std::get_if<std::string>(&axes)) return "not started: " + *why;
+    const auto dir = job_dir("home");
+    return run_recipe(write_homing_recipe(cell_, std::get<std::vector<std::size_t>>(axes), dir), dir,
+                      interrupt, terminate);
+  } catch (const recipe::RecipeErrors& e) {
+    std::string why = fmt::format("not started: {} problem(s)", e.errors().size());
+    for (const auto& err : e.errors()) why += fmt::format("; {}", err.what());
+    tell({{"event", "note"}, {"t", 0.0}, {"text", why}});
+    return why;
+  } catch (const std::exception& e) {
+    tell({{"event", "note"}, {"t", 0.0}, {"text", fmt::format("not started: {}", e.what())}});
+    return fmt::format("not started: {}", e.what());
+  }
+}
+
+std::string CellStandby::run_recipe(const recipe::Recipe& recipe, const std::filesystem::path& run_dir,
+                                    std::atomic<bool>& interrupt, std::atomic<bool>& terminate) {
+  runtime::RunOptions o;
+  o.mode = options_.mode;
+  o.journal_dir = run_dir;
+  o.state_dir = options_.state_dir;
+  o.trace = options_.trace;
+  o.record_header = journal::record_header(
+      record_info(cell_, options_.config_file, recipe, recipe::unroll(recipe), o.mode));
+  runtime::CellRun run(cell_, recipe, o);  // a port that does not open: thrown, reported by run_job
+  run.on_journal_line(listener_);
+  {
+    std::lock_guard lock(mutex_);
+    run_ = &run;
+    busy_ = Busy::run;
+  }
+  const auto result = run.run(interrupt, &terminate);
+  {
+    std::lock_guard lock(mutex_);
+    run_ = nullptr;
+    busy_ = Busy::starting;  // ending: no command reaches a run that is gone
+  }
+  run.on_journal_line({});
+  std::string words = fmt::format("{} {}", supervisor::to_string(result.final_state), run_dir.string());
+  if (!result.failure.empty()) words += "; failed step: " + result.failure;
+  if (!result.ended_by.empty()) words += "; ended by: " + result.ended_by;
+  for (std::size_t d = 0; d < cell::kDevices; ++d)
+    if (const auto& s = result.safety[d]; s && s->safe == runtime::Safe::unknown) {
+      std::lock_guard lock(mutex_);
+      blocked_ = fmt::format(
+          "no start is taken: the {} safe state is UNKNOWN since the last job ({}); look at the cell, then "
+          "start "
+          "cellctl again",
+          cell::to_string(static_cast<cell::Device>(d)), s->evidence);
+      words += "; WARNING: " + blocked_;
+    }
+  if (!result.home_record.empty()) words += "; " + result.home_record;
+  return words;
+}
+
+std::string CellStandby::run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt) {
+  const auto asked = teach_in_request(cell_, ask_of(t));
+  if (const auto* why = std::get_if<std::string>(&asked)) return "not started: " + *why;
+  runtime::TeachInRunOptions o;
+  o.mode = options_.mode;
+  const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  o.journal_dir = options_.runs_dir / fmt::format("teach-in-{}-{:%Y%m%d-%H%M%S}-job{}", t.axis,
+                                                  fmt::localtime(now), jobs_done_.load() + 1);
+  o.trace = options_.trace;
+  o.record_header = {{"record", "teach-in"},
+                     {"config", options_.config_file},
+                     {"axis", t.axis},
+                     {"distance_mm", t.distance_mm},
+                     {"mode", to_string(o.mode)}};
+  // The Teach-In's journal has phases, not PackML states: the plant sees it as a run of its own.
+  const auto began = std::chrono::steady_clock::now();
+  const auto seconds = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  };
+  const auto what = fmt::format("Teach-In of the encoder on axis {} over {:g} mm", t.axis, t.distance_mm);
+  tell({{"event", "run_started"},
+        {"t", 0.0},
+        {"recipe", "teach-in " + t.axis},
+        {"mode", to_string(o.mode)},
+        {"steps", 1}});
+  tell({{"event", "state"}, {"t", 0.0}, {"from", "Idle"}, {"to", "Execute"}, {"reason", what}});
+  const auto end = [&](const char* state, const std::string& words) {
+    tell({{"event", "state"}, {"t", seconds()}, {"from", "Execute"}, {"to", state}, {"reason", words}});
+    return fmt::format("{} {}: {}", state, o.journal_dir.string(), words);
+  };
+  runtime::TeachInOutcome outcome;
+  try {
+    runtime::TeachInRun run(cell_, std::get<routines::TeachInRequest>(asked), o);
+    run.on_journal_line(listener_);
+    {
+      std::lock_guard lock(mutex_);
+      teach_abort_ = &interrupt;
+      busy_ = Busy::teach_in;
+    }
+    outcome = run.run(interrupt);
+    {
+      std::lock_guard lock(mutex_);
+      teach_abort_ = nullptr;
+      busy_ = Busy::starting;
+    }
+    run.on_journal_line({});
+  } catch (const std::exception& e) {
+    return end("Aborted", fmt::format("not started: {}", e.what()));
+  }
+  if (!outcome.done)
+    return end(outcome.interrupted ? "Stopped" : "Aborted",
+               fmt::format("{}; {}; the config is not changed", outcome.failure,
+                           outcome.restored ? "the encoder's configured parameters are restored"
+                                            : "the encoder's configured parameters could NOT be confirmed "
+                                              "restored: check with `cellctl encoder diag`"));
+  try {
+    const auto change = write_teach_in_result(options_.config_file, cell_, outcome);
+    auto fresh = config::load_cell_config(options_.config_file);
+    {
+      std::lock_guard lock(mutex_);
+      cell_ = std::move(fresh);  // the next jobs count in what was taught
+    }
+    return end(
+        "Complete",
+        fmt::format("total resolution {} ({:g} units per mm), verified: {:.4f} mm measured back; "
+                    "{} written ({}), the previous config is {}",
+                    outcome.result.total_resolution, outcome.units_per_mm, outcome.result.encoder_distance_mm,
+                    options_.config_file.string(), fmt::join(change.changed, "; "), change.backup.string()));
+  } catch (const std::exception& e) {
+    return end("Aborted", fmt::format("Teach-In verified, but {} was not changed: {}",
+                                      options_.config_file.string(), e.what()));
+  }
+}
+
+}  // namespace cellctl::cli

@@ -1,0 +1,121 @@
+#include "cli/serve_command.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <memory>
+#include <string>
+
+#include "cli/cell_standby.hpp"
+#include "cli/drive.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/plant_facing.hpp"
+#include "cli/run_command.hpp"
+#include "cli/run_record_info.hpp"
+#include "config/cell_config.hpp"
+#include "plant_link/link_config.hpp"
+
+namespace cellctl::cli {
+namespace {
+
+struct ServeArgs {
+  bool emulate = false;
+  bool virtual_time = false;
+  std::string runs_dir = "runs";
+  std::string state_dir;
+  std::string recipes;
+  std::string http_text;
+  std::optional<web::PageOptions> http;
+  std::string http_token_file;
+};
+
+int serve(const GlobalOptions& global, const ServeArgs& args) {
+  const auto cell = config::load_cell_config(global.config);
+  auto link_config = plant_link::load_link_config(cell);  // a bad section: exit 3, before anything opens
+  if (!link_config && !args.http) {
+    spdlog::error(
+        "serve: nothing could start a job: give --http ADDR:PORT for the operator page, or a plant_link: "
+        "section "
+        "in {} for the plant's MQTT broker",
+        global.config);
+    return kExitUsage;
+  }
+  // The recipes a start names: --recipes, else the plant link's folder, else ./recipes.
+  const std::filesystem::path recipes = !args.recipes.empty() ? std::filesystem::path(args.recipes)
+                                        : link_config         ? link_config->recipes
+                                                              : std::filesystem::path("recipes");
+  if (link_config) link_config->recipes = recipes;
+  StandbyOptions options;
+  options.mode = args.virtual_time ? runtime::RunMode::virtual_time
+                 : args.emulate    ? runtime::RunMode::emulated
+                                   : runtime::RunMode::hardware;
+  options.config_file = global.config;
+  options.runs_dir = args.runs_dir;
+  options.state_dir = args.state_dir;
+  options.trace = global.trace;
+  CellStandby standby(cell, options);
+
+  const auto say = [](const std::string& line) {
+    fmt::print("{}\n", line);
+    std::fflush(stdout);
+  };
+  say(fmt::format("cellctl serve: cell '{}' — {}; standing by for the plant and the operator page", cell.name,
+                  mode_label(cell, options.mode)));
+  auto facing =
+      open_plant_facing(cell, link_config, args.http, args.http_token_file, recipes, standby.access(), say);
+  standby.on_journal_line([&facing](const nlohmann::json& line) { facing.on_journal_line(line); });
+  say(fmt::format("  jobs: start (a recipe in {}), home, teach-in; run records under {}/", recipes.string(),
+                  args.runs_dir));
+  say("  Ctrl-C stops the job in progress as `cellctl run` does; with no job, it ends cellctl serve");
+  const int status = standby.serve(g_interrupted, g_terminated, say);
+  facing.close();
+  say(fmt::format("cellctl serve: ended after {} job{}", standby.jobs_done(),
+                  standby.jobs_done() == 1 ? "" : "s"));
+  if (status == kExitSafeStateUnknown)
+    fmt::print(stderr, "WARNING: a device's safe state is UNKNOWN: look at the cell\n");
+  return status;
+}
+
+}  // namespace
+
+void add_serve_command(CLI::App& app, Commands& commands) {
+  auto* sub = app.add_subcommand("serve",
+                                 "Stand by for the plant (MQTT) and the operator page: run the recipes, "
+                                 "homing and Teach-Ins they start");
+  sub->footer(
+      "Jobs, one at a time, each with its own run record under --runs: `start` a recipe from the recipe "
+      "folder\n"
+      "(validated first: its problems come back with file:line:col), `home` (axes as the config's homing:\n"
+      "says), `teach-in` (the encoder over a distance of its axis, moved by the SCU; the verified result is\n"
+      "written into the config, which is then read again). They come from the plant link's cmd/<word> "
+      "topics\n"
+      "(the config's plant_link: section) or the operator page's buttons (--http, with its token). While a "
+      "job\n"
+      "runs, hold, unhold, stop, abort and reset go to it; a start is refused until it has ended, and "
+      "refused\n"
+      "for good after a job left a device's safe state unknown.\n"
+      "Exit status: 0 ended by SIGTERM (a job in progress gets its controlled stop first), 130 Ctrl-C with "
+      "no\n"
+      "job in progress, 2 bad command line or nothing to take commands from, 3 bad config, 5 a job left a\n"
+      "device's safe state unknown.");
+  auto args = std::make_shared<ServeArgs>();
+  auto* emulate = sub->add_flag("--emulate", args->emulate,
+                                "Every device on its emulator (in this process), in real time");
+  sub->add_flag("--virtual-time", args->virtual_time,
+                "Every device on its emulator over simulated lines, on a virtual clock, as fast as possible")
+      ->excludes(emulate);
+  sub->add_option("--runs", args->runs_dir, "Folder of the jobs' run records")->capture_default_str();
+  sub->add_option("--state-dir", args->state_dir,
+                  "Folder of the home record home.json (default: the cell config's state_dir, 'state')");
+  sub->add_option("--recipes", args->recipes,
+                  "Folder of the recipes a start names (default: the plant_link section's, else ./recipes)");
+  sub->add_option("--http", args->http_text,
+                  "Serve the operator page on ADDR:PORT, or on 127.0.0.1:PORT given a port alone; commands\n"
+                  "need the token (--http-token-file, else CELLCTL_HTTP_TOKEN, else a random one printed)")
+      ->check(listen_validator(args->http));
+  sub->add_option("--http-token-file", args->http_token_file,
+                  "File whose first line is the operator page's token");
+  commands.on(sub, [&commands, args] { return serve(commands.global, *args); });
+}
+
+}  // namespace cellctl::cli

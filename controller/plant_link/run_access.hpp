@@ -1,0 +1,71 @@
+#pragma once
+// What the plant link and the operator page may reach of the controller: the operator's one command
+// path, the live status of the run in progress, and — for a standing controller (`cellctl serve`) —
+// the start of a recipe, of homing or of a Teach-In. `cellctl run` drives the one run it was started
+// with: fixed_run() gives its access, with no start.
+//
+// The functions are called on the link's and the page's threads, never on the control loop's.
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "runtime/status_view.hpp"
+#include "supervisor/packml.hpp"
+
+namespace cellctl::plant_link {
+
+// The live status of the run in progress, copied out of its board. `view.label` is cleared: the
+// program's label lives only as long as its run; `label` holds a copy.
+struct LiveRun {
+  runtime::StatusView view;
+  std::string label;
+};
+
+// How the controller took a command or a start.
+struct Taken {
+  enum class How {
+    by_run,   // handed to the run: its journaled outcome is the answer
+    done,     // done at once: `text` is the outcome
+    refused,  // refused at once: `text` is the reason
+  };
+  How how = How::refused;
+  std::string text;
+};
+
+// What a start asks for; the command desk has checked its shape (and a recipe's validity).
+struct StartRecipe {
+  std::string name;            // as the plant named it
+  std::filesystem::path file;  // <recipes>/<name>.yaml, validated against the cell
+  std::size_t steps = 0;       // unrolled
+};
+struct StartHoming {
+  std::vector<std::string> axes;  // empty: every axis that has homing
+};
+struct StartTeachIn {
+  std::string axis;
+  double distance_mm = 0.0;
+  std::optional<double> from_mm;
+  std::optional<double> speed_mm_s;
+};
+using StartRequest = std::variant<StartRecipe, StartHoming, StartTeachIn>;
+
+struct RunAccess {
+  std::function<Taken(supervisor::Command)> request;  // the operator command path
+  std::function<std::optional<LiveRun>()> status;     // nullopt: no run in progress
+  std::string mode;  // "hardware", "emulated", "virtual-time"; "" without a run
+  // Starts a job; empty when this cellctl drives one run and can start no other.
+  std::function<Taken(const StartRequest&)> start;
+};
+
+// The access to one run that exists as long as the access is used: its command path and its board.
+[[nodiscard]] RunAccess fixed_run(std::function<void(supervisor::Command)> request,
+                                  const runtime::StatusBoard& board, std::string mode);
+
+// The board's view, its label copied.
+[[nodiscard]] LiveRun live_run(const runtime::StatusBoard& board);
+
+}  // namespace cellctl::plant_link

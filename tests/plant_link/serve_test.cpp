@@ -1,0 +1,200 @@
+// `cellctl serve --virtual-time` as the plant uses it, over Debian's mosquitto: the real binary stands
+// by with its plant link, and an MES client (user operator) starts homing, recipes and a Teach-In on
+// cmd/<word>, one at a time, and commands the job in progress. Every wait is on a message with a
+// time-out; no step depends on how fast virtual time runs on a loaded machine, except that a recipe
+// dwelling 3600 s of virtual time is still running when the stop that follows its Execute arrives.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "plant_test_support.hpp"
+
+namespace cellctl::testing {
+namespace {
+
+using namespace std::chrono_literals;
+using Message = MqttProbe::Message;
+
+class ServeTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("cellctl-serve-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_ / "recipes");
+    broker_ = std::make_unique<MqttBroker>(dir_ / "broker");
+    broker_->start();
+    config_ = write_cell_with_plant_link(dir_, *broker_, "cellctl-serving", dir_ / "recipes");
+    std::filesystem::copy_file(std::filesystem::path(CELLCTL_SOURCE_DIR) / "tests/cli/short.yaml",
+                               dir_ / "recipes/short.yaml");
+    std::filesystem::copy_file(std::filesystem::path(CELLCTL_SOURCE_DIR) / "tests/cli/bad-recipe.yaml",
+                               dir_ / "recipes/bad-recipe.yaml");
+    std::ofstream(dir_ / "recipes/long.yaml") << R"(recipe: {name: long, version: "1", cell: demo-cell}
+limits:
+  axes:
+    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
+steps:
+  - name: an hour
+    dwell: 3600
+)";
+    plant_ = std::make_unique<MqttProbe>(broker_->port(), "operator", "op-secret",
+                                         std::string(MqttBroker::kPrefix) + "/demo-cell/#");
+    ASSERT_EQ(plant_->wait_connack(), 0);
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      const auto out = (dir_ / "serve.out").string();
+      if (!::freopen("/dev/null", "r", stdin) || !::freopen(out.c_str(), "w", stdout)) ::_exit(126);
+      ::execl(CELLCTL_BINARY, CELLCTL_BINARY, "-c", config_.c_str(), "serve", "--virtual-time", "--runs",
+              (dir_ / "runs").c_str(), "--state-dir", (dir_ / "state").c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+  }
+
+  void TearDown() override {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+    plant_.reset();
+    broker_.reset();
+    if (!HasFailure()) std::filesystem::remove_all(dir_);
+  }
+
+  static std::string topic(const std::string& tag) {
+    return std::string(MqttBroker::kPrefix) + "/demo-cell/" + tag;
+  }
+  std::string output() const {
+    std::ifstream in(dir_ / "serve.out");
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  // Sends cmd/<word> with `fields` and an id; the response to it.
+  nlohmann::json command(const std::string& word, nlohmann::json fields, const std::string& id) {
+    fields["id"] = id;
+    const auto from = plant_->count();
+    plant_->publish(topic("cmd/" + word), fields.dump());
+    const auto r = plant_->wait_for(
+        [&](const Message& m) { return m.topic == topic("response") && MqttProbe::body(m)["id"] == id; },
+        from, 20s);
+    EXPECT_TRUE(r) << "no response to " << word << " " << id << "; cellctl said:\n" << output();
+    return r ? MqttProbe::body(*r) : nlohmann::json();
+  }
+  // The first state tag from message `from` on that says `state`.
+  std::optional<nlohmann::json> state_after(std::size_t from, const std::string& state,
+                                            std::chrono::milliseconds timeout = 60s) {
+    const auto found = plant_->wait_for(
+        [&](const Message& m) { return m.topic == topic("state") && MqttProbe::body(m)["state"] == state; },
+        from, timeout);
+    if (!found) return std::nullopt;
+    return MqttProbe::body(*found);
+  }
+  nlohmann::json last_admin() {
+    nlohmann::json a;
+    for (const auto& m : plant_->messages())
+      if (m.topic == topic("admin")) a = MqttProbe::body(m);
+    return a;
+  }
+  static bool has(const nlohmann::json& j, const char* key, const std::string& part) {
+    return j.contains(key) && j[key].is_string() && j[key].get<std::string>().find(part) != std::string::npos;
+  }
+
+  std::filesystem::path dir_;
+  std::filesystem::path config_;
+  std::unique_ptr<MqttBroker> broker_;
+  std::unique_ptr<MqttProbe> plant_;
+  pid_t pid_ = -1;
+};
+
+TEST_F(ServeTest, ThePlantStartsHomingRecipesAndATeachInOneAtATime) {
+  const auto online = plant_->wait_for(
+      [](const Message& m) { return m.topic == topic("online") && MqttProbe::body(m)["online"] == true; }, 0,
+      30s);
+  ASSERT_TRUE(online) << "cellctl serve never came online:\n" << output();
+  ASSERT_TRUE(state_after(0, "Idle", 10s)) << "no retained Idle state at the birth";
+
+  // Nothing runs: a command has nothing to act on, and says so.
+  auto a = command("hold", {}, "h0");
+  EXPECT_EQ(a["ok"], false);
+  EXPECT_TRUE(has(a, "reason", "no job is in progress")) << a.dump();
+
+  // Homing: started at once, run to Complete, the home record written.
+  auto from = plant_->count();
+  a = command("home", {}, "home1");
+  ASSERT_EQ(a["ok"], true) << a.dump();
+  EXPECT_TRUE(has(a, "outcome", "started: homing")) << a.dump();
+  ASSERT_TRUE(state_after(from, "Complete")) << output();
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "state/home.virtual-time.json")) << output();
+
+  // A long recipe: while it runs, a second start is refused with the reason; a stop ends it.
+  from = plant_->count();
+  a = command("start", {{"recipe", "long"}}, "long1");
+  ASSERT_EQ(a["ok"], true) << a.dump();
+  a = command("start", {{"recipe", "short"}}, "busy");
+  EXPECT_EQ(a["ok"], false);
+  EXPECT_TRUE(has(a, "reason", "is in progress: a start is taken only between jobs")) << a.dump();
+  ASSERT_TRUE(state_after(from, "Execute")) << output();
+  a = command("stop", {}, "stop1");
+  EXPECT_EQ(a["ok"], true) << a.dump();
+  ASSERT_TRUE(state_after(from, "Stopped")) << output();
+
+  // A recipe that is not valid for the cell: its problems with their positions, nothing started.
+  a = command("start", {{"recipe", "bad-recipe"}}, "bad1");
+  EXPECT_EQ(a["ok"], false);
+  EXPECT_EQ(a["exit"], 3);
+  ASSERT_FALSE(a["errors"].empty()) << a.dump();
+  EXPECT_NE(a["errors"][0].get<std::string>().find("bad-recipe.yaml:13:15:"), std::string::npos) << a.dump();
+
+  // A Teach-In: taught, verified, written into the config (the old one kept), read again.
+  from = plant_->count();
+  a = command("teach-in", {{"axis", "x"}, {"distance_mm", 100}, {"from_mm", 5}}, "t1");
+  ASSERT_EQ(a["ok"], true) << a.dump();
+  const auto taught = state_after(from, "Complete");
+  ASSERT_TRUE(taught) << output();
+  EXPECT_TRUE(has(*taught, "reason", "total resolution")) << taught->dump();
+  std::ifstream cfg(config_);
+  std::stringstream cfg_text;
+  cfg_text << cfg.rdbuf();
+  EXPECT_NE(cfg_text.str().find("measuring_units: "), std::string::npos) << "the config was not written";
+  EXPECT_TRUE(std::filesystem::exists(config_.string() + ".bak"));
+
+  // Then a recipe on the taught encoder, to Complete.
+  from = plant_->count();
+  a = command("start", {{"recipe", "short"}}, "short1");
+  ASSERT_EQ(a["ok"], true) << a.dump();
+  ASSERT_TRUE(state_after(from, "Complete")) << output();
+
+  // The counters: four runs (homing, long, Teach-In, short), three of them complete.
+  ASSERT_TRUE(plant_->wait_for(
+      [](const Message& m) {
+        return m.topic == topic("admin") && MqttProbe::body(m)["runs"] == 4 &&
+               MqttProbe::body(m)["ProdProcessedCount"] == 3;
+      },
+      0, 10s))
+      << last_admin().dump();
+
+  // SIGTERM with no job: a clean end, the goodbye on the online tag.
+  from = plant_->count();
+  ::kill(pid_, SIGTERM);
+  int status = 0;
+  ::waitpid(pid_, &status, 0);
+  pid_ = -1;
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output();
+  EXPECT_TRUE(plant_->wait_for(
+      [](const Message& m) {
+        return m.topic == topic("online") && MqttProbe::body(m)["reason"] == "cellctl ended";
+      },
+      from, 10s));
+  EXPECT_NE(output().find("ended after 4 jobs"), std::string::npos) << output();
+}
+
+}  // namespace
+}  // namespace cellctl::testing
