@@ -64,6 +64,7 @@ function status(s){$('state').textContent=s.state;$('state').className=s.state;$
   for(const x of [a.name,a.planned_mm,a.measured_mm]){const d=document.createElement('td');
    d.textContent=typeof x==='number'?x.toFixed(2):(x??'—');r.appendChild(d);}$('axes').appendChild(r);
   if(typeof a.measured_mm==='number')v.push(a.measured_mm);}
+ if(hist.length&&s.t<hist[hist.length-1].t)hist.length=0;  // a new job's clock starts again at 0
  if(v.length){hist.push({t:s.t,v});while(hist.length&&hist[0].t<s.t-60)hist.shift();draw();}}
 function admin(a){$('faults').innerHTML='';for(const f of a.active_faults||[]){const li=document.createElement('li');
   li.textContent=f.rule+' (category '+f.category+'): '+f.text;const r=document.createElement('div');

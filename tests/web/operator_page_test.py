@@ -14,26 +14,18 @@ every device's exchanges and errors; saves a
 screenshot (OUT_DIR/operator_page.png); then stops the run through the page (exit 130). Every wait is
 on a condition with a time-out.
 """
-import atexit
-import ctypes
-import json
 import os
 import re
-import signal
-import socket
 import subprocess
 import sys
 import time
-import urllib.error
 import urllib.request
 
-from selenium import webdriver
-from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support import expected_conditions as EC
 from selenium.webdriver.support.ui import WebDriverWait
 
-PR_SET_PDEATHSIG = 1  # <sys/prctl.h>
+from page_session import PageSession
 
 cellctl, config, out = sys.argv[1:4]
 os.makedirs(out, exist_ok=True)
@@ -56,65 +48,11 @@ steps:
   - name: slow move
     move: {to: {x: 40}, speed_mm_s: 2}
 """)
-s = socket.socket()
-s.bind(("127.0.0.1", 0))
-port = s.getsockname()[1]
-s.close()
-base = f"http://127.0.0.1:{port}/"
-
-def fail(msg):
-    proc.kill()
-    try:
-        driver.quit()
-    except Exception:
-        pass
-    print("FAIL:", msg, "— cellctl's output:", open(os.path.join(out, "cellctl.out")).read(), sep="\n")
-    sys.exit(1)
-
-
-def until(cond, what, timeout=30):
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        try:
-            if cond():
-                return
-        except Exception:
-            pass
-        if proc.poll() is not None:
-            fail(f"cellctl ended ({proc.returncode}) while waiting for {what}")
-        time.sleep(0.05)
-    fail(f"timed out waiting for {what}")
-
-
-def post(cmd, tok=None):
-    req = urllib.request.Request(base + "cmd/" + cmd, method="POST", data=b"")
-    if tok:
-        req.add_header("X-Cellctl-Token", tok)
-    try:
-        with urllib.request.urlopen(req, timeout=10) as r:
-            return r.status, json.loads(r.read())
-    except urllib.error.HTTPError as e:
-        return e.code, json.loads(e.read())
-
-
-# The browser first: its start-up is the heavy part.
-options = webdriver.ChromeOptions()
-for a in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1200,900"):
-    options.add_argument(a)
-driver = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
-driver.get("about:blank")
-
-log = open(os.path.join(out, "cellctl.out"), "w")
-proc = subprocess.Popen([cellctl, "-c", config, "run", recipe, "--virtual-time", "--journal", os.path.join(out, "run"),
-                         "--http", f"127.0.0.1:{port}", "--http-token-file", os.path.join(out, "token")],
-                        stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
-                        preexec_fn=lambda: ctypes.CDLL("libc.so.6").prctl(PR_SET_PDEATHSIG, signal.SIGTERM))
-# A failed assertion must not leave the run serving (a --virtual-time run with a hold never ends); the
-# kernel's parent-death signal covers this script being killed itself (a CTest time-out).
-atexit.register(lambda: proc.poll() is None and proc.kill())
-
-
-until(lambda: urllib.request.urlopen(base, timeout=2).status == 200, "the page to be served")
+page = PageSession(out)
+driver, base, fail, post = page.driver, page.base, page.fail, page.post
+page.start([cellctl, "-c", config, "run", recipe, "--virtual-time", "--journal", os.path.join(out, "run"),
+            "--http-token-file", os.path.join(out, "token")])
+proc = page.proc
 try:
     driver.get(base)
     wait = WebDriverWait(driver, 30)

@@ -1,0 +1,102 @@
+#!/usr/bin/python3
+"""The operator page of a standing controller in a real browser (Debian's chromium, headless, driven by
+chromium-driver and python3-selenium) against `cellctl serve --virtual-time --http`: the page's Home,
+Teach-In and Start buttons, each behind a confirmation that says what moves, start jobs one at a time.
+
+usage: serve_page_test.py CELLCTL CONFIG RECIPES_DIR OUT_DIR
+
+Works on a copy of CONFIG in OUT_DIR (the Teach-In writes its result into it). Checks: the page shows
+Idle with no job; a dismissed confirmation starts nothing; Home (confirmed) homes the cell to Complete;
+Teach-In over 100 mm from 5 mm (confirmed) is taught and written into the config copy; Start of a recipe
+runs it to Complete; /metrics counts the three runs; a screenshot is saved (OUT_DIR/serve_page.png);
+SIGTERM ends cellctl serve with 0. Every wait is on a condition with a time-out.
+"""
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+import urllib.request
+
+from selenium.webdriver.common.by import By
+from selenium.webdriver.support import expected_conditions as EC
+from selenium.webdriver.support.ui import WebDriverWait
+
+from page_session import PageSession
+
+cellctl, config_given, recipes, out = sys.argv[1:5]
+shutil.rmtree(out, ignore_errors=True)
+os.makedirs(out)
+config = os.path.join(out, "cell.yaml")
+shutil.copyfile(config_given, config)
+token = "serve-page-token-0815"
+with open(os.path.join(out, "token"), "w") as f:
+    f.write(token + "\n")
+
+page = PageSession(out)
+driver = page.driver
+page.start([cellctl, "-c", config, "serve", "--virtual-time", "--runs", os.path.join(out, "runs"), "--state-dir",
+            os.path.join(out, "state"), "--recipes", recipes, "--http-token-file", os.path.join(out, "token")])
+
+
+def text(element_id):
+    return driver.find_element(By.ID, element_id).text
+
+
+def confirm_and_answer(button, confirmation_part, answer_part, wait):
+    """Clicks `button`, checks and accepts its confirmation, waits for the answer."""
+    driver.find_element(By.ID, button).click()
+    alert = wait.until(EC.alert_is_present())
+    assert confirmation_part in alert.text, alert.text
+    alert.accept()
+    wait.until(EC.text_to_be_present_in_element((By.ID, "answer"), answer_part))
+
+
+def runs_total():
+    metrics = urllib.request.urlopen(page.base + "metrics", timeout=5).read().decode()
+    return int(next(line.split()[1] for line in metrics.splitlines() if line.startswith("cellctl_runs_total ")))
+
+
+try:
+    driver.get(page.base)
+    wait = WebDriverWait(driver, 60)
+    wait.until(EC.text_to_be_present_in_element((By.ID, "state"), "Idle"))
+    driver.find_element(By.ID, "token").send_keys(token)
+
+    # A dismissed confirmation sends nothing.
+    driver.find_element(By.ID, "home").click()
+    wait.until(EC.alert_is_present()).dismiss()
+    time.sleep(0.5)  # long enough for a start to show, were one sent (the page refreshes every 200 ms)
+    assert text("state") == "Idle" and runs_total() == 0, (text("state"), runs_total())
+
+    confirm_and_answer("home", "The axes MOVE", "home: started: homing", wait)
+    wait.until(EC.text_to_be_present_in_element((By.ID, "mode"), "home"))
+    wait.until(EC.text_to_be_present_in_element((By.ID, "state"), "Complete"))
+
+    driver.find_element(By.ID, "ti-from").send_keys("5")
+    confirm_and_answer("teach-in", "the cell config is rewritten", "teach-in: started: Teach-In", wait)
+    wait.until(EC.text_to_be_present_in_element((By.ID, "mode"), "teach-in x"))
+    wait.until(EC.text_to_be_present_in_element((By.ID, "state"), "Complete"))
+    with open(config) as f:
+        assert "measuring_units: " in f.read(), "the Teach-In did not write the config"
+
+    recipe = driver.find_element(By.ID, "recipe")
+    recipe.clear()
+    recipe.send_keys("short")
+    confirm_and_answer("start", "Start recipe short?", "start: started: recipe 'short'", wait)
+    wait.until(EC.text_to_be_present_in_element((By.ID, "mode"), "short-compare"))
+    wait.until(EC.text_to_be_present_in_element((By.ID, "state"), "Complete"))
+    driver.save_screenshot(os.path.join(out, "serve_page.png"))
+    page.until(lambda: runs_total() == 3, "three runs counted on /metrics")
+finally:
+    driver.quit()
+
+page.proc.send_signal(signal.SIGTERM)
+try:
+    rc = page.proc.wait(timeout=60)
+except subprocess.TimeoutExpired:
+    page.fail("cellctl serve did not end after SIGTERM")
+if rc != 0:
+    page.fail(f"exit {rc}, expected 0 (SIGTERM with no job in progress)")
+print("serve page: Home, Teach-In and Start by button with confirmation, metrics, screenshot — passed")
