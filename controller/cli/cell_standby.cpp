@@ -24,7 +24,7 @@ using plant_link::Taken;
 // What a start is, in words.
 std::string describe(const plant_link::StartRequest& r) {
   if (const auto* recipe = std::get_if<plant_link::StartRecipe>(&r))
-    return fmt::format("recipe '{}' ({} steps)", recipe->name, recipe->steps);
+    return fmt::format("recipe '{}' ({} step{})", recipe->name, recipe->steps, recipe->steps == 1 ? "" : "s");
   if (const auto* home = std::get_if<plant_link::StartHoming>(&r))
     return home->axes.empty() ? std::string("homing of every axis with homing")
                               : fmt::format("homing of {}", fmt::join(home->axes, ", "));
@@ -154,7 +154,8 @@ std::string CellStandby::run_job(const plant_link::StartRequest& r, std::atomic<
     return options_.runs_dir /
            fmt::format("{}-{:%Y%m%d-%H%M%S}-job{}", stem, fmt::localtime(now), jobs_done_.load() + 1);
   };
-  if (const auto* t = std::get_if<plant_link::StartTeachIn>(&r)) return run_teach_in(*t, interrupt);
+  if (const auto* t = std::get_if<plant_link::StartTeachIn>(&r))
+    return run_teach_in(*t, interrupt, terminate);
   try {
     if (const auto* recipe = std::get_if<plant_link::StartRecipe>(&r))
       return run_recipe(recipe::load_recipe(recipe->file, cell_), job_dir(recipe->file.stem().string()),
@@ -216,7 +217,8 @@ std::string CellStandby::run_recipe(const recipe::Recipe& recipe, const std::fil
   return words;
 }
 
-std::string CellStandby::run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt) {
+std::string CellStandby::run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt,
+                                      const std::atomic<bool>& terminate) {
   const auto asked = teach_in_request(cell_, ask_of(t));
   if (const auto* why = std::get_if<std::string>(&asked)) return "not started: " + *why;
   runtime::TeachInRunOptions o;
@@ -255,7 +257,10 @@ std::string CellStandby::run_teach_in(const plant_link::StartTeachIn& t, std::at
       teach_abort_ = &interrupt;
       busy_ = Busy::teach_in;
     }
-    outcome = run.run(interrupt);
+    // SIGTERM aborts it too, seen at the routine's progress (each phase change, every 0.5 s).
+    outcome = run.run(interrupt, [&](const runtime::TeachInProgress&) {
+      if (terminate.load()) interrupt.store(true);
+    });
     {
       std::lock_guard lock(mutex_);
       teach_abort_ = nullptr;

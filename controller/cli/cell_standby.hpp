@@ -71,7 +71,8 @@ class CellStandby {
                       std::atomic<bool>& terminate);
   std::string run_recipe(const recipe::Recipe& recipe, const std::filesystem::path& run_dir,
                          std::atomic<bool>& interrupt, std::atomic<bool>& terminate);
-  std::string run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt);
+  std::string run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt,
+                           const std::atomic<bool>& terminate);
   // A line of the standby's own (between jobs: the jobs' journal threads are not writing).
   void tell(nlohmann::json line) const;
 

@@ -104,7 +104,9 @@ void CellRun::take_commands(double t, std::atomic<bool>& interrupt) {
     if (operator_stop_) emergency_stop_ = true;
     operator_stop_ = true;
   }
-  if (terminate_ && terminate_->exchange(false)) {
+  // SIGTERM is a state, not an event: left set, so that whoever started the run (cellctl serve) ends too.
+  if (terminate_ && !terminated_ && terminate_->load()) {
+    terminated_ = true;
     interrupted_ = true;
     request(supervisor::Command::stop);  // SIGTERM: a controlled stop, whatever stops.operator says
   }

@@ -175,6 +175,7 @@ class CellRun {
     const std::atomic<bool>& stopped;
   };
   std::atomic<bool>* terminate_ = nullptr;
+  bool terminated_ = false;  // SIGTERM seen: its stop requested
   bool interrupted_ = false;
   link::TimePoint start_{};
   std::function<void(double, CellRun&)> hook_;

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -49,6 +50,7 @@ steps:
     ASSERT_EQ(plant_->wait_connack(), 0);
     pid_ = ::fork();
     if (pid_ == 0) {
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a test killed by its time-out takes cellctl serve with it
       const auto out = (dir_ / "serve.out").string();
       if (!::freopen("/dev/null", "r", stdin) || !::freopen(out.c_str(), "w", stdout)) ::_exit(126);
       ::execl(CELLCTL_BINARY, CELLCTL_BINARY, "-c", config_.c_str(), "serve", "--virtual-time", "--runs",
@@ -194,6 +196,29 @@ TEST_F(ServeTest, ThePlantStartsHomingRecipesAndATeachInOneAtATime) {
       },
       from, 10s));
   EXPECT_NE(output().find("ended after 4 jobs"), std::string::npos) << output();
+}
+
+TEST_F(ServeTest, SigtermDuringAJobStopsItFirstAndEndsServe) {
+  ASSERT_TRUE(plant_->wait_for(
+      [](const Message& m) { return m.topic == topic("online") && MqttProbe::body(m)["online"] == true; }, 0,
+      30s))
+      << output();
+  const auto from = plant_->count();
+  ASSERT_EQ(command("start", {{"recipe", "long"}}, "long1")["ok"], true);
+  ASSERT_TRUE(state_after(from, "Execute")) << output();
+  ::kill(pid_, SIGTERM);
+  // The run's controlled stop is published before the goodbye; serve ends with 0.
+  EXPECT_TRUE(state_after(from, "Stopped", 30s)) << output();
+  int status = 0;
+  ::waitpid(pid_, &status, 0);
+  pid_ = -1;
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output();
+  EXPECT_TRUE(plant_->wait_for(
+      [](const Message& m) {
+        return m.topic == topic("online") && MqttProbe::body(m)["reason"] == "cellctl ended";
+      },
+      from, 10s));
+  EXPECT_NE(output().find("job 1: Stopped"), std::string::npos) << output();
 }
 
 }  // namespace
