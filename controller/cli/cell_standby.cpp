@@ -146,14 +146,15 @@ int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminat
   return blocked_.empty() ? 0 : 5;
 }
 
-std::string CellStandby::run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt,
-                                 std::atomic<bool>& terminate) {
+std::filesystem::path CellStandby::job_dir(const std::string& stem) const {
   const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   // Each job its own folder, even two in one second (a virtual-time run takes a fraction of one).
-  const auto job_dir = [&](const std::string& stem) {
-    return options_.runs_dir /
-           fmt::format("{}-{:%Y%m%d-%H%M%S}-job{}", stem, fmt::localtime(now), jobs_done_.load() + 1);
-  };
+  return options_.runs_dir /
+         fmt::format("{}-{:%Y%m%d-%H%M%S}-job{}", stem, fmt::localtime(now), jobs_done_.load() + 1);
+}
+
+std::string CellStandby::run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt,
+                                 std::atomic<bool>& terminate) {
   if (const auto* t = std::get_if<plant_link::StartTeachIn>(&r))
     return run_teach_in(*t, interrupt, terminate);
   try {
@@ -223,15 +224,9 @@ std::string CellStandby::run_teach_in(const plant_link::StartTeachIn& t, std::at
   if (const auto* why = std::get_if<std::string>(&asked)) return "not started: " + *why;
   runtime::TeachInRunOptions o;
   o.mode = options_.mode;
-  const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  o.journal_dir = options_.runs_dir / fmt::format("teach-in-{}-{:%Y%m%d-%H%M%S}-job{}", t.axis,
-                                                  fmt::localtime(now), jobs_done_.load() + 1);
+  o.journal_dir = job_dir("teach-in-" + t.axis);
   o.trace = options_.trace;
-  o.record_header = {{"record", "teach-in"},
-                     {"config", options_.config_file},
-                     {"axis", t.axis},
-                     {"distance_mm", t.distance_mm},
-                     {"mode", to_string(o.mode)}};
+  o.record_header = teach_in_record_header(options_.config_file, t.axis, t.distance_mm, o.mode);
   // The Teach-In's journal has phases, not PackML states: the plant sees it as a run of its own.
   const auto began = std::chrono::steady_clock::now();
   const auto seconds = [&] {

@@ -73,6 +73,8 @@ class CellStandby {
                          std::atomic<bool>& interrupt, std::atomic<bool>& terminate);
   std::string run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt,
                            const std::atomic<bool>& terminate);
+  // <runs>/<stem>-<local time>-job<N>: the next job's record.
+  [[nodiscard]] std::filesystem::path job_dir(const std::string& stem) const;
   // A line of the standby's own (between jobs: the jobs' journal threads are not writing).
   void tell(nlohmann::json line) const;
 

@@ -91,11 +91,7 @@ int teach_in(const GlobalOptions& global, const TeachInArgs& args) {
       args.journal_dir.empty() ? default_dir(args.axis) : std::filesystem::path(args.journal_dir);
   options.trace = global.trace;
   options.faults = args.faults;
-  options.record_header = {{"record", "teach-in"},
-                           {"config", global.config},
-                           {"axis", args.axis},
-                           {"distance_mm", args.distance_mm},
-                           {"mode", to_string(options.mode)}};
+  options.record_header = teach_in_record_header(global.config, args.axis, args.distance_mm, options.mode);
 
   runtime::TeachInRun run(cell, request, options);
   fmt::print("cellctl: Teach-In of the encoder on axis {} over {:g} mm{} — {}\n", args.axis, args.distance_mm,

@@ -33,6 +33,15 @@ std::variant<routines::TeachInRequest, std::string> teach_in_request(const confi
   return request;
 }
 
+nlohmann::json teach_in_record_header(const std::filesystem::path& config_file, const std::string& axis,
+                                      double distance_mm, runtime::RunMode mode) {
+  return {{"record", "teach-in"},
+          {"config", config_file},
+          {"axis", axis},
+          {"distance_mm", distance_mm},
+          {"mode", to_string(mode)}};
+}
+
 config::ConfigChange write_teach_in_result(const std::filesystem::path& config_file,
                                            const config::CellConfig& cell, const runtime::TeachInOutcome& o) {
   std::vector<config::KeyChange> changes = {

@@ -4,6 +4,7 @@
 // asks.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <variant>
@@ -27,6 +28,11 @@ struct TeachInAsk {
 // The routine's request, or why not (no such axis, the encoder does not measure it).
 [[nodiscard]] std::variant<routines::TeachInRequest, std::string> teach_in_request(
     const config::CellConfig& cell, const TeachInAsk& ask);
+
+// The head of a Teach-In's record.
+[[nodiscard]] nlohmann::json teach_in_record_header(const std::filesystem::path& config_file,
+                                                    const std::string& axis, double distance_mm,
+                                                    runtime::RunMode mode);
 
 // The taught resolution into the config's encoder section, as the manual asks (4.4.2.1 "End": into
 // Maximum Desired Measuring Units), with the unit per mm it counts in: temp file + rename, the old

@@ -99,6 +99,18 @@ steps:
     if (!found) return std::nullopt;
     return MqttProbe::body(*found);
   }
+  // cellctl serve ends with 0 and says goodbye on the online tag (after message `from`).
+  void expect_clean_end(std::size_t from) {
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    pid_ = -1;
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output();
+    EXPECT_TRUE(plant_->wait_for(
+        [](const Message& m) {
+          return m.topic == topic("online") && MqttProbe::body(m)["reason"] == "cellctl ended";
+        },
+        from, 10s));
+  }
   nlohmann::json last_admin() {
     nlohmann::json a;
     for (const auto& m : plant_->messages())
@@ -186,15 +198,7 @@ TEST_F(ServeTest, ThePlantStartsHomingRecipesAndATeachInOneAtATime) {
   // SIGTERM with no job: a clean end, the goodbye on the online tag.
   from = plant_->count();
   ::kill(pid_, SIGTERM);
-  int status = 0;
-  ::waitpid(pid_, &status, 0);
-  pid_ = -1;
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output();
-  EXPECT_TRUE(plant_->wait_for(
-      [](const Message& m) {
-        return m.topic == topic("online") && MqttProbe::body(m)["reason"] == "cellctl ended";
-      },
-      from, 10s));
+  expect_clean_end(from);
   EXPECT_NE(output().find("ended after 4 jobs"), std::string::npos) << output();
 }
 
@@ -209,15 +213,7 @@ TEST_F(ServeTest, SigtermDuringAJobStopsItFirstAndEndsServe) {
   ::kill(pid_, SIGTERM);
   // The run's controlled stop is published before the goodbye; serve ends with 0.
   EXPECT_TRUE(state_after(from, "Stopped", 30s)) << output();
-  int status = 0;
-  ::waitpid(pid_, &status, 0);
-  pid_ = -1;
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output();
-  EXPECT_TRUE(plant_->wait_for(
-      [](const Message& m) {
-        return m.topic == topic("online") && MqttProbe::body(m)["reason"] == "cellctl ended";
-      },
-      from, 10s));
+  expect_clean_end(from);
   EXPECT_NE(output().find("job 1: Stopped"), std::string::npos) << output();
 }
 
