@@ -32,6 +32,17 @@ std::string describe(const plant_link::StartRequest& r) {
   return fmt::format("Teach-In of the encoder on axis {} over {:g} mm", t.axis, t.distance_mm);
 }
 
+// The job's name in the mode tag ("recipe"): the recipe's, "home", "teach-in x".
+std::string short_name(const plant_link::StartRequest& r) {
+  if (const auto* recipe = std::get_if<plant_link::StartRecipe>(&r)) return recipe->name;
+  if (std::holds_alternative<plant_link::StartHoming>(r)) return "home";
+  return "teach-in " + std::get<plant_link::StartTeachIn>(r).axis;
+}
+
+bool is_stop(supervisor::Command c) {
+  return c == supervisor::Command::stop || c == supervisor::Command::abort;
+}
+
 // A Teach-In asked from outside: moved by the SCU (no operator at the terminal to confirm a hand's
 // move), verified within the command line's default tolerance.
 TeachInAsk ask_of(const plant_link::StartTeachIn& t) {
@@ -52,6 +63,16 @@ plant_link::RunAccess CellStandby::access() {
   return a;
 }
 
+struct CellStandby::JobSlot {
+  CellStandby& standby;
+  ~JobSlot() {
+    std::lock_guard lock(standby.mutex_);
+    standby.run_ = nullptr;
+    standby.teach_abort_ = nullptr;
+    standby.busy_ = Busy::ending;  // no command reaches a run that is gone
+  }
+};
+
 Taken CellStandby::request(supervisor::Command c) {
   const auto word = supervisor::to_string(c);
   std::lock_guard lock(mutex_);
@@ -60,18 +81,33 @@ Taken CellStandby::request(supervisor::Command c) {
       run_->request(c);
       return {Taken::How::by_run, {}};
     case Busy::teach_in:
-      if (c == supervisor::Command::stop || c == supervisor::Command::abort) {
+      if (is_stop(c)) {
         teach_abort_->store(true);
         return {
             Taken::How::done,
-            fmt::format("{}: the Teach-In is aborted; the encoder's configured parameters are restored and "
-                        "the config is not changed",
+            fmt::format("{} requested: the Teach-In aborts and restores the encoder's configured parameters; "
+                        "its end (the state tag) tells the outcome",
                         word)};
       }
       return {Taken::How::refused,
               fmt::format("{} is not possible during the {}: stop or abort ends it", word, job_)};
     case Busy::starting:
-      return {Taken::How::refused, fmt::format("{} is not possible while the {} starts", word, job_)};
+      if (!is_stop(c))
+        return {Taken::How::refused, fmt::format("{} is not possible while the {} starts", word, job_)};
+      if (pending_) {  // not taken by the serving thread yet: it never starts
+        pending_.reset();
+        busy_ = Busy::none;
+        return {Taken::How::done, fmt::format("{}: the {} was cancelled before it started; nothing moved",
+                                              word, std::exchange(job_, {}))};
+      }
+      early_stop_ = c;  // being set up: stopped as soon as its run exists, before any motion
+      return {
+          Taken::How::done,
+          fmt::format("{}: taken while the {} starts: it is stopped before any motion; its end (the state "
+                      "tag) tells the outcome",
+                      word, job_)};
+    case Busy::ending:
+      return {Taken::How::refused, fmt::format("{} is not possible while the {} ends", word, job_)};
     case Busy::none:
       break;
   }
@@ -104,6 +140,7 @@ Taken CellStandby::start(const plant_link::StartRequest& r) {
   }
   busy_ = Busy::starting;
   job_ = describe(r);
+  early_stop_.reset();
   pending_ = r;
   started_.notify_all();
   return {Taken::How::done, "started: " + job_};
@@ -113,25 +150,46 @@ void CellStandby::tell(nlohmann::json line) const {
   if (listener_) listener_(line);
 }
 
+std::string CellStandby::not_started(const plant_link::StartRequest& r, const std::string& why) const {
+  tell({{"event", "run_started"},
+        {"t", 0.0},
+        {"recipe", short_name(r)},
+        {"mode", to_string(options_.mode)},
+        {"steps", 0}});
+  tell({{"event", "state"},
+        {"t", 0.0},
+        {"from", "Idle"},
+        {"to", "Aborted"},
+        {"reason", "not started: " + why}});
+  return "Aborted: not started: " + why;
+}
+
 int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminate,
                        const std::function<void(const std::string&)>& say) {
   for (;;) {
     std::optional<plant_link::StartRequest> job;
-    {
+    std::string what;
+    const bool ending = [&] {
       std::unique_lock lock(mutex_);
       started_.wait_for(lock, 20ms, [&] { return pending_.has_value(); });
+      if (terminate.load() || interrupt.load()) return true;  // a job not taken yet never starts
       job.swap(pending_);
-    }
-    if (terminate.load()) break;
-    if (!job) {
-      if (interrupt.exchange(false)) return blocked_.empty() ? 130 : 5;
-      continue;
-    }
-    std::string what;
-    {
-      std::lock_guard lock(mutex_);
       what = job_;
+      return false;
+    }();
+    if (ending) {
+      std::optional<plant_link::StartRequest> dropped;
+      {
+        std::lock_guard lock(mutex_);
+        dropped.swap(pending_);
+        busy_ = Busy::ending;
+      }
+      if (dropped)
+        say(fmt::format("job {}: {}", jobs_done_.load() + 1,
+                        not_started(*dropped, "cellctl serve was ended before it started")));
+      break;
     }
+    if (!job) continue;
     say(fmt::format("job {}: {} started", jobs_done_.load() + 1, what));
     const auto outcome = run_job(*job, interrupt, terminate);
     say(fmt::format("job {}: {}", ++jobs_done_, outcome));
@@ -141,9 +199,9 @@ int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminat
       job_.clear();
     }
     interrupt.store(false);  // a Ctrl-C during the job was the job's
-    if (terminate.load()) break;
   }
-  return blocked_.empty() ? 0 : 5;
+  if (!blocked_.empty()) return 5;
+  return terminate.load() ? 0 : 130;
 }
 
 std::filesystem::path CellStandby::job_dir(const std::string& stem) const {
@@ -155,26 +213,23 @@ std::filesystem::path CellStandby::job_dir(const std::string& stem) const {
 
 std::string CellStandby::run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt,
                                  std::atomic<bool>& terminate) {
-  if (const auto* t = std::get_if<plant_link::StartTeachIn>(&r))
-    return run_teach_in(*t, interrupt, terminate);
   try {
+    if (const auto* t = std::get_if<plant_link::StartTeachIn>(&r))
+      return run_teach_in(*t, interrupt, terminate);
     if (const auto* recipe = std::get_if<plant_link::StartRecipe>(&r))
       return run_recipe(recipe::load_recipe(recipe->file, cell_), job_dir(recipe->file.stem().string()),
                         interrupt, terminate);
-    const auto& home = std::get<plant_link::StartHoming>(r);
-    const auto axes = homing_axes(cell_, options_.config_file, home.axes);
-    if (const auto* why = std::get_if<std::string>(&axes)) return "not started: " + *why;
+    // The axes were checked by start() against this same config.
+    const auto axes = std::get<std::vector<std::size_t>>(
+        homing_axes(cell_, options_.config_file, std::get<plant_link::StartHoming>(r).axes));
     const auto dir = job_dir("home");
-    return run_recipe(write_homing_recipe(cell_, std::get<std::vector<std::size_t>>(axes), dir), dir,
-                      interrupt, terminate);
+    return run_recipe(write_homing_recipe(cell_, axes, dir), dir, interrupt, terminate);
   } catch (const recipe::RecipeErrors& e) {
-    std::string why = fmt::format("not started: {} problem(s)", e.errors().size());
+    std::string why = fmt::format("{} problem(s)", e.errors().size());
     for (const auto& err : e.errors()) why += fmt::format("; {}", err.what());
-    tell({{"event", "note"}, {"t", 0.0}, {"text", why}});
-    return why;
+    return not_started(r, why);
   } catch (const std::exception& e) {
-    tell({{"event", "note"}, {"t", 0.0}, {"text", fmt::format("not started: {}", e.what())}});
-    return fmt::format("not started: {}", e.what());
+    return not_started(r, e.what());  // a port that does not open, a record folder that cannot be made
   }
 }
 
@@ -189,16 +244,16 @@ std::string CellStandby::run_recipe(const recipe::Recipe& recipe, const std::fil
       record_info(cell_, options_.config_file, recipe, recipe::unroll(recipe), o.mode));
   runtime::CellRun run(cell_, recipe, o);  // a port that does not open: thrown, reported by run_job
   run.on_journal_line(listener_);
+  runtime::RunResult result;
   {
-    std::lock_guard lock(mutex_);
-    run_ = &run;
-    busy_ = Busy::run;
-  }
-  const auto result = run.run(interrupt, &terminate);
-  {
-    std::lock_guard lock(mutex_);
-    run_ = nullptr;
-    busy_ = Busy::starting;  // ending: no command reaches a run that is gone
+    const JobSlot slot{*this};
+    {
+      std::lock_guard lock(mutex_);
+      run_ = &run;
+      busy_ = Busy::run;
+      if (early_stop_) run.request(*early_stop_);  // asked while the job was set up: taken in Starting
+    }
+    result = run.run(interrupt, &terminate);
   }
   run.on_journal_line({});
   std::string words = fmt::format("{} {}", supervisor::to_string(result.final_state), run_dir.string());
@@ -220,74 +275,82 @@ std::string CellStandby::run_recipe(const recipe::Recipe& recipe, const std::fil
 
 std::string CellStandby::run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt,
                                       const std::atomic<bool>& terminate) {
-  const auto asked = teach_in_request(cell_, ask_of(t));
-  if (const auto* why = std::get_if<std::string>(&asked)) return "not started: " + *why;
+  const plant_link::StartRequest asked{t};
+  const auto request =
+      std::get<routines::TeachInRequest>(teach_in_request(cell_, ask_of(t)));  // start() checked
   runtime::TeachInRunOptions o;
   o.mode = options_.mode;
   o.journal_dir = job_dir("teach-in-" + t.axis);
   o.trace = options_.trace;
   o.record_header = teach_in_record_header(options_.config_file, t.axis, t.distance_mm, o.mode);
+  runtime::TeachInRun run(cell_, request, o);  // set-up problems: thrown, reported by run_job
   // The Teach-In's journal has phases, not PackML states: the plant sees it as a run of its own.
   const auto began = std::chrono::steady_clock::now();
   const auto seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   };
-  const auto what = fmt::format("Teach-In of the encoder on axis {} over {:g} mm", t.axis, t.distance_mm);
   tell({{"event", "run_started"},
         {"t", 0.0},
-        {"recipe", "teach-in " + t.axis},
+        {"recipe", short_name(asked)},
         {"mode", to_string(o.mode)},
         {"steps", 1}});
-  tell({{"event", "state"}, {"t", 0.0}, {"from", "Idle"}, {"to", "Execute"}, {"reason", what}});
+  tell({{"event", "state"}, {"t", 0.0}, {"from", "Idle"}, {"to", "Execute"}, {"reason", describe(asked)}});
   const auto end = [&](const char* state, const std::string& words) {
     tell({{"event", "state"}, {"t", seconds()}, {"from", "Execute"}, {"to", state}, {"reason", words}});
     return fmt::format("{} {}: {}", state, o.journal_dir.string(), words);
   };
+  run.on_journal_line(listener_);
   runtime::TeachInOutcome outcome;
-  try {
-    runtime::TeachInRun run(cell_, std::get<routines::TeachInRequest>(asked), o);
-    run.on_journal_line(listener_);
+  {
+    const JobSlot slot{*this};
     {
       std::lock_guard lock(mutex_);
       teach_abort_ = &interrupt;
       busy_ = Busy::teach_in;
+      if (early_stop_) interrupt.store(true);  // asked while the job was set up: aborted before any motion
     }
     // SIGTERM aborts it too, seen at the routine's progress (each phase change, every 0.5 s).
     outcome = run.run(interrupt, [&](const runtime::TeachInProgress&) {
       if (terminate.load()) interrupt.store(true);
     });
-    {
-      std::lock_guard lock(mutex_);
-      teach_abort_ = nullptr;
-      busy_ = Busy::starting;
-    }
-    run.on_journal_line({});
-  } catch (const std::exception& e) {
-    return end("Aborted", fmt::format("not started: {}", e.what()));
+  }
+  run.on_journal_line({});
+  std::string devices;
+  for (const auto& n : outcome.device_notes) devices += "; device: " + n;
+  if (!outcome.restored) {
+    std::lock_guard lock(mutex_);
+    blocked_ =
+        "no start is taken: the encoder's configured parameters could NOT be confirmed restored after the "
+        "Teach-In; check with `cellctl encoder diag`, then start cellctl again";
   }
   if (!outcome.done)
     return end(outcome.interrupted ? "Stopped" : "Aborted",
-               fmt::format("{}; {}; the config is not changed", outcome.failure,
-                           outcome.restored ? "the encoder's configured parameters are restored"
-                                            : "the encoder's configured parameters could NOT be confirmed "
-                                              "restored: check with `cellctl encoder diag`"));
+               fmt::format("{}; {}; the config is not changed{}", outcome.failure,
+                           outcome.restored ? "the encoder's configured parameters are restored" : blocked_,
+                           devices));
+  config::ConfigChange change;
   try {
-    const auto change = write_teach_in_result(options_.config_file, cell_, outcome);
-    auto fresh = config::load_cell_config(options_.config_file);
-    {
-      std::lock_guard lock(mutex_);
-      cell_ = std::move(fresh);  // the next jobs count in what was taught
-    }
-    return end(
-        "Complete",
-        fmt::format("total resolution {} ({:g} units per mm), verified: {:.4f} mm measured back; "
-                    "{} written ({}), the previous config is {}",
-                    outcome.result.total_resolution, outcome.units_per_mm, outcome.result.encoder_distance_mm,
-                    options_.config_file.string(), fmt::join(change.changed, "; "), change.backup.string()));
+    change = write_teach_in_result(options_.config_file, cell_, outcome);
   } catch (const std::exception& e) {
     return end("Aborted", fmt::format("Teach-In verified, but {} was not changed: {}",
                                       options_.config_file.string(), e.what()));
   }
+  const auto written = fmt::format(
+      "total resolution {} ({:g} units per mm), verified: {:.4f} mm measured back; {} "
+      "written ({}), the previous config is {}",
+      outcome.result.total_resolution, outcome.units_per_mm, outcome.result.encoder_distance_mm,
+      options_.config_file.string(), fmt::join(change.changed, "; "), change.backup.string());
+  try {
+    auto fresh = config::load_cell_config(options_.config_file);
+    std::lock_guard lock(mutex_);
+    cell_ = std::move(fresh);  // the next jobs count in what was taught
+  } catch (const std::exception& e) {
+    std::lock_guard lock(mutex_);
+    blocked_ = fmt::format("no start is taken: {} was written by the Teach-In but does not load again: {}",
+                           options_.config_file.string(), e.what());
+    return end("Complete", written + "; " + blocked_);
+  }
+  return end("Complete", written + devices);
 }
 
 }  // namespace cellctl::cli

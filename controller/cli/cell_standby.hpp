@@ -6,14 +6,17 @@
 // after which the config is read again). Each job gets its own run record under the runs folder.
 //
 // A start is taken only when no job is in progress, and never after a job left a device's safe
-// state unknown (a spindle that may still turn: someone must look at the cell and start cellctl
-// again). Commands go to the job in progress: a recipe's or homing's run takes them as the terminal's
-// (its journaled outcome is the answer); a Teach-In takes stop and abort (it aborts and restores
-// the encoder's parameters) and refuses the others.
+// state unknown (a spindle that may still turn) or the encoder's parameters unconfirmed: someone must
+// look at the cell and start cellctl again. Commands go to the job in progress: a recipe's or
+// homing's run takes them as the terminal's (its journaled outcome is the answer); a Teach-In takes
+// stop and abort (it aborts and restores the encoder's parameters) and refuses the others. A stop or
+// abort while a job starts is never refused: a job not yet taken is cancelled, one being set up is
+// stopped before any motion.
 //
 // Between jobs the standby itself tells the link and the page what it did (a Teach-In's start and
-// end, a start that failed to open the cell) as journal lines: the jobs' journal threads and the
-// standby never write at the same time, so the listener keeps one writer at a time.
+// end, a job that could not start) as journal lines: the jobs' journal threads and the standby never
+// write at the same time (a job's journal joins its writer before its run returns), so the listener
+// keeps one writer at a time.
 
 #include <atomic>
 #include <condition_variable>
@@ -52,8 +55,9 @@ class CellStandby {
 
   // Runs the jobs as they are started, saying each one's start and end through `say`, until
   // `terminate` (a job in progress gets its controlled stop first) or an `interrupt` while no job is
-  // in progress; an interrupt during a job is that job's Ctrl-C. Returns the exit status: 0 ended by
-  // SIGTERM, 130 by Ctrl-C, 5 when a job left a device's safe state unknown.
+  // in progress; an interrupt during a job is that job's Ctrl-C. A job started but not yet taken then
+  // never starts (told as not started). Returns the exit status: 0 ended by SIGTERM, 130 by Ctrl-C,
+  // 5 when a job left a device's safe state unknown or the encoder's parameters unconfirmed.
   int serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminate,
             const std::function<void(const std::string&)>& say);
 
@@ -61,7 +65,9 @@ class CellStandby {
   [[nodiscard]] int jobs_done() const noexcept { return jobs_done_.load(); }
 
  private:
-  enum class Busy { none, starting, run, teach_in };
+  enum class Busy { none, starting, run, teach_in, ending };
+  // Clears the job's run pointers when its run returns or throws.
+  struct JobSlot;
 
   [[nodiscard]] plant_link::Taken request(supervisor::Command c);
   [[nodiscard]] std::optional<plant_link::LiveRun> status();
@@ -77,6 +83,8 @@ class CellStandby {
   [[nodiscard]] std::filesystem::path job_dir(const std::string& stem) const;
   // A line of the standby's own (between jobs: the jobs' journal threads are not writing).
   void tell(nlohmann::json line) const;
+  // A job that could not start, told as a run of its own that ends Aborted with the reason.
+  std::string not_started(const plant_link::StartRequest& r, const std::string& why) const;
 
   config::CellConfig cell_;
   StandbyOptions options_;
@@ -89,6 +97,7 @@ class CellStandby {
   std::optional<plant_link::StartRequest> pending_;  // started, not yet taken by the serving thread
   runtime::CellRun* run_ = nullptr;                  // the recipe's or homing's run in progress
   std::atomic<bool>* teach_abort_ = nullptr;         // the Teach-In's abort, while one runs
+  std::optional<supervisor::Command> early_stop_;    // a stop or abort while the job was set up
   std::string blocked_;                              // why no start is taken any more
   std::atomic<int> jobs_done_{0};
 };

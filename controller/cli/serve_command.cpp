@@ -66,7 +66,8 @@ int serve(const GlobalOptions& global, const ServeArgs& args) {
   standby.on_journal_line([&facing](const nlohmann::json& line) { facing.on_journal_line(line); });
   say(fmt::format("  jobs: start (a recipe in {}), home, teach-in; run records under {}/", recipes.string(),
                   args.runs_dir));
-  say("  Ctrl-C stops the job in progress as `cellctl run` does; with no job, it ends cellctl serve");
+  say("  Ctrl-C: the job in progress gets it (a run as in `cellctl run`, a Teach-In aborts); with no job, it "
+      "ends cellctl serve");
   const int status = standby.serve(g_interrupted, g_terminated, say);
   facing.close();
   say(fmt::format("cellctl serve: ended after {} job{}", standby.jobs_done(),
@@ -83,21 +84,19 @@ void add_serve_command(CLI::App& app, Commands& commands) {
                                  "Stand by for the plant (MQTT) and the operator page: run the recipes, "
                                  "homing and Teach-Ins they start");
   sub->footer(
-      "Jobs, one at a time, each with its own run record under --runs: `start` a recipe from the recipe "
-      "folder\n"
-      "(validated first: its problems come back with file:line:col), `home` (axes as the config's homing:\n"
-      "says), `teach-in` (the encoder over a distance of its axis, moved by the SCU; the verified result is\n"
-      "written into the config, which is then read again). They come from the plant link's cmd/<word> "
-      "topics\n"
-      "(the config's plant_link: section) or the operator page's buttons (--http, with its token). While a "
-      "job\n"
-      "runs, hold, unhold, stop, abort and reset go to it; a start is refused until it has ended, and "
-      "refused\n"
-      "for good after a job left a device's safe state unknown.\n"
-      "Exit status: 0 ended by SIGTERM (a job in progress gets its controlled stop first), 130 Ctrl-C with "
-      "no\n"
-      "job in progress, 2 bad command line or nothing to take commands from, 3 bad config, 5 a job left a\n"
-      "device's safe state unknown.");
+      "Jobs, one at a time, each with its own run record under --runs: `start` a recipe from the recipe\n"
+      "folder (validated first: its problems come back with file:line:col), `home` (axes as the config's\n"
+      "homing: says), `teach-in` (the encoder over a distance of its axis, moved by the SCU; the verified\n"
+      "result is written into the config, which is then read again). They come from the plant link's\n"
+      "cmd/<word> topics (the config's plant_link: section) or the operator page's buttons (--http, with "
+      "its\n"
+      "token). While a recipe or homing runs, hold, unhold, stop, abort and reset go to its run; a Teach-In\n"
+      "takes stop and abort (it aborts) and refuses the others. A stop or abort while a job starts cancels\n"
+      "it or stops it before any motion. A start is refused until the job in progress has ended, and for\n"
+      "good after a job left a device's safe state unknown or the encoder's parameters unconfirmed.\n"
+      "Exit status: 0 ended by SIGTERM (a job in progress gets its controlled stop first), 130 Ctrl-C with\n"
+      "no job in progress, 2 bad command line or nothing to take commands from, 3 bad config, 5 a job left\n"
+      "a device's safe state unknown or the encoder's parameters unconfirmed.");
   auto args = std::make_shared<ServeArgs>();
   auto* emulate = sub->add_flag("--emulate", args->emulate,
                                 "Every device on its emulator (in this process), in real time");
@@ -105,8 +104,10 @@ void add_serve_command(CLI::App& app, Commands& commands) {
                 "Every device on its emulator over simulated lines, on a virtual clock, as fast as possible")
       ->excludes(emulate);
   sub->add_option("--runs", args->runs_dir, "Folder of the jobs' run records")->capture_default_str();
-  sub->add_option("--state-dir", args->state_dir,
-                  "Folder of the home record home.json (default: the cell config's state_dir, 'state')");
+  sub->add_option(
+      "--state-dir", args->state_dir,
+      "Folder of the home record (home.json; home.<mode>.json for dry runs; default: the cell config's "
+      "state_dir, 'state')");
   sub->add_option("--recipes", args->recipes,
                   "Folder of the recipes a start names (default: the plant_link section's, else ./recipes)");
   sub->add_option("--http", args->http_text,

@@ -29,6 +29,7 @@ Changed CellMirror::apply(const RunEvent& e) {
       step_ = 0;
       run_mode_ = str(e.other);
       active_faults_.clear();
+      stop_reason_ = nullptr;  // each job's own: an earlier job's stop is no reason for this one
       c.admin = c.mode = true;
       break;
     case Kind::state:

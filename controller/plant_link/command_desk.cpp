@@ -165,6 +165,18 @@ std::vector<nlohmann::json> CommandDesk::on_event(const RunEvent& e) {
   std::vector<nlohmann::json> out;
   using Kind = RunEvent::Kind;
   using supervisor::Command;
+  if (e.kind == Kind::run_ended) {
+    // The run ended with these still untaken: answered now, never by the next job's events.
+    for (const auto& p : pending_) {
+      auto a = answer(supervisor::to_string(p.command), p.id, false,
+                      "the run ended before it took the command; see the state tag");
+      a["t"] = e.t;
+      a["source"] = p.source;
+      out.push_back(std::move(a));
+    }
+    pending_.clear();
+    return out;
+  }
   for (auto it = pending_.begin(); it != pending_.end();) {
     const auto name = supervisor::to_string(it->command);
     std::optional<nlohmann::json> a;

@@ -58,7 +58,7 @@ struct TeachInOutcome {
   routines::TeachInResult result;
   std::string failure;
   bool restored = true;           // false: the encoder's configured parameters could not be confirmed
-  bool interrupted = false;       // Ctrl-C
+  bool interrupted = false;       // its interrupt was set: Ctrl-C, or a stop from the plant or page (serve)
   encoder::SessionConfig taught;  // the settings to record (when done)
   double units_per_mm = 0.0;
   std::vector<std::string> device_notes;

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "plant_test_support.hpp"
 
@@ -48,15 +49,26 @@ steps:
     plant_ = std::make_unique<MqttProbe>(broker_->port(), "operator", "op-secret",
                                          std::string(MqttBroker::kPrefix) + "/demo-cell/#");
     ASSERT_EQ(plant_->wait_connack(), 0);
+  }
+
+  // cellctl serve --virtual-time with its records in the test's folder (`runs`: another folder for them),
+  // online on the broker.
+  void launch(const std::filesystem::path& runs = {}) {
+    const auto runs_dir = runs.empty() ? dir_ / "runs" : runs;
     pid_ = ::fork();
     if (pid_ == 0) {
       ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a test killed by its time-out takes cellctl serve with it
       const auto out = (dir_ / "serve.out").string();
       if (!::freopen("/dev/null", "r", stdin) || !::freopen(out.c_str(), "w", stdout)) ::_exit(126);
       ::execl(CELLCTL_BINARY, CELLCTL_BINARY, "-c", config_.c_str(), "serve", "--virtual-time", "--runs",
-              (dir_ / "runs").c_str(), "--state-dir", (dir_ / "state").c_str(), static_cast<char*>(nullptr));
+              runs_dir.c_str(), "--state-dir", (dir_ / "state").c_str(), static_cast<char*>(nullptr));
       ::_exit(127);
     }
+    ASSERT_TRUE(plant_->wait_for(
+        [](const Message& m) { return m.topic == topic("online") && MqttProbe::body(m)["online"] == true; },
+        0, 30s))
+        << "cellctl serve never came online:\n"
+        << output();
   }
 
   void TearDown() override {
@@ -102,7 +114,11 @@ steps:
   // cellctl serve ends with 0 and says goodbye on the online tag (after message `from`).
   void expect_clean_end(std::size_t from) {
     int status = 0;
-    ::waitpid(pid_, &status, 0);
+    const auto until = std::chrono::steady_clock::now() + 30s;
+    while (::waitpid(pid_, &status, WNOHANG) == 0) {
+      ASSERT_LT(std::chrono::steady_clock::now(), until) << "cellctl serve did not end:\n" << output();
+      std::this_thread::sleep_for(10ms);
+    }
     pid_ = -1;
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output();
     EXPECT_TRUE(plant_->wait_for(
@@ -129,10 +145,7 @@ steps:
 };
 
 TEST_F(ServeTest, ThePlantStartsHomingRecipesAndATeachInOneAtATime) {
-  const auto online = plant_->wait_for(
-      [](const Message& m) { return m.topic == topic("online") && MqttProbe::body(m)["online"] == true; }, 0,
-      30s);
-  ASSERT_TRUE(online) << "cellctl serve never came online:\n" << output();
+  launch();
   ASSERT_TRUE(state_after(0, "Idle", 10s)) << "no retained Idle state at the birth";
 
   // Nothing runs: a command has nothing to act on, and says so.
@@ -203,10 +216,7 @@ TEST_F(ServeTest, ThePlantStartsHomingRecipesAndATeachInOneAtATime) {
 }
 
 TEST_F(ServeTest, SigtermDuringAJobStopsItFirstAndEndsServe) {
-  ASSERT_TRUE(plant_->wait_for(
-      [](const Message& m) { return m.topic == topic("online") && MqttProbe::body(m)["online"] == true; }, 0,
-      30s))
-      << output();
+  launch();
   const auto from = plant_->count();
   ASSERT_EQ(command("start", {{"recipe", "long"}}, "long1")["ok"], true);
   ASSERT_TRUE(state_after(from, "Execute")) << output();
@@ -215,6 +225,49 @@ TEST_F(ServeTest, SigtermDuringAJobStopsItFirstAndEndsServe) {
   EXPECT_TRUE(state_after(from, "Stopped", 30s)) << output();
   expect_clean_end(from);
   EXPECT_NE(output().find("job 1: Stopped"), std::string::npos) << output();
+}
+
+TEST_F(ServeTest, AStopRightAfterAStartIsNeverRefusedAndNothingIsTaught) {
+  launch();
+  std::ifstream before_file(config_);
+  std::stringstream before;
+  before << before_file.rdbuf();
+  const auto from = plant_->count();
+  // Slow (2 mm/s over 150 mm: 150 s of virtual time), so that the stop finds it still going on a loaded
+  // machine.
+  ASSERT_EQ(command("teach-in", {{"axis", "x"}, {"distance_mm", 150}, {"from_mm", 5}, {"speed_mm_s", 2}},
+                    "t1")["ok"],
+            true);
+  // However far the job got — not taken yet, being set up, or running — the stop is taken.
+  const auto a = command("stop", {}, "s1");
+  ASSERT_EQ(a["ok"], true) << a.dump();
+  const auto outcome = a["outcome"].get<std::string>();
+  if (outcome.find("cancelled before it started") == std::string::npos) {
+    EXPECT_TRUE(outcome.find("it is stopped before any motion") != std::string::npos ||
+                outcome.find("the Teach-In aborts") != std::string::npos)
+        << outcome;
+    const auto ended = state_after(from, "Stopped");
+    ASSERT_TRUE(ended) << output();
+    EXPECT_TRUE(has(*ended, "reason", "the config is not changed")) << ended->dump();
+  }
+  // The next start is taken: the standby is free again.
+  ASSERT_EQ(command("start", {{"recipe", "short"}}, "after")["ok"], true);
+  ASSERT_TRUE(state_after(from, "Complete")) << output();
+  std::ifstream after_file(config_);
+  std::stringstream after;
+  after << after_file.rdbuf();
+  EXPECT_EQ(before.str(), after.str()) << "a stopped Teach-In changed the config";
+}
+
+TEST_F(ServeTest, AJobThatCannotStartIsPublishedAsAbortedWithItsReason) {
+  // Its run record cannot be made: the job is answered "started", then ends Aborted with why.
+  launch("/proc/cellctl-no-such-folder");
+  const auto from = plant_->count();
+  ASSERT_EQ(command("start", {{"recipe", "short"}}, "r1")["ok"], true);
+  const auto aborted = state_after(from, "Aborted");
+  ASSERT_TRUE(aborted) << output();
+  EXPECT_TRUE(has(*aborted, "reason", "not started: ")) << aborted->dump();
+  EXPECT_TRUE(has(*aborted, "reason", "cellctl-no-such-folder")) << aborted->dump();
 }
 
 }  // namespace
