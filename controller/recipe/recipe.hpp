@@ -30,10 +30,18 @@ struct AxisTarget {
   double target_mm = 0.0;
 };
 
+// How the axes of one move get from where they are to their targets. Either way they start and
+// arrive together; they differ in between.
+enum class Path : std::uint8_t {
+  time,  // each axis on its own profile, all ending at the same time (the default)
+  line,  // a straight line in joint space (`path: line`), when the axes' states allow one
+};
+
 // Moves one or several axes; several axes start and arrive together (coordinated).
 struct Move {
   std::vector<AxisTarget> targets;
   double speed_mm_s = 0.0;  // path speed of the leading axis
+  Path path = Path::time;
 };
 
 enum class SpindleDirection : std::uint8_t { cw, ccw };

@@ -180,12 +180,11 @@ class Parser {
 
   Move parse_move(const YamlNode& n) {
     n.only_keys({"to", "speed_mm_s", "path"});
-    // `path: line` (a straight line in joint space, the planner's phase synchronisation) is the only
-    // path a move has: the SCU moves each actuator to its target at its own speed, and only speeds
-    // in proportion to the distances keep the axes on the planned profile the following-error rule
-    // measures them against. The key lets a recipe say so; any other path is refused.
-    if (const auto path = n.maybe("path")) (void)path->as_choice({"line"});
     Move m;
+    // `line`: the planner's phase synchronisation (a straight line in joint space); `time` (the
+    // default): its time synchronisation (each axis its own profile, all ending together).
+    if (const auto path = n.maybe("path"))
+      m.path = path->as_choice({"time", "line"}) == "line" ? Path::line : Path::time;
     const auto to = n.at("to");
     const auto names = to.keys();
     if (names.empty()) to.fail("name at least one axis and its target");

@@ -27,6 +27,16 @@ double speed_for_s(double distance, double duration, double accel) noexcept {
   return 2.0 * distance / (duration + std::sqrt(disc));
 }
 
+// A trapezoid entered already moving at v0 towards the target (v0 <= its cruise speed) is the tail
+// of one from rest that began v0 / accel earlier, v0^2 / 2 accel further back.
+struct RestEquivalent {
+  double extra_mm = 0.0;
+  double earlier_s = 0.0;
+};
+RestEquivalent rest_equivalent(double v0, double accel) noexcept {
+  return {v0 * v0 / (2.0 * accel), v0 / accel};
+}
+
 }  // namespace
 
 double MoveExecutor::best_position(const cell::CellState& s, std::size_t i) const noexcept {
@@ -38,46 +48,127 @@ void MoveExecutor::start(const recipe::Move& move, const cell::CellState& s, dou
   axes_ = {};
   reference_ = reference;
   speed_ = move.speed_mm_s;
+  synchronization_ =
+      move.path == recipe::Path::line ? planner::Synchronization::phase : planner::Synchronization::time;
   reason_ = {};
   corrections_total_ = 0;
-  double lead = 0.0;
+  held_since_.reset();
   for (const auto& target : move.targets) {
     const auto i = static_cast<std::size_t>(target.axis);
     auto& a = axes_[i];
     a.in_move = true;
-    a.start_mm = best_position(s, i);
     a.target_mm = target.target_mm;
     // Carry the SCU's present offset from the measurement into its target: fewer corrections later.
-    a.scu_target_mm = s.axes[i].scu_mm + (a.target_mm - a.start_mm);
+    a.scu_target_mm = s.axes[i].scu_mm + (a.target_mm - best_position(s, i));
     a.tolerance_mm = limits_.axes[i] ? limits_.axes[i]->tolerance_mm : 0.05;
-    lead = std::max(lead, std::abs(a.target_mm - a.start_mm));
   }
-  // The SCU runs each actuator as a trapezoid at its own ramp (max_accel_mm_s2 is read as the SCU's
-  // soft ramp): the move takes as long as the slowest axis's trapezoid at the move speed.
-  double duration = 0.0;
+  plan(s, t, move_id, Motions{});
+  // The move's planned time: the slowest axis's trapezoid from rest (as the SCU runs it).
+  planned_s_ = 0.0;
   for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
     const auto& a = axes_[i];
     if (!a.in_move) continue;
     const double v = std::min(speed_, cell_.axes[i].max_speed_mm_s);
-    duration =
-        std::max(duration, trapezoid_s(std::abs(a.target_mm - a.start_mm), v, cell_.axes[i].max_accel_mm_s2));
+    planned_s_ = std::max(planned_s_,
+                          trapezoid_s(std::abs(a.target_mm - a.start_mm), v, cell_.axes[i].max_accel_mm_s2));
   }
-  planned_s_ = duration;
+}
+
+void MoveExecutor::hold(double t) noexcept {
+  if (!held_since_) {
+    held_since_ = t;
+    for (std::size_t i = 0; i < cell::kMaxAxes; ++i) held_from_[i] = {planned_[i], planned_speed_[i], 0.0};
+  }
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    if (!axes_[i].in_move) continue;
+    const auto braking = braked(i, t - *held_since_);
+    planned_[i] = braking.position;
+    planned_speed_[i] = braking.velocity;
+  }
+}
+
+planner::MotionState MoveExecutor::braked(std::size_t i, double since) const noexcept {
+  // The SCU's soft stop (RS) takes the speed down at the actuator's ramp (max_accel_mm_s2 is read as
+  // that ramp, as for the trapezoids): no jerk limit of its own.
+  const auto& from = held_from_[i];
+  const double ramp = cell_.axes[i].max_accel_mm_s2;
+  const double stop_s = std::abs(from.velocity) / ramp;
+  const double tau = std::clamp(since, 0.0, stop_s);
+  const double decel = -std::copysign(ramp, from.velocity);
+  return {from.position + from.velocity * tau + 0.5 * decel * tau * tau, from.velocity + decel * tau,
+          since < stop_s ? decel : 0.0};
+}
+
+void MoveExecutor::resume(const cell::CellState& s, double t, std::uint32_t& move_id) {
+  Motions from{};
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    if (!axes_[i].in_move || !held_since_) continue;
+    const auto braking = braked(i, t - *held_since_);
+    from[i] = {braking.velocity, braking.acceleration};
+  }
+  held_since_.reset();
+  reason_ = {};
+  plan(s, t, move_id, from);
+}
+
+void MoveExecutor::plan(const cell::CellState& s, double t, std::uint32_t& move_id, const Motions& from) {
+  // The SCU runs each actuator as a trapezoid at its own ramp (max_accel_mm_s2 is read as the SCU's
+  // soft ramp), one already moving towards its target from its present speed: the move takes as long
+  // as the slowest axis's trapezoid at the move speed.
+  double duration = 0.0;
+  double lead = 0.0;
+  std::array<RestEquivalent, cell::kMaxAxes> entered{};
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    auto& a = axes_[i];
+    if (!a.in_move) continue;
+    a.start_mm = best_position(s, i);
+    const double to_go = a.target_mm - a.start_mm;
+    const double v = std::min(speed_, cell_.axes[i].max_speed_mm_s);
+    const double ramp = cell_.axes[i].max_accel_mm_s2;
+    const double towards = std::clamp(std::copysign(from[i].velocity, from[i].velocity * to_go), 0.0, v);
+    entered[i] = rest_equivalent(towards, ramp);
+    duration = std::max(duration,
+                        trapezoid_s(std::abs(to_go) + entered[i].extra_mm, v, ramp) - entered[i].earlier_s);
+    lead = std::max(lead, std::abs(to_go));
+  }
   for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
     auto& a = axes_[i];
     planned_[i] = i < s.axis_count ? best_position(s, i) : 0.0;
+    planned_speed_[i] = from[i].velocity;
     if (!a.in_move) continue;
     const auto& c = cell_.axes[i];
     // Coordinated: each axis gets the speed whose trapezoid takes that long, so that all arrive
     // together (speeds in proportion to the distances would not: the ramps differ); never below the
     // speed at which the actuator moves at all.
-    const double v = speed_for_s(std::abs(a.target_mm - a.start_mm), duration, c.max_accel_mm_s2);
+    const double v = speed_for_s(std::abs(a.target_mm - a.start_mm) + entered[i].extra_mm,
+                                 duration + entered[i].earlier_s, c.max_accel_mm_s2);
     a.nominal_speed = std::clamp(v, std::min(c.min_speed_mm_s * 1.2, speed_), c.max_speed_mm_s);
     speed_sent_[i] = a.nominal_speed;
   }
-  restart_profile(s);
-  for (auto& a : axes_) {
-    if (!a.in_move || std::abs(a.target_mm - a.start_mm) <= a.tolerance_mm) continue;
+
+  input_ = {};
+  input_.synchronization = synchronization_;
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    const auto& a = axes_[i];
+    const auto k = static_cast<Eigen::Index>(i);
+    input_.enabled[i] = a.in_move;
+    input_.current_position[k] = planned_[i];
+    input_.current_velocity[k] = from[i].velocity;
+    input_.current_acceleration[k] = from[i].acceleration;
+    input_.target_position[k] = a.in_move ? a.target_mm : input_.current_position[k];
+    if (i < cell_.axes.size()) {
+      input_.max_velocity[k] = std::min(speed_, cell_.axes[i].max_speed_mm_s);
+      input_.max_acceleration[k] = cell_.axes[i].max_accel_mm_s2;
+      input_.max_jerk[k] = cell_.axes[i].max_jerk_mm_s3;
+    }
+  }
+
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    auto& a = axes_[i];
+    a.commanded = false;
+    // An axis inside its tolerance is left alone, unless it still moves (braking from a hold).
+    if (!a.in_move || (std::abs(a.target_mm - a.start_mm) <= a.tolerance_mm && from[i].velocity == 0.0))
+      continue;
     a.commanded = true;
     a.move_id = ++move_id;
     a.commanded_at = t;
@@ -88,25 +179,6 @@ void MoveExecutor::start(const recipe::Move& move, const cell::CellState& s, dou
   best_remaining_ = lead;
   still_since_.reset();
   seen_moving_ = {};
-}
-
-void MoveExecutor::restart_profile(const cell::CellState& s) {
-  input_ = {};
-  // A straight line in joint space: the pacing of the SCU's axes by their least progress assumes one
-  // (the planner falls back to time synchronisation, with a note, where the states allow no line).
-  input_.synchronization = planner::Synchronization::phase;
-  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
-    const auto& a = axes_[i];
-    const auto k = static_cast<Eigen::Index>(i);
-    input_.enabled[i] = a.in_move;
-    input_.current_position[k] = i < s.axis_count ? best_position(s, i) : 0.0;
-    input_.target_position[k] = a.in_move ? a.target_mm : input_.current_position[k];
-    if (i < cell_.axes.size()) {
-      input_.max_velocity[k] = std::min(speed_, cell_.axes[i].max_speed_mm_s);
-      input_.max_acceleration[k] = cell_.axes[i].max_accel_mm_s2;
-      input_.max_jerk[k] = cell_.axes[i].max_jerk_mm_s3;
-    }
-  }
 }
 
 void MoveExecutor::command(cell::Intents& out) const noexcept {
@@ -127,8 +199,11 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
                               std::uint32_t& move_id) {
   // The profile: where the axes should be, and the pace the modulation keeps them on.
   // An invalid profile (it cannot be: limits are validated at load) would leave the plan where it is.
-  if (!planner::is_error(planner_.update(input_, output_))) output_.pass_to_input(input_);
-  double plan_progress = 1.0;
+  note_ = {};
+  if (!planner::is_error(planner_.update(input_, output_))) {
+    output_.pass_to_input(input_);
+    if (output_.new_calculation) note_ = output_.note;
+  }
   double worst_remaining = 0.0;
   bool all_inside = true;
   for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
@@ -136,8 +211,6 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
     if (!a.in_move) continue;
     planned_[i] = output_.new_position[static_cast<Eigen::Index>(i)];
     planned_speed_[i] = output_.new_velocity[static_cast<Eigen::Index>(i)];
-    const double span = a.target_mm - a.start_mm;
-    if (std::abs(span) > 1e-9) plan_progress = std::min(plan_progress, (planned_[i] - a.start_mm) / span);
     const double remaining = std::abs(a.target_mm - best_position(s, i));
     worst_remaining = std::max(worst_remaining, remaining);
     if (remaining > a.tolerance_mm) all_inside = false;
@@ -182,15 +255,16 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
     return MoveStatus::failed;
   }
 
-  // Keep coordinated axes on the common profile: an axis behind the plan gets a little more speed.
+  // Keep each axis on its planned profile (and so coordinated axes on their common one, a line or
+  // not): an axis behind its plan gets a little more speed, by its lag as a share of its move.
   if (any_moving && t - last_speed_update_t_ >= settings_.speed_update_s) {
     last_speed_update_t_ = t;
     for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
       auto& a = axes_[i];
       const double span = a.target_mm - a.start_mm;
       if (!a.in_move || std::abs(span) < 1e-9 || a.corrections > 0) continue;
-      const double progress = (best_position(s, i) - a.start_mm) / span;
-      const double factor = std::clamp(1.0 + settings_.sync_gain * (plan_progress - progress), 0.5, 1.5);
+      const double lag = (planned_[i] - best_position(s, i)) / span;
+      const double factor = std::clamp(1.0 + settings_.sync_gain * lag, 0.5, 1.5);
       const double axis_max =
           limits_.axes[i] ? limits_.axes[i]->max_speed_mm_s : cell_.axes[i].max_speed_mm_s;
       const double v = std::clamp(a.nominal_speed * factor,

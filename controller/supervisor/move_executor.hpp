@@ -1,15 +1,19 @@
 #pragma once
-// One recipe move, closed on the encoder. The planner gives the time-synchronised jerk-limited
-// profile (the journal's "planned" positions, and the pace the axes are kept on); the SCU gets the
-// targets and a speed per axis scaled so coordinated axes arrive together, modulated during the move
-// to keep them on their common profile. The move is done only when every axis is inside its
+// One recipe move, closed on the encoder. The planner gives the jerk-limited profile the recipe asks
+// for (`path: time`: time synchronisation, `path: line`: phase synchronisation, a straight line in
+// joint space) — the journal's "planned" positions, and the pace each axis is kept on; the SCU gets
+// the targets and a speed per axis scaled so coordinated axes arrive together, modulated during the
+// move to keep each on its planned profile. The move is done only when every axis is inside its
 // tolerance by its best measurement (the encoder where it has one). When the SCU has stopped but the
 // encoder says the axis is off (scale error, slip), the SCU target is corrected by the measured error
 // and the axis moved again, a bounded number of times. A move that produces no motion is detected.
+// A hold brakes the move (the SCU's soft stop, which the plan follows); resume() goes on from the
+// moving state the brake has reached: no stop first.
 
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string_view>
 
 #include "cell/cell_state.hpp"
 #include "cell/intents.hpp"
@@ -46,8 +50,17 @@ class MoveExecutor {
   // One cycle: updates the intents of the axes in the move. On failure, reason() says why.
   [[nodiscard]] MoveStatus step(const cell::CellState& s, double t, cell::Intents& out,
                                 std::uint32_t& move_id);
+  // One cycle of a hold (the supervisor stops the axes: the SCU brakes each at its soft ramp): the
+  // plan follows that brake from the planned state the hold found.
+  void hold(double t) noexcept;
+  // After a hold: the move goes on to its targets from the measured positions and the brake's
+  // velocities and accelerations — re-planned from the moving state, no stop first.
+  void resume(const cell::CellState& s, double t, std::uint32_t& move_id);
 
   [[nodiscard]] const journal::Text& reason() const noexcept { return reason_; }
+  // What the planner said of the plan the last step() made (phase synchronisation impossible: time
+  // synchronised instead); empty when that step made no new plan or it needed no note.
+  [[nodiscard]] std::string_view note() const noexcept { return note_; }
   [[nodiscard]] int corrections() const noexcept { return corrections_total_; }
   // The move's planned time: the slowest axis's trapezoid at the move speed (as the SCU runs it).
   [[nodiscard]] double planned_s() const noexcept { return planned_s_; }
@@ -68,9 +81,20 @@ class MoveExecutor {
     std::uint32_t move_id = 0;  // bumped for every command to this axis (start, correction)
   };
 
+  // Where an axis stands and how it moves when a plan begins.
+  struct Motion {
+    double velocity = 0.0;
+    double acceleration = 0.0;
+  };
+  using Motions = std::array<Motion, cell::kMaxAxes>;
+
   [[nodiscard]] double best_position(const cell::CellState& s, std::size_t i) const noexcept;
   void command(cell::Intents& out) const noexcept;
-  void restart_profile(const cell::CellState& s);
+  // Plans from the axes' positions in `s` and `from`, sets the SCU speeds so that all arrive together,
+  // and commands every axis not yet inside its tolerance (or still moving).
+  void plan(const cell::CellState& s, double t, std::uint32_t& move_id, const Motions& from);
+  // The SCU's soft stop of axis i, `since` seconds after the hold: its planned state then.
+  [[nodiscard]] planner::MotionState braked(std::size_t i, double since) const noexcept;
 
   const config::CellCore& cell_;
   const recipe::Limits& limits_;
@@ -90,6 +114,10 @@ class MoveExecutor {
   double best_remaining_ = 0.0;
   double last_speed_update_t_ = 0.0;
   std::optional<double> still_since_;
+  planner::Synchronization synchronization_ = planner::Synchronization::time;
+  std::optional<double> held_since_;                              // the hold's start, while held
+  std::array<planner::MotionState, cell::kMaxAxes> held_from_{};  // the planned position and speed then
+  std::string_view note_;
   std::array<bool, cell::kMaxAxes> seen_moving_{};  // the SCU showed motion since the last command
   int corrections_total_ = 0;
   journal::Text reason_;

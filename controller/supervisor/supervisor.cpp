@@ -38,14 +38,16 @@ double Supervisor::planned_mm(std::size_t axis) const noexcept {
 }
 
 double Supervisor::step_planned_s() const noexcept {
-  const auto* ins = current();
-  return ins && instruction_started_ && std::holds_alternative<recipe::Move>(ins->action)
-             ? executor_.planned_s()
-             : 0.0;
+  return move_started() ? executor_.planned_s() : 0.0;
 }
 
 const recipe::Instruction* Supervisor::current() const noexcept {
   return pc_ < program_.instructions.size() ? &program_.instructions[pc_] : nullptr;
+}
+
+bool Supervisor::move_started() const noexcept {
+  const auto* ins = current();
+  return ins && instruction_started_ && std::holds_alternative<recipe::Move>(ins->action);
 }
 
 bool Supervisor::command(Command c, std::string_view source, double t) {
@@ -58,7 +60,8 @@ bool Supervisor::command(Command c, std::string_view source, double t) {
       allowed = state_ == State::execute || state_ == State::unholding;
       break;
     case Command::unhold:
-      allowed = state_ == State::held;
+      // Also while still holding: a move goes on from the moving state the brake has reached.
+      allowed = state_ == State::held || state_ == State::holding;
       break;
     case Command::stop:
       allowed = !is_final(state_) && state_ != State::stopping && state_ != State::aborting;
@@ -145,6 +148,7 @@ Supervisor::StepStatus Supervisor::run_instruction(const cell::CellState& s, dou
 
   if (std::holds_alternative<recipe::Move>(ins.action)) {
     const auto status = executor_.step(s, t, intents_, move_counter_);
+    if (!executor_.note().empty()) journal::post_note(events_, t, "step {}: {}", pc_ + 1, executor_.note());
     if (status == MoveStatus::failed) failure_ = executor_.reason();
     if (status == MoveStatus::done) corrections_ += executor_.corrections();
     return status == MoveStatus::done     ? StepStatus::done
@@ -354,17 +358,22 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
     case State::holding:
       clear_motion();
       intents_.halt = cell::Halt::controlled;
+      if (move_started()) executor_.hold(t);
       if (axes_still(s)) enter(State::held, t, Text::format("axes at rest"));
       break;
 
     case State::held:
       clear_motion();
+      if (move_started()) executor_.hold(t);
       break;
 
     case State::unholding:
-      // The interrupted step starts again from where the cell is (a dwell keeps what it had done).
-      if (pc_ < program_.instructions.size() &&
-          !std::holds_alternative<recipe::Dwell>(program_.instructions[pc_].action)) {
+      // A move goes on from the moving state the hold has reached (no stop first); any other step
+      // starts again from where the cell is (a dwell keeps what it had done).
+      if (move_started()) {
+        executor_.resume(s, t, move_counter_);
+      } else if (pc_ < program_.instructions.size() &&
+                 !std::holds_alternative<recipe::Dwell>(program_.instructions[pc_].action)) {
         instruction_started_ = false;
       }
       last_execute_t_ = t;

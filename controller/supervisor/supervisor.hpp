@@ -70,6 +70,8 @@ class Supervisor {
   void apply_demanded(std::optional<config::StopCategory> demanded, double t);
   void sample(const cell::CellState& s, double t);
   [[nodiscard]] bool axes_still(const cell::CellState& s) const noexcept;
+  // The current step is a move that has begun (a hold brakes it, an unhold resumes it).
+  [[nodiscard]] bool move_started() const noexcept;
   void clear_motion() noexcept;
 
   const config::CellCore& cell_;

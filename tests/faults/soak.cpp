@@ -94,13 +94,9 @@ SoakRun soak_run(const SoakPlan& plan, const config::CellConfig& cell, const rec
     std::size_t next = 0;
     bool stuck = false;
     run.on_cycle([&](double t, runtime::CellRun& r) {
-      for (; next < plan.commands.size() && plan.commands[next].at_s <= t; ++next) {
-        // An operator lets go of a hold once the cell is held: an unhold while it is still holding
-        // is refused (PackML), and the cell then waits, held, for the next one.
-        if (plan.commands[next].command == "unhold" && r.supervisor().state() == supervisor::State::holding)
-          break;
+      // An unhold may come while the hold still brakes the axes: the move resumes from that moving state.
+      for (; next < plan.commands.size() && plan.commands[next].at_s <= t; ++next)
         r.request(command_of(plan.commands[next].command));
-      }
       if (t > kStuckS && !stuck) {
         stuck = true;
         interrupt.store(true);  // Ctrl-C: the operator stop …

@@ -1,8 +1,9 @@
 // Coordinated moves of two SCU actuators on the whole emulated cell in virtual time: the axes of one
-// move arrive together. Arrival is read from the plant (where each rod really is), not from the
-// session: the skew between the axes must stay within one SCU refresh period (the keep-alive RC that
-// refreshes every actuator's position at once; 100 ms in config/cell.yaml), the resolution at which
-// the controller can see an arrival at all.
+// move arrive together, time-synchronised (the default) or on a line (`path: line`). Arrival is read
+// from the plant (where each rod really is), not from the session: the first moment the rod is
+// within the recipe's tolerance of its target and at rest. The skew between the axes must stay within
+// one SCU refresh period (the keep-alive RC that refreshes every actuator's position at once; 100 ms
+// in config/cell.yaml), the resolution at which the controller can see an arrival at all.
 
 #include <chrono>
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "plant/actuator.hpp"
 #include "run_fixture.hpp"
 
 namespace cellctl::testing {
@@ -22,8 +24,8 @@ class CoordinatedMove : public RunFixture {
     std::optional<double> z_t;
   };
 
-  // Runs a one-move recipe (x and z from 0 to the targets) and returns when each rod first came
-  // within `tolerance_mm` of its target.
+  // Runs a one-move recipe (x and z from 0 to the targets) and returns when each rod first stood
+  // still within the recipe's tolerance (0.1 mm) of its target.
   Arrival run_move(double x_mm, double z_mm, double speed_mm_s, const std::string& path,
                    double x_scale_error) {
     load_recipe_text(std::string(R"(
@@ -42,8 +44,11 @@ steps:
     Arrival a;
     run.on_cycle([&a, x_mm, z_mm](double t, runtime::CellRun& r) {
       const auto* scu = r.emulators()->scu();
-      if (!a.x_t && std::abs(scu->actuator(1).true_position_mm() - x_mm) <= 0.1) a.x_t = t;
-      if (!a.z_t && std::abs(scu->actuator(2).true_position_mm() - z_mm) <= 0.1) a.z_t = t;
+      const auto arrived = [](const plant::Actuator& rod, double target_mm) {
+        return std::abs(rod.true_position_mm() - target_mm) <= 0.1 && !rod.moving();
+      };
+      if (!a.x_t && arrived(scu->actuator(1), x_mm)) a.x_t = t;
+      if (!a.z_t && arrived(scu->actuator(2), z_mm)) a.z_t = t;
     });
     const auto result = go();
     EXPECT_EQ(result.final_state, supervisor::State::complete) << result.failure << "\n"
@@ -61,11 +66,18 @@ struct Case {
   double x, z, speed;
   const char* path;
 };
-// Ratios from 2:1 to 7.5:1 (x the longer or the shorter), without and with `path: line`. (At 15:1,
-// x 150 and z 10 at 12 mm/s, z's share is below what its actuator runs steadily, 0.96 mm/s: the
-// SCU runs it faster than the line and the following-error rule stops the run.)
-constexpr Case kCases[] = {
-    {120, 60, 10, ""}, {150, 20, 12, ""}, {40, 100, 12, ", path: line"}, {90, 30, 6, ", path: line"}};
+// Ratios from 2:1 to 7.5:1 (x the longer or the shorter), each time-synchronised (without `path`, the
+// default, and with `path: time`) and on a line. (At 15:1, x 150 and z 10 at 12 mm/s, z's share is
+// below what its actuator runs steadily, 0.96 mm/s: the SCU runs it faster than planned and the
+// following-error rule stops the run.)
+constexpr Case kCases[] = {{120, 60, 10, ""},
+                           {120, 60, 10, ", path: line"},
+                           {150, 20, 12, ", path: time"},
+                           {150, 20, 12, ", path: line"},
+                           {40, 100, 12, ""},
+                           {40, 100, 12, ", path: line"},
+                           {90, 30, 6, ", path: time"},
+                           {90, 30, 6, ", path: line"}};
 
 // The SCU's sensors read true (no scale error): the axes arrive together. One run per case.
 class CoordinatedMoveCases : public CoordinatedMove, public ::testing::WithParamInterface<Case> {};

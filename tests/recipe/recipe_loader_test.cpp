@@ -254,6 +254,20 @@ TEST(RecipeLoader, ReportsEveryBadStepNotJustTheFirst) {
   EXPECT_NE(errors[2].find("r.yaml:14:"), std::string::npos);
 }
 
+TEST(RecipeLoader, AMoveIsTimeSynchronisedUnlessItAsksForALine) {
+  const auto r = load(with_steps(R"(  - move: {to: {x: 30, z: 20}, speed_mm_s: 10}
+  - move: {to: {x: 40, z: 10}, speed_mm_s: 10, path: time}
+  - move: {to: {x: 50, z: 30}, speed_mm_s: 10, path: line}
+)"));
+  ASSERT_EQ(r.steps.size(), 3u);
+  EXPECT_EQ(std::get<Move>(r.steps[0].action).path, Path::time);
+  EXPECT_EQ(std::get<Move>(r.steps[1].action).path, Path::time);
+  EXPECT_EQ(std::get<Move>(r.steps[2].action).path, Path::line);
+  const auto errors = errors_of(with_steps("  - move: {to: {x: 30}, speed_mm_s: 10, path: straight}\n"));
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0], "r.yaml:11:47: steps[0].move.path: 'straight' is not one of: time, line");
+}
+
 TEST(RecipeLoader, AnAxisWithoutRecipeLimitsMayNotMove) {
   const auto errors = errors_of(R"(recipe: {name: t, version: "1", cell: test-cell}
 limits:

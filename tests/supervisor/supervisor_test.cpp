@@ -178,6 +178,58 @@ TEST_F(SupervisorTest, HoldStopsTheAxesAndUnholdFinishesTheMove) {
   EXPECT_NEAR(now().axes[0].encoder_mm, 150.0, 0.1);
 }
 
+// An unhold while the hold still brakes the axes: the move goes on from the moving state, never at
+// rest in between, and the plan starts from the brake's velocity (no jump in the planned speed).
+TEST_F(SupervisorTest, UnholdWhileHoldingResumesWithoutStopping) {
+  load("  - move: {to: {x: 150, z: 75}, speed_mm_s: 12}\n");
+  auto& x = fake_->actuators()[0];
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run(30.0, [&] { return now().axes[0].encoder_mm > 40.0; }));
+  ASSERT_TRUE(sup_->command(Command::hold, "test", t()));
+  ASSERT_TRUE(run(0.1, [] { return false; }) == false);
+  ASSERT_EQ(sup_->state(), State::holding);
+  const double braking_at = x.velocity_mm_s();
+  EXPECT_GT(braking_at, 5.0) << "still moving fast: the unhold below is from a moving hold";
+  EXPECT_LT(braking_at, 12.0 - 1.0) << "and braking";
+  ASSERT_TRUE(sup_->command(Command::unhold, "test", t()));
+  (void)run(0.002, [] { return false; });  // Unholding, then the move's first cycle
+  ASSERT_EQ(sup_->state(), State::execute);
+  EXPECT_GT(sup_->intents().axes[0].planned_mm_s, 0.5 * braking_at) << "planned from the moving state";
+  double slowest = braking_at;
+  bool held = false;
+  ASSERT_TRUE(run(30.0, [&] {
+    if (x.true_position_mm() < 140.0) slowest = std::min(slowest, x.velocity_mm_s());  // before its end
+    held = held || sup_->state() == State::held;
+    return sup_->state() == State::complete;
+  })) << sup_->failure().view();
+  EXPECT_FALSE(held);
+  EXPECT_GT(slowest, 0.5 * braking_at) << "never braked to rest";
+  EXPECT_NEAR(now().axes[0].encoder_mm, 150.0, 0.1);
+  EXPECT_NEAR(now().axes[1].scu_mm, 75.0, 0.1);
+  EXPECT_TRUE(rec_.all<journal::Note>().empty()) << "a time-synchronised move needs no note";
+}
+
+// `path: line` asks for a straight line; resumed from a moving hold the axes' brakes (each at its own
+// ramp) have left it, so the plan is time-synchronised instead, and the journal says so.
+TEST_F(SupervisorTest, ALineResumedOffTheLineIsTimeSynchronisedWithANote) {
+  load("  - move: {to: {x: 150, z: 75}, speed_mm_s: 12, path: line}\n");
+  ASSERT_TRUE(sup_->command(Command::start, "test", t()));
+  ASSERT_TRUE(run(30.0, [&] { return now().axes[0].encoder_mm > 40.0; }));
+  EXPECT_TRUE(rec_.all<journal::Note>().empty()) << "from rest the line is possible";
+  ASSERT_TRUE(sup_->command(Command::hold, "test", t()));
+  (void)run(0.1, [] { return false; });
+  ASSERT_TRUE(sup_->command(Command::unhold, "test", t()));
+  ASSERT_TRUE(run_to(State::complete)) << sup_->failure().view();
+  std::string text;  // one note, posted in parts (journal::NoteWriter)
+  int notes = 0;
+  for (const auto& [time, note] : rec_.all<journal::Note>()) {
+    text += note.text.view();
+    notes += note.continued ? 0 : 1;
+  }
+  EXPECT_EQ(notes, 1) << text;
+  EXPECT_NE(text.find("step 1: phase synchronisation impossible"), std::string::npos) << text;
+}
+
 // The SCU's motion bit comes with its RC reply, up to a keep-alive (100 ms) after a move went out: a
 // hold or stop in that gap must not take the not-yet-reported motion for rest.
 class MotionBitLag : public SupervisorTest, public ::testing::WithParamInterface<Command> {};
