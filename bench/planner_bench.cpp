@@ -8,7 +8,8 @@
 //    means time-optimal), on the first --oracle problems;
 //  - the reference measured in the same run: the oracle's own compute time per DoF, and the
 //    planner's speed-up over it.
-// Usage: planner_bench [--problems N (20000)] [--oracle N (1000)] [--seed S] [--only 3rest|3moving|6rest|6moving]
+// Usage: planner_bench [--problems N (20000)] [--oracle N (1000)] [--seed S] [--only
+// 3rest|3moving|6rest|6moving]
 // (--only runs one configuration: for a profiler).
 
 #include <algorithm>
@@ -127,7 +128,9 @@ int main(int argc, char** argv) {
     } else if (a == "--only" && i + 1 < argc) {
       o.only = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: planner_bench [--problems N] [--oracle N] [--seed S] [--only 3rest|3moving|6rest|6moving]\n");
+      std::fprintf(stderr,
+                   "usage: planner_bench [--problems N] [--oracle N] [--seed S] [--only "
+                   "3rest|3moving|6rest|6moving]\n");
       return 2;
     }
   }
