@@ -69,7 +69,8 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
     min_duration_ = brake_.duration() + rest_to_rest_time(target_offset_, limits);
     return AxisStatus::ok;
   }
-  reach_ = reach_time(v, a, target.velocity, target.acceleration, limits);
+  const Reach fastest = reach(v, a, target.velocity, target.acceleration, limits);
+  reach_ = fastest.time;
 
   // A target acceleration may leave a gap of durations with no way to its velocity and
   // acceleration (see velocity_gap): the search then runs before it (a window) and after it.
@@ -86,8 +87,9 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
     // A target at rest can be reached at any duration from the shortest on and then held, so the
     // reachable positions only grow with the duration: no dip on either side. At the reach time
     // they are one point (only one profile gets to rest that fast): the target is beyond it on one
-    // side at most, which then falls short until its root.
-    const double p = extremes_[0].position(from);
+    // side at most, which then falls short until its root. (A velocity gap before a target at rest
+    // ends at the reach time: `from` is the reach time up to rounding.)
+    const double p = fastest.position;
     if (std::isnan(p)) return AxisStatus::unsupported_target;
     double t = from;
     if (p < target_offset_) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "planner/jerk_profile.hpp"
+
 namespace cellctl::planner {
 namespace {
 
@@ -12,13 +14,16 @@ struct Levels {
   double a1, t2, a3, t6;
 };
 
-// The shortest velocity change (a0 -> peak >= max(a0, af) -> af) raising the velocity by dv,
-// with the peak held at a_cap if it would exceed it; infinity when this shape cannot do it.
-double rise_time(double a0, double af, double dv, double a_cap, double j) noexcept {
+// The shortest velocity change (a0 -> peak >= max(a0, af) -> af) from v0 to vf, with the peak
+// held at a_cap if it would exceed it, and the distance it covers; an infinite time when this shape
+// cannot do it.
+Reach rise(double v0, double a0, double vf, double af, double a_cap, double j) noexcept {
+  const double dv = vf - v0;
   const double floor_peak = std::max(a0, af);
   const double x = (2.0 * j * dv + a0 * a0 + af * af) / 2.0;
   const double tol = 1e-12 * (std::abs(a0) + std::abs(af) + a_cap);
-  if (x < -tol * tol * 1e12) return std::numeric_limits<double>::infinity();
+  constexpr Reach kNever{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()};
+  if (x < -tol * tol * 1e12) return kNever;
   const double r = std::sqrt(std::max(x, 0.0));
   double peak = 0.0;
   if (-r >= floor_peak - tol) {
@@ -26,11 +31,18 @@ double rise_time(double a0, double af, double dv, double a_cap, double j) noexce
   } else if (r >= floor_peak - tol) {
     peak = std::max(r, floor_peak);
   } else {
-    return std::numeric_limits<double>::infinity();
+    return kNever;
   }
-  if (peak <= a_cap) return (2.0 * peak - a0 - af) / j;
-  const double hold = (dv - (2.0 * a_cap * a_cap - a0 * a0 - af * af) / (2.0 * j)) / a_cap;
-  return (2.0 * a_cap - a0 - af) / j + std::max(0.0, hold);
+  double hold = 0.0;
+  if (peak > a_cap) {
+    peak = a_cap;
+    hold = std::max(0.0, (dv - (2.0 * a_cap * a_cap - a0 * a0 - af * af) / (2.0 * j)) / a_cap);
+  }
+  MotionState s{0.0, v0, a0};
+  s = integrate(s, j, (peak - a0) / j);
+  s = integrate(s, 0.0, hold);
+  s = integrate(s, -j, (peak - af) / j);
+  return {(2.0 * peak - a0 - af) / j + hold, s.position};
 }
 
 // The gap for a0, af >= 0 (see velocity_gap): dv the velocity change, amin < 0.
@@ -58,11 +70,11 @@ Gap velocity_gap(double v0, double a0, double vf, double af, const AxisLimits& l
   return {};
 }
 
-double reach_time(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept {
-  const double j = limits.jerk;
-  const double up = rise_time(a0, af, vf - v0, limits.max_acceleration, j);
-  const double down = rise_time(-a0, -af, v0 - vf, -limits.min_acceleration, j);
-  return std::min(up, down);
+Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept {
+  const Reach up = rise(v0, a0, vf, af, limits.max_acceleration, limits.jerk);
+  Reach down = rise(-v0, -a0, -vf, -af, -limits.min_acceleration, limits.jerk);
+  down.position = -down.position;
+  return down.time < up.time ? down : up;
 }
 
 FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,

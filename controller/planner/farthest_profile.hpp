@@ -25,10 +25,15 @@ inline constexpr std::array<double, 7> kFarthestJerkSigns{1.0, 0.0, -1.0, 0.0, -
 
 using SevenDurations = std::array<double, 7>;
 
-// The shortest time in which (v0, a0) can become (vf, af) within the limits, the position ignored.
-// Both states must be inside the limits (see is_safe in axis_profile.hpp).
-[[nodiscard]] double reach_time(double v0, double a0, double vf, double af,
-                                const AxisLimits& limits) noexcept;
+// The shortest time in which (v0, a0) can become (vf, af) within the limits (the reach time), and
+// the distance covered in it: only one profile is that fast, so the farthest and the nearest
+// position at the reach time are this one. Both states must be inside the limits (see is_safe in
+// brake.hpp); the time is infinite (the distance NaN) when no such change exists.
+struct Reach {
+  double time = 0.0;
+  double position = 0.0;
+};
+[[nodiscard]] Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept;
 
 // Durations (lo, hi) in which (v0, a0) cannot become (vf, af), the position ignored. With a0 and af
 // of one sign, say both >= 0, the least velocity change in T is made by dipping the acceleration
@@ -56,7 +61,7 @@ class FarthestProfile {
   // grows linearly with slope max_velocity.
   [[nodiscard]] double cruise_from() const noexcept { return cruise_from_; }
 
-  // The seven durations for duration T (>= reach_time). False only if no case fits, which means
+  // The seven durations for duration T (>= the reach time). False only if no case fits, which means
   // T is below the reach time (by more than rounding). `rates`, if given, gets each duration's
   // derivative with respect to T within the case that fits (for position_and_slope).
   [[nodiscard]] bool durations(double T, SevenDurations& t, SevenDurations* rates = nullptr) const noexcept;

@@ -1,5 +1,6 @@
 // The farthest profile's slope (d position / d T), which the Newton search for the shortest
 // duration relies on: against finite differences on random problems, every case of active bounds.
+// The reach time's distance, which stands for both extremes there.
 
 #include "planner/farthest_profile.hpp"
 
@@ -22,7 +23,7 @@ TEST(FarthestProfile, SlopeMatchesFiniteDifferences) {
         rng, testing::Start::moving, n % 2 == 0 ? testing::Target::at_rest : testing::Target::moving);
     const AxisLimits l{p.limits.vmax, p.limits.vmin, p.limits.amax, p.limits.amin, p.limits.jerk};
     const FarthestProfile f(p.v0, p.a0, p.vf, p.af, l);
-    const double reach = reach_time(p.v0, p.a0, p.vf, p.af, l);
+    const double reach = planner::reach(p.v0, p.a0, p.vf, p.af, l).time;
     if (!(f.cruise_from() > reach)) continue;
     const double T = reach + (f.cruise_from() - reach) * (0.01 + 0.98 * u01(rng));
     double slope = 0.0;
@@ -38,6 +39,21 @@ TEST(FarthestProfile, SlopeMatchesFiniteDifferences) {
     ++checked;
   }
   EXPECT_GT(checked, 1000);
+}
+
+TEST(FarthestProfile, BothExtremesAtTheReachTimeAreTheFastestProfile) {
+  std::mt19937_64 rng(8);
+  for (int n = 0; n < 20000; ++n) {
+    const auto target = static_cast<testing::Target>(n % 3);
+    const oracle::Problem p = testing::random_problem(rng, testing::Start::moving, target);
+    const AxisLimits l{p.limits.vmax, p.limits.vmin, p.limits.amax, p.limits.amin, p.limits.jerk};
+    const Reach r = reach(p.v0, p.a0, p.vf, p.af, l);
+    ASSERT_TRUE(std::isfinite(r.time)) << n;
+    const double far = FarthestProfile(p.v0, p.a0, p.vf, p.af, l).position(r.time);
+    const double near = -FarthestProfile(-p.v0, -p.a0, -p.vf, -p.af, l.mirrored()).position(r.time);
+    EXPECT_NEAR(r.position, far, 1e-10 * (1.0 + std::abs(far))) << n;
+    EXPECT_NEAR(r.position, near, 1e-10 * (1.0 + std::abs(near))) << n;
+  }
 }
 
 }  // namespace
