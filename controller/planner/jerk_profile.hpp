@@ -5,6 +5,7 @@
 // place where the physics lives. Fixed-size storage: building and evaluating never allocate.
 
 #include <array>
+#include <cassert>
 #include <cstddef>
 
 namespace cellctl::planner {
@@ -20,8 +21,15 @@ struct JerkSegment {
   double duration = 0.0;
 };
 
-// The state reached from `s` after `t` seconds at constant jerk `jerk`.
-[[nodiscard]] MotionState integrate(const MotionState& s, double jerk, double t) noexcept;
+// The state reached from `s` after `t` seconds at constant jerk `jerk`. Inline (as append() is):
+// building a profile chains these, and out of line each state went through memory.
+[[nodiscard]] inline MotionState integrate(const MotionState& s, double jerk, double t) noexcept {
+  return MotionState{
+      s.position + t * (s.velocity + t * (s.acceleration / 2.0 + t * jerk / 6.0)),
+      s.velocity + t * (s.acceleration + t * jerk / 2.0),
+      s.acceleration + t * jerk,
+  };
+}
 
 // Where a position extremum of a profile is, and when.
 struct PositionExtremum {
@@ -42,10 +50,29 @@ class JerkProfile {
 
   JerkProfile() = default;
   explicit JerkProfile(const MotionState& start) noexcept : start_(start), end_(start) {}
+  // Copies only the segments in use: planning copies profiles several times each (a brake into its
+  // axis, into the built profile, the trajectory into the caller's), and a whole copy cost more than
+  // building them.
+  JerkProfile(const JerkProfile& other) noexcept { *this = other; }
+  JerkProfile& operator=(const JerkProfile& other) noexcept {
+    start_ = other.start_;
+    end_ = other.end_;
+    count_ = other.count_;
+    duration_ = other.duration_;
+    for (std::size_t i = 0; i < count_; ++i) segments_[i] = other.segments_[i];
+    return *this;
+  }
+  ~JerkProfile() = default;
 
   // Adds a segment after the last one; zero-length segments are dropped. Precondition: fewer than
   // kMaxSegments segments so far (the shapes are built by code that knows their length).
-  void append(JerkSegment segment) noexcept;
+  void append(JerkSegment segment) noexcept {
+    if (!(segment.duration > 0.0)) return;
+    assert(count_ < kMaxSegments);
+    segments_[count_++] = segment;
+    end_ = integrate(end_, segment.jerk, segment.duration);
+    duration_ += segment.duration;
+  }
 
   [[nodiscard]] const MotionState& start() const noexcept { return start_; }
   [[nodiscard]] const MotionState& end() const noexcept { return end_; }
