@@ -14,35 +14,44 @@ struct Levels {
   double a1, t2, a3, t6;
 };
 
-// The shortest velocity change (a0 -> peak >= max(a0, af) -> af) from v0 to vf, with the peak
-// held at a_cap if it would exceed it, and the distance it covers; an infinite time when this shape
-// cannot do it.
-Reach rise(double v0, double a0, double vf, double af, double a_cap, double j) noexcept {
+// The shortest velocity change (a0 -> peak >= max(a0, af) -> af) from v0 to vf: its peak and
+// how long that is held (at a_cap, when the peak would exceed it), and its duration; an infinite
+// duration when this shape cannot do it.
+struct Rise {
+  double peak = 0.0;
+  double hold = 0.0;
+  double time = std::numeric_limits<double>::infinity();
+};
+Rise rise(double v0, double a0, double vf, double af, double a_cap, double j) noexcept {
   const double dv = vf - v0;
   const double floor_peak = std::max(a0, af);
   const double x = (2.0 * j * dv + a0 * a0 + af * af) / 2.0;
   const double tol = 1e-12 * (std::abs(a0) + std::abs(af) + a_cap);
-  constexpr Reach kNever{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()};
-  if (x < -tol * tol * 1e12) return kNever;
+  if (x < -tol * tol * 1e12) return {};
   const double r = std::sqrt(std::max(x, 0.0));
-  double peak = 0.0;
+  Rise rise;
   if (-r >= floor_peak - tol) {
-    peak = std::max(-r, floor_peak);  // both ends below zero and the change small: peak below zero
+    rise.peak = std::max(-r, floor_peak);  // both ends below zero and the change small: peak below zero
   } else if (r >= floor_peak - tol) {
-    peak = std::max(r, floor_peak);
+    rise.peak = std::max(r, floor_peak);
   } else {
-    return kNever;
+    return {};
   }
-  double hold = 0.0;
-  if (peak > a_cap) {
-    peak = a_cap;
-    hold = std::max(0.0, (dv - (2.0 * a_cap * a_cap - a0 * a0 - af * af) / (2.0 * j)) / a_cap);
+  if (rise.peak > a_cap) {
+    rise.peak = a_cap;
+    rise.hold = std::max(0.0, (dv - (2.0 * a_cap * a_cap - a0 * a0 - af * af) / (2.0 * j)) / a_cap);
   }
+  rise.time = (2.0 * rise.peak - a0 - af) / j + rise.hold;
+  return rise;
+}
+
+// The distance a rise from (v0, a0) to af covers.
+double distance(const Rise& rise, double v0, double a0, double af, double j) noexcept {
   MotionState s{0.0, v0, a0};
-  s = integrate(s, j, (peak - a0) / j);
-  s = integrate(s, 0.0, hold);
-  s = integrate(s, -j, (peak - af) / j);
-  return {(2.0 * peak - a0 - af) / j + hold, s.position};
+  s = integrate(s, j, (rise.peak - a0) / j);
+  s = integrate(s, 0.0, rise.hold);
+  s = integrate(s, -j, (rise.peak - af) / j);
+  return s.position;
 }
 
 // The gap for a0, af >= 0 (see velocity_gap): dv the velocity change, amin < 0.
@@ -71,10 +80,12 @@ Gap velocity_gap(double v0, double a0, double vf, double af, const AxisLimits& l
 }
 
 Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept {
-  const Reach up = rise(v0, a0, vf, af, limits.max_acceleration, limits.jerk);
-  Reach down = rise(-v0, -a0, -vf, -af, -limits.min_acceleration, limits.jerk);
-  down.position = -down.position;
-  return down.time < up.time ? down : up;
+  const double j = limits.jerk;
+  const Rise up = rise(v0, a0, vf, af, limits.max_acceleration, j);
+  const Rise down = rise(-v0, -a0, -vf, -af, -limits.min_acceleration, j);
+  if (down.time < up.time) return {down.time, -distance(down, -v0, -a0, -af, j)};
+  if (std::isinf(up.time)) return {up.time, std::numeric_limits<double>::quiet_NaN()};
+  return {up.time, distance(up, v0, a0, af, j)};
 }
 
 FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
@@ -176,6 +187,17 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t, SevenDurations* rat
     return true;
   };
 
+  // Both held: linear in the two hold times. Tried first: the commonest case (long moves).
+  {
+    const double rest = T - (2.0 * amax - a0 - 2.0 * amin + af) / j;
+    const double base = (2.0 * amax * amax - a0 * a0 + af * af - 2.0 * amin * amin) / (2.0 * j);
+    const double t2 = (dv - base - amin * rest) / (amax - amin);
+    const auto rate = [&] {
+      const double dt2 = -amin / (amax - amin);
+      return Levels{0.0, dt2, 0.0, 1.0 - dt2};
+    };
+    if (accept(amax, t2, amin, rest - t2, rate)) return true;
+  }
   // No bound active: T = (2 (a1 - a3) + af - a0) / J and 2 J dv = 2 a1^2 - 2 a3^2 + af^2 - a0^2.
   // s grows with T at J / 2.
   const double s = (j * T + a0 - af) / 2.0;
@@ -219,17 +241,6 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t, SevenDurations* rat
       };
       if (accept(a1, 0.0, amin, T - (2.0 * a1 - a0 - 2.0 * amin + af) / j, rate)) return true;
     }
-  }
-  // Both held: linear in the two hold times.
-  {
-    const double rest = T - (2.0 * amax - a0 - 2.0 * amin + af) / j;
-    const double base = (2.0 * amax * amax - a0 * a0 + af * af - 2.0 * amin * amin) / (2.0 * j);
-    const double t2 = (dv - base - amin * rest) / (amax - amin);
-    const auto rate = [&] {
-      const double dt2 = -amin / (amax - amin);
-      return Levels{0.0, dt2, 0.0, 1.0 - dt2};
-    };
-    if (accept(amax, t2, amin, rest - t2, rate)) return true;
   }
   return false;
 }
@@ -290,14 +301,14 @@ double FarthestProfile::position(double T) const noexcept {
 
 double FarthestProfile::position(double T, SevenDurations& t) const noexcept {
   if (!durations(T, t)) return std::numeric_limits<double>::quiet_NaN();
-  return t[3] > 0.0 ? cruise_position_ + lim_.max_velocity * t[3] : position_of(t);
+  return T >= cruise_from_ ? cruise_position_ + lim_.max_velocity * t[3] : position_of(t);
 }
 
 double FarthestProfile::position_and_slope(double T, double& slope) const noexcept {
   SevenDurations t{};
   SevenDurations rates{};
   if (!durations(T, t, &rates)) return std::numeric_limits<double>::quiet_NaN();
-  if (t[3] > 0.0) {
+  if (T >= cruise_from_) {
     slope = lim_.max_velocity;
     return cruise_position_ + lim_.max_velocity * t[3];
   }

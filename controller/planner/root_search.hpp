@@ -93,7 +93,7 @@ double newton_root(const GS& gs, double lo, double g_lo, double hi, double g_hi,
       lo = x;  // also a NaN: no profile there, the caller has noted it
       g_lo = g;
     }
-    const double ulp = std::nextafter(hi, std::numeric_limits<double>::infinity()) - hi;
+    const double ulp = hi * std::numeric_limits<double>::epsilon();  // one or two ulps of hi (> 0)
     const double step = g / slope;
     const bool converged = std::abs(step) <= 8.0 * ulp;
     if (hi - lo <= 8.0 * ulp || (converged && g >= 0.0)) break;
