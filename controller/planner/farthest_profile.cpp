@@ -92,31 +92,35 @@ FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
                                  const AxisLimits& limits) noexcept
     : v0_(v0), a0_(a0), vf_(vf), af_(af), lim_(limits) {
   const double j = lim_.jerk;
+  inv_jerk_ = 1.0 / j;
   const double amax = lim_.max_acceleration;
   const double amin = lim_.min_acceleration;
   const double vmax = lim_.max_velocity;
   SevenDurations& t = cruise_shape_;
-  // Up to (max_velocity, 0): +J to a1, hold, -J to 0.
+  // Up to (max_velocity, 0): +J to a1 = sqrt(x), hold, -J to 0. (Where the level is capped, as in
+  // most long moves, its root is not needed.)
   const double rise = vmax - v0;
-  double a1 = std::max(std::sqrt(std::max(0.0, (2.0 * j * rise + a0 * a0) / 2.0)), std::max(a0, 0.0));
-  if (a1 <= amax) {
-    t[0] = (a1 - a0) / j;
-    t[2] = a1 / j;
+  const double x1 = (2.0 * j * rise + a0 * a0) / 2.0;
+  if (x1 <= amax * amax) {
+    const double a1 = std::max(std::sqrt(std::max(0.0, x1)), std::max(a0, 0.0));
+    t[0] = (a1 - a0) * inv_jerk_;
+    t[2] = a1 * inv_jerk_;
   } else {
-    t[0] = (amax - a0) / j;
-    t[1] = std::max(0.0, (rise - (2.0 * amax * amax - a0 * a0) / (2.0 * j)) / amax);
-    t[2] = amax / j;
+    t[0] = (amax - a0) * inv_jerk_;
+    t[1] = std::max(0.0, (rise - (2.0 * amax * amax - a0 * a0) * 0.5 * inv_jerk_) / amax);
+    t[2] = amax * inv_jerk_;
   }
-  // Down from (max_velocity, 0) to (vf, af): -J to a3, hold, +J to af.
+  // Down from (max_velocity, 0) to (vf, af): -J to a3 = -sqrt(x), hold, +J to af.
   const double fall = vmax - vf;
-  double a3 = std::min(-std::sqrt(std::max(0.0, (2.0 * j * fall + af * af) / 2.0)), std::min(af, 0.0));
-  if (a3 >= amin) {
-    t[4] = -a3 / j;
-    t[6] = (af - a3) / j;
+  const double x3 = (2.0 * j * fall + af * af) / 2.0;
+  if (x3 <= amin * amin) {
+    const double a3 = std::min(-std::sqrt(std::max(0.0, x3)), std::min(af, 0.0));
+    t[4] = -a3 * inv_jerk_;
+    t[6] = (af - a3) * inv_jerk_;
   } else {
-    t[4] = -amin / j;
-    t[5] = std::max(0.0, (fall - (2.0 * amin * amin - af * af) / (2.0 * j)) / -amin);
-    t[6] = (af - amin) / j;
+    t[4] = -amin * inv_jerk_;
+    t[5] = std::max(0.0, (fall - (2.0 * amin * amin - af * af) * 0.5 * inv_jerk_) / -amin);
+    t[6] = (af - amin) * inv_jerk_;
   }
   for (const double d : t) cruise_from_ += d;
   half_jerk_ = j / 2.0;
@@ -166,9 +170,9 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t, SevenDurations* rat
     a3 = std::clamp(a3, amin, std::min(af, a1));
     t2 = std::max(t2, 0.0);
     t6 = std::max(t6, 0.0);
-    const double t1 = (a1 - a0) / j;
-    double t3 = (a1 - a3) / j;
-    const double t7 = (af - a3) / j;
+    const double t1 = (a1 - a0) * inv_jerk_;
+    double t3 = (a1 - a3) * inv_jerk_;
+    const double t7 = (af - a3) * inv_jerk_;
     // What T leaves over these durations: rounding, or what the clamping moved.
     const double left = T - t1 - t2 - t3 - t6 - t7;
     if (t3 + left < -tol_t) return false;
@@ -182,15 +186,16 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t, SevenDurations* rat
     t = SevenDurations{t1, t2, t3, 0.0, 0.0, t6, t7};
     if (rates != nullptr) {
       const Levels r = rate();
-      *rates = SevenDurations{r.a1 / j, r.t2, (r.a1 - r.a3) / j, 0.0, 0.0, r.t6, -r.a3 / j};
+      *rates = SevenDurations{r.a1 * inv_jerk_, r.t2, (r.a1 - r.a3) * inv_jerk_, 0.0, 0.0, r.t6,
+                              -r.a3 * inv_jerk_};
     }
     return true;
   };
 
   // Both held: linear in the two hold times. Tried first: the commonest case (long moves).
   {
-    const double rest = T - (2.0 * amax - a0 - 2.0 * amin + af) / j;
-    const double base = (2.0 * amax * amax - a0 * a0 + af * af - 2.0 * amin * amin) / (2.0 * j);
+    const double rest = T - (2.0 * amax - a0 - 2.0 * amin + af) * inv_jerk_;
+    const double base = (2.0 * amax * amax - a0 * a0 + af * af - 2.0 * amin * amin) * 0.5 * inv_jerk_;
     const double t2 = (dv - base - amin * rest) / (amax - amin);
     const auto rate = [&] {
       const double dt2 = -amin / (amax - amin);

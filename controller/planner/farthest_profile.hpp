@@ -94,7 +94,8 @@ class FarthestProfile {
   SevenDurations cruise_shape_{};  // with zero cruise
   double cruise_from_ = 0.0;
   double cruise_position_ = 0.0;  // the end position at cruise_from_: later ones are linear in T
-  double half_jerk_ = 0.0;        // jerk / 2 and / 6: the integration multiplies, never divides
+  double inv_jerk_ = 0.0;         // 1 / jerk, jerk / 2 and / 6: the hot paths multiply, never divide
+  double half_jerk_ = 0.0;
   double sixth_jerk_ = 0.0;
 };
 
