@@ -16,9 +16,11 @@ struct MotionState {
   double acceleration = 0.0;
 };
 
+// A plain aggregate (JerkSegment{} is zero; no default member values): a profile's unused segment
+// slots are then left unwritten, which saved zeroing 256 bytes per profile and plan.
 struct JerkSegment {
-  double jerk = 0.0;
-  double duration = 0.0;
+  double jerk;
+  double duration;
 };
 
 // The state reached from `s` after `t` seconds at constant jerk `jerk`. Inline (as append() is):
@@ -91,7 +93,7 @@ class JerkProfile {
  private:
   MotionState start_;
   MotionState end_;
-  std::array<JerkSegment, kMaxSegments> segments_{};
+  std::array<JerkSegment, kMaxSegments> segments_;  // the first count_ are set (see JerkSegment)
   std::size_t count_ = 0;
   double duration_ = 0.0;
 };
