@@ -316,27 +316,29 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
     share = std::clamp((target_offset_ - near) / (far - near), 0.0, 1.0);
   }
   const double j = limits_.jerk;
+  std::array<JerkSegment, 2 * kFarthestJerkSigns.size() - 1> pieces;  // the first n are set
+  std::size_t n = 0;
   if (share == 1.0 || share == 0.0) {
     const bool use_up = share == 1.0;
     const SevenDurations& d = use_up ? up : down;
     const double sign = use_up ? 1.0 : -1.0;
-    for (std::size_t i = 0; i < d.size(); ++i) out.append({sign * kFarthestJerkSigns[i] * j, d[i]});
-    return arrives(out);
+    for (std::size_t i = 0; i < d.size(); ++i) pieces[n++] = {sign * kFarthestJerkSigns[i] * j, d[i]};
+  } else {
+    // Merge the two switching sequences; in each piece the jerk is the blend of both.
+    std::size_t iu = 0;
+    std::size_t id = 0;
+    double left_u = up[0];
+    double left_d = down[0];
+    while (iu < up.size() && id < down.size() && n < pieces.size()) {
+      const double piece = std::min(left_u, left_d);
+      pieces[n++] = {j * (share * kFarthestJerkSigns[iu] - (1.0 - share) * kFarthestJerkSigns[id]), piece};
+      left_u -= piece;
+      left_d -= piece;
+      if (left_u <= 0.0 && ++iu < up.size()) left_u = up[iu];
+      if (left_d <= 0.0 && ++id < down.size()) left_d = down[id];
+    }
   }
-  // Merge the two switching sequences; in each piece the jerk is the blend of both.
-  std::size_t iu = 0;
-  std::size_t id = 0;
-  double left_u = up[0];
-  double left_d = down[0];
-  while (iu < up.size() && id < down.size()) {
-    const double piece = std::min(left_u, left_d);
-    const double jerk = j * (share * kFarthestJerkSigns[iu] - (1.0 - share) * kFarthestJerkSigns[id]);
-    out.append({jerk, piece});
-    left_u -= piece;
-    left_d -= piece;
-    if (left_u <= 0.0 && ++iu < up.size()) left_u = up[iu];
-    if (left_d <= 0.0 && ++id < down.size()) left_d = down[id];
-  }
+  out.append(pieces.data(), n);
   return arrives(out);
 }
 

@@ -66,15 +66,26 @@ class JerkProfile {
   }
   ~JerkProfile() = default;
 
-  // Adds a segment after the last one; zero-length segments are dropped. Precondition: fewer than
-  // kMaxSegments segments so far (the shapes are built by code that knows their length).
-  void append(JerkSegment segment) noexcept {
-    if (!(segment.duration > 0.0)) return;
-    assert(count_ < kMaxSegments);
-    segments_[count_++] = segment;
-    end_ = integrate(end_, segment.jerk, segment.duration);
-    duration_ += segment.duration;
+  // Adds segments after the last one; zero-length segments are dropped. Precondition: they fit in
+  // kMaxSegments (the shapes are built by code that knows their length). Several at once keep the
+  // state in registers: one at a time it went through memory, a stall per segment.
+  void append(const JerkSegment* segments, std::size_t n) noexcept {
+    MotionState end = end_;
+    double duration = duration_;
+    std::size_t count = count_;
+    for (std::size_t i = 0; i < n; ++i) {
+      const JerkSegment& segment = segments[i];
+      if (!(segment.duration > 0.0)) continue;
+      assert(count < kMaxSegments);
+      segments_[count++] = segment;
+      end = integrate(end, segment.jerk, segment.duration);
+      duration += segment.duration;
+    }
+    end_ = end;
+    duration_ = duration;
+    count_ = count;
   }
+  void append(JerkSegment segment) noexcept { append(&segment, 1); }
 
   [[nodiscard]] const MotionState& start() const noexcept { return start_; }
   [[nodiscard]] const MotionState& end() const noexcept { return end_; }
