@@ -284,7 +284,7 @@ double AxisProfile::shortest(const FarthestProfile& f, double target, double slo
   };
   // Newton from the tangent at the cruise's start: before it the farthest position is convex as a
   // rule (the closer the profile comes to cruising, the more it gains from more time), so the steps
-  // stay on the feasible side and end there (about five evaluations, regula falsi took sixteen).
+  // stay on the feasible side and end there (about four evaluations, regula falsi took sixteen).
   const double root = newton_root(g, t0, g0, tc, gc, tc - gc / slope);
   return gap ? kInfinity : root;
 }

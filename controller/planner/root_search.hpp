@@ -97,6 +97,13 @@ double newton_root(const GS& gs, double lo, double g_lo, double hi, double g_hi,
     const double step = g / slope;
     const bool converged = std::abs(step) <= 8.0 * ulp;
     if (hi - lo <= 8.0 * ulp || (converged && g >= 0.0)) break;
+    // Converging quadratically from the feasible side, the step after this one would be about
+    // step^3 / step_before^2: below rounding, this step lands on the root (a few ulps added for g's
+    // own rounding) and the evaluation that would only confirm it is saved.
+    if (g >= 0.0 && !converged && std::abs(step) <= 1e-6 * hi && std::abs(step) < step_before / 2.0) {
+      const double next_step = std::abs(step) * (step / step_before) * (step / step_before);
+      if (next_step <= ulp) return x - step + 4.0 * ulp;
+    }
     double next = x - step;
     if (converged) {
       // Short by rounding: step past the root, further each time rounding says no.
