@@ -27,7 +27,7 @@ struct JerkSegment {
 // building a profile chains these, and out of line each state went through memory.
 [[nodiscard]] inline MotionState integrate(const MotionState& s, double jerk, double t) noexcept {
   return MotionState{
-      s.position + t * (s.velocity + t * (s.acceleration / 2.0 + t * jerk / 6.0)),
+      s.position + t * (s.velocity + t * (s.acceleration / 2.0 + t * jerk * (1.0 / 6.0))),
       s.velocity + t * (s.acceleration + t * jerk / 2.0),
       s.acceleration + t * jerk,
   };
