@@ -238,22 +238,36 @@ AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double ta
     SevenDurations d{};
     if (f.durations(left, d) && f.lowest_velocity_of(d) >= 0.0) return set;
   }
-  // The lowest sample after `left`; if none is short, refine its neighbourhood (a golden-section
-  // search, unimodal there).
+  // The lowest sample after `left`, and the lowest one below both its neighbours: the lowest can
+  // be the first (g starts near zero at the reach time) with the dip between two later samples
+  // (seed 3 problem 507850 of the accelerating targets, 0.07 s wide between samples 0.12 s apart).
+  // If no sample is short, their neighbourhoods are refined (golden-section searches, unimodal there).
   int lowest = first;
+  int valley = -1;
   for (int k = first + 1; k <= kSamples; ++k) {
-    if (gs[static_cast<std::size_t>(k)] < gs[static_cast<std::size_t>(lowest)]) lowest = k;
+    const auto i = static_cast<std::size_t>(k);
+    if (gs[i] < gs[static_cast<std::size_t>(lowest)]) lowest = k;
+    if (k < kSamples && gs[i] <= gs[i - 1] && gs[i] <= gs[i + 1] &&
+        (valley < 0 || gs[i] < gs[static_cast<std::size_t>(valley)])) {
+      valley = k;
+    }
   }
   // A dip no deeper than rounding is none: a profile inside it would miss the target by less than
   // the arrival tolerance, and its ends would be noise.
   const double shallow = -1e-12 * (1.0 + std::abs(target));
-  const auto li = static_cast<std::size_t>(lowest);
-  double t_min = at[li];
-  if (!(gs[li] < shallow)) {
-    const double lo = lowest > first ? at[li - 1] : left;
-    const double hi = lowest < kSamples ? at[li + 1] : tc;
-    t_min = golden_minimum(g, std::max(lo, left), hi, shallow);
-    if (set.gap || !(g(t_min) < shallow)) return set;
+  double t_min = at[static_cast<std::size_t>(lowest)];
+  if (!(gs[static_cast<std::size_t>(lowest)] < shallow)) {
+    bool found = false;
+    for (const int k : {lowest, valley == lowest ? -1 : valley}) {
+      if (found || k < 0) continue;
+      const auto i = static_cast<std::size_t>(k);
+      const double lo = k > first ? at[i - 1] : left;
+      const double hi = k < kSamples ? at[i + 1] : tc;
+      t_min = golden_minimum(g, std::max(lo, left), hi, shallow);
+      if (set.gap) return set;
+      found = g(t_min) < shallow;
+    }
+    if (!found) return set;
   }
   // The dip's ends: the last non-short point before t_min, the first after it.
   double lo_end = left;
