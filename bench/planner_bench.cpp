@@ -8,7 +8,9 @@
 //    means time-optimal), on the first --oracle problems;
 //  - the reference measured in the same run: the oracle's own compute time per DoF, and the
 //    planner's speed-up over it.
-// Usage: planner_bench [--problems N (20000)] [--oracle N (1000)] [--seed S]
+// Usage: planner_bench [--problems N (20000)] [--oracle N (1000)] [--seed S] [--only
+// 3rest|3moving|6rest|6moving]
+// (--only runs one configuration: for a profiler).
 
 #include <algorithm>
 #include <chrono>
@@ -32,10 +34,12 @@ struct Options {
   long problems = 20000;
   long oracle = 1000;
   std::uint64_t seed = 11;
+  std::string only;  // empty: all four configurations
 };
 
 template <int N>
 void run(const Options& o, testing::Start start, const char* name) {
+  if (!o.only.empty() && o.only != std::to_string(N) + name) return;
   std::mt19937_64 rng(o.seed + static_cast<std::uint64_t>(N) * 10 +
                       (start == testing::Start::moving ? 1 : 0));
   std::vector<std::vector<oracle::Problem>> problems(static_cast<std::size_t>(o.problems));
@@ -121,8 +125,12 @@ int main(int argc, char** argv) {
       o.oracle = std::strtol(argv[++i], nullptr, 10);
     } else if (a == "--seed" && i + 1 < argc) {
       o.seed = std::strtoull(argv[++i], nullptr, 10);
+    } else if (a == "--only" && i + 1 < argc) {
+      o.only = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: planner_bench [--problems N] [--oracle N] [--seed S]\n");
+      std::fprintf(stderr,
+                   "usage: planner_bench [--problems N] [--oracle N] [--seed S] [--only "
+                   "3rest|3moving|6rest|6moving]\n");
       return 2;
     }
   }

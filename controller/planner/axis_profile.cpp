@@ -7,73 +7,10 @@
 
 #include "planner/brake.hpp"
 #include "planner/rest_to_rest.hpp"
+#include "planner/root_search.hpp"
 
 namespace cellctl::planner {
 namespace {
-
-// g(lo) and g(hi) lie on different sides of "g >= 0"; narrows the bracket to the last bit and
-// returns its end on the side where g >= 0 (so the returned duration is feasible for this side).
-// Regula falsi with the Illinois fix (superlinear on these smooth pieces), falling back to a
-// bisection step whenever the bracket stops halving.
-template <typename G>
-double find_root(const G& g, double lo, double hi, bool lo_reaches) noexcept {
-  double g_lo = g(lo);
-  double g_hi = g(hi);
-  int side = 0;  // which end stayed last time (for the Illinois halving)
-  double width = hi - lo;
-  for (int i = 0; i < 200; ++i) {
-    double mid = lo - g_lo * (hi - lo) / (g_hi - g_lo);
-    if (!(mid > lo && mid < hi) || i % 4 == 3) {
-      if (hi - lo > 0.5 * width) mid = lo + (hi - lo) / 2.0;
-      width = hi - lo;
-    }
-    if (!(mid > lo && mid < hi)) mid = lo + (hi - lo) / 2.0;
-    if (mid <= lo || mid >= hi) break;
-    const double g_mid = g(mid);
-    if ((g_mid >= 0.0) == lo_reaches) {
-      lo = mid;
-      g_lo = g_mid;
-      if (side == -1) g_hi /= 2.0;
-      side = -1;
-    } else {
-      hi = mid;
-      g_hi = g_mid;
-      if (side == 1) g_lo /= 2.0;
-      side = 1;
-    }
-    if (g_mid == 0.0) return mid;
-  }
-  return lo_reaches ? lo : hi;
-}
-
-// The minimum of g on [lo, hi] (unimodal there) by golden-section search: its argument.
-template <typename G>
-double golden_minimum(const G& g, double lo, double hi, double below) noexcept {
-  constexpr double kInvPhi = 0.6180339887498949;
-  double x1 = hi - kInvPhi * (hi - lo);
-  double x2 = lo + kInvPhi * (hi - lo);
-  double g1 = g(x1);
-  double g2 = g(x2);
-  // To the tenth digit of the range is enough to tell whether the minimum is below zero (the
-  // function is flat there); a value below `below` ends the search at once.
-  const double width = 1e-10 * (hi - lo);
-  for (int i = 0; i < 200 && hi - lo > width && g1 >= below && g2 >= below; ++i) {
-    if (g1 <= g2) {
-      hi = x2;
-      x2 = x1;
-      g2 = g1;
-      x1 = hi - kInvPhi * (hi - lo);
-      g1 = g(x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      g1 = g2;
-      x2 = lo + kInvPhi * (hi - lo);
-      g2 = g(x2);
-    }
-  }
-  return g1 <= g2 ? x1 : x2;
-}
 
 // Where g is sampled on [reach, cruise]: evenly, and ever closer to the reach time.
 constexpr std::array<double, 16> kSampleAt{0.0,      1.0 / 1024, 1.0 / 256, 1.0 / 128, 1.0 / 64, 1.0 / 32,
@@ -81,6 +18,16 @@ constexpr std::array<double, 16> kSampleAt{0.0,      1.0 / 1024, 1.0 / 256, 1.0 
                                            6.0 / 8,  7.0 / 8,    15.0 / 16, 1.0};
 constexpr int kSamples = static_cast<int>(kSampleAt.size()) - 1;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// From tc (at or after the start of f's cruise) on, f's position grows linearly with `slope`: the
+// first duration at which it reaches `target`, given gc = f.position(tc) - target, stepped up an
+// ulp at a time if rounding left it just short.
+double linear_root(const FarthestProfile& f, double target, double slope, double tc, double gc) noexcept {
+  if (gc >= 0.0) return tc;
+  double root = tc - gc / slope;
+  for (int i = 0; i < 8 && f.position(root) < target; ++i) root = std::nextafter(root, 2.0 * root + 1.0);
+  return root;
+}
 
 bool target_within(const MotionState& target, const AxisLimits& l) noexcept {
   const double v = target.velocity;
@@ -107,15 +54,23 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   target_ = target;
   const double v = main_start_.velocity;
   const double a = main_start_.acceleration;
+  const bool rest_to_rest = v == 0.0 && a == 0.0 && target.velocity == 0.0 && target.acceleration == 0.0;
+  // From rest to rest with symmetric limits (every recipe move, as a rule) the mirrored problem is
+  // the same one: the nearest profile is the farthest one negated.
+  symmetric_ = rest_to_rest && limits.min_velocity == -limits.max_velocity &&
+               limits.min_acceleration == -limits.max_acceleration;
   extremes_[0] = FarthestProfile(v, a, target.velocity, target.acceleration, limits);
-  extremes_[1] = FarthestProfile(-v, -a, -target.velocity, -target.acceleration, limits.mirrored());
-  if (v == 0.0 && a == 0.0 && target.velocity == 0.0 && target.acceleration == 0.0) {
+  extremes_[1] = symmetric_
+                     ? extremes_[0]
+                     : FarthestProfile(-v, -a, -target.velocity, -target.acceleration, limits.mirrored());
+  if (rest_to_rest) {
     // From rest to rest: closed form, and never a blocked interval.
     reach_ = 0.0;
     min_duration_ = brake_.duration() + rest_to_rest_time(target_offset_, limits);
     return AxisStatus::ok;
   }
-  reach_ = reach_time(v, a, target.velocity, target.acceleration, limits);
+  const Reach fastest = reach(v, a, target.velocity, target.acceleration, limits);
+  reach_ = fastest.time;
 
   // A target acceleration may leave a gap of durations with no way to its velocity and
   // acceleration (see velocity_gap): the search then runs before it (a window) and after it.
@@ -126,6 +81,24 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   if (gap.hi > gap.lo && gap.hi > reach_) {
     if (gap.lo > reach_) has_window = feasible_window(reach_, gap.lo, window);
     from = gap.hi;
+  }
+  const double brake = brake_.duration();
+  if (target.velocity == 0.0 && target.acceleration == 0.0 && !has_window) {
+    // A target at rest can be reached at any duration from the shortest on and then held, so the
+    // reachable positions only grow with the duration: no dip on either side. At the reach time
+    // they are one point (only one profile gets to rest that fast): the target is beyond it on one
+    // side at most, which then falls short until its root. (A velocity gap before a target at rest
+    // ends at the reach time: `from` is the reach time up to rounding.)
+    const double p = fastest.position;
+    if (std::isnan(p)) return AxisStatus::unsupported_target;
+    double t = from;
+    if (p < target_offset_) {
+      t = shortest(extremes_[0], target_offset_, limits.max_velocity, from, p - target_offset_);
+    } else if (p > target_offset_) {
+      t = shortest(extremes_[1], -target_offset_, -limits.min_velocity, from, target_offset_ - p);
+    }
+    min_duration_ = brake + t;
+    return std::isfinite(min_duration_) ? AxisStatus::ok : AxisStatus::unsupported_target;
   }
   const ShortSet up = short_set(extremes_[0], target_offset_, limits.max_velocity, from);
   const ShortSet down = short_set(extremes_[1], -target_offset_, -limits.min_velocity, from);
@@ -140,7 +113,6 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
       if (s2->dip && t > s2->dip_lo && t < s2->dip_hi) t = s2->dip_hi;
     }
   }
-  const double brake = brake_.duration();
   min_duration_ = brake + t;
   if (has_window) {
     min_duration_ = brake + window.lo;
@@ -226,26 +198,13 @@ AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double ta
     return p - target;
   };
   const double tc = std::max(f.cruise_from(), t0);
-  // From tc on g is linear with this slope: its root there, stepped up an ulp at a time if
-  // rounding left it just short.
-  const auto linear_root = [&](double gc) {
-    if (gc >= 0.0) return tc;
-    double root = tc - gc / slope;
-    for (int i = 0; i < 8 && g(root) < 0.0; ++i) root = std::nextafter(root, 2.0 * root + 1.0);
-    return root;
-  };
   const double g0 = g(t0);
   if (set.gap) return set;
-  const bool flat = tc - t0 <= 1e-15 * tc;
-  // A target at rest can be reached at any duration from the shortest on and then held, so the
-  // reachable positions only grow with the duration: no dip on either side.
-  const bool may_dip = !flat && !(target_.velocity == 0.0 && target_.acceleration == 0.0);
-  if (!may_dip) {
-    // Then the farthest position never falls with more time: one root at most.
+  if (tc - t0 <= 1e-15 * tc) {
+    // Cruising from t0 on: linear, one root at most.
     if (g0 < 0.0) {
       set.from_reach = true;
-      const double gc = g(tc);
-      set.end = gc < 0.0 || flat ? linear_root(gc) : find_root(g, t0, tc, false);
+      set.end = linear_root(f, target, slope, tc, g(tc));
     }
     return set;
   }
@@ -267,35 +226,48 @@ AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double ta
     set.from_reach = true;
     while (first <= kSamples && gs[static_cast<std::size_t>(first)] < 0.0) ++first;
     if (first > kSamples) {
-      set.end = linear_root(gs[kSamples]);
+      set.end = linear_root(f, target, slope, tc, gs[kSamples]);
       return set;
     }
     const auto i = static_cast<std::size_t>(first);
     left = find_root(g, at[i - 1], at[i], false);
     set.end = left;
-    if (!may_dip) return set;
   }
   // An extreme profile that never moves backwards only gains from more time: no dip.
   {
     SevenDurations d{};
     if (f.durations(left, d) && f.lowest_velocity_of(d) >= 0.0) return set;
   }
-  // The lowest sample after `left`; if none is short, refine its neighbourhood (a golden-section
-  // search, unimodal there).
+  // The lowest sample after `left`, and the lowest one below both its neighbours: the lowest can
+  // be the first (g starts near zero at the reach time) with the dip between two later samples
+  // (seed 3 problem 507850 of the accelerating targets, 0.07 s wide between samples 0.12 s apart).
+  // If no sample is short, their neighbourhoods are refined (golden-section searches, unimodal there).
   int lowest = first;
+  int valley = -1;
   for (int k = first + 1; k <= kSamples; ++k) {
-    if (gs[static_cast<std::size_t>(k)] < gs[static_cast<std::size_t>(lowest)]) lowest = k;
+    const auto i = static_cast<std::size_t>(k);
+    if (gs[i] < gs[static_cast<std::size_t>(lowest)]) lowest = k;
+    if (k < kSamples && gs[i] <= gs[i - 1] && gs[i] <= gs[i + 1] &&
+        (valley < 0 || gs[i] < gs[static_cast<std::size_t>(valley)])) {
+      valley = k;
+    }
   }
   // A dip no deeper than rounding is none: a profile inside it would miss the target by less than
   // the arrival tolerance, and its ends would be noise.
   const double shallow = -1e-12 * (1.0 + std::abs(target));
-  const auto li = static_cast<std::size_t>(lowest);
-  double t_min = at[li];
-  if (!(gs[li] < shallow)) {
-    const double lo = lowest > first ? at[li - 1] : left;
-    const double hi = lowest < kSamples ? at[li + 1] : tc;
-    t_min = golden_minimum(g, std::max(lo, left), hi, shallow);
-    if (set.gap || !(g(t_min) < shallow)) return set;
+  double t_min = at[static_cast<std::size_t>(lowest)];
+  if (!(gs[static_cast<std::size_t>(lowest)] < shallow)) {
+    bool found = false;
+    for (const int k : {lowest, valley == lowest ? -1 : valley}) {
+      if (found || k < 0) continue;
+      const auto i = static_cast<std::size_t>(k);
+      const double lo = k > first ? at[i - 1] : left;
+      const double hi = k < kSamples ? at[i + 1] : tc;
+      t_min = golden_minimum(g, std::max(lo, left), hi, shallow);
+      if (set.gap) return set;
+      found = g(t_min) < shallow;
+    }
+    if (!found) return set;
   }
   // The dip's ends: the last non-short point before t_min, the first after it.
   double lo_end = left;
@@ -309,8 +281,26 @@ AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double ta
   set.dip = true;
   set.dip_lo = find_root(g, lo_end, t_min, true);
   set.dip_hi = after <= kSamples ? find_root(g, t_min, at[static_cast<std::size_t>(after)], false)
-                                 : linear_root(gs[kSamples]);
+                                 : linear_root(f, target, slope, tc, gs[kSamples]);
   return set;
+}
+
+double AxisProfile::shortest(const FarthestProfile& f, double target, double slope, double t0,
+                             double g0) const noexcept {
+  const double tc = std::max(f.cruise_from(), t0);
+  const double gc = f.position(tc) - target;
+  if (gc < 0.0 || tc - t0 <= 1e-15 * tc) return linear_root(f, target, slope, tc, gc);
+  bool gap = false;
+  const auto g = [&](double T, double& s) {
+    const double p = f.position_and_slope(T, s);
+    gap = gap || std::isnan(p);
+    return p - target;
+  };
+  // Newton from the tangent at the cruise's start: before it the farthest position is convex as a
+  // rule (the closer the profile comes to cruising, the more it gains from more time), so the steps
+  // stay on the feasible side and end there (about four evaluations, regula falsi took sixteen).
+  const double root = newton_root(g, t0, g0, tc, gc, tc - gc / slope);
+  return gap ? kInfinity : root;
 }
 
 bool AxisProfile::feasible(double T) const noexcept {
@@ -326,11 +316,12 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
   const double main = std::max(T - brake_.duration(), reach_);
   SevenDurations up{};
   SevenDurations down{};
-  const bool has_up = extremes_[0].durations(main, up);
-  const bool has_down = extremes_[1].durations(main, down);
+  const double far = extremes_[0].position(main, up);
+  if (symmetric_) down = up;
+  const double near = symmetric_ ? -far : -extremes_[1].position(main, down);
+  const bool has_up = !std::isnan(far);
+  const bool has_down = !std::isnan(near);
   if (!has_up && !has_down) return false;
-  const double far = has_up ? extremes_[0].position_of(up) : 0.0;
-  const double near = has_down ? -extremes_[1].position_of(down) : 0.0;
   // The share of the farthest profile's jerk in the blend that ends exactly at the target.
   double share = 1.0;
   if (!has_up) {
@@ -339,27 +330,29 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
     share = std::clamp((target_offset_ - near) / (far - near), 0.0, 1.0);
   }
   const double j = limits_.jerk;
+  std::array<JerkSegment, 2 * kFarthestJerkSigns.size() - 1> pieces;  // the first n are set
+  std::size_t n = 0;
   if (share == 1.0 || share == 0.0) {
     const bool use_up = share == 1.0;
     const SevenDurations& d = use_up ? up : down;
     const double sign = use_up ? 1.0 : -1.0;
-    for (std::size_t i = 0; i < d.size(); ++i) out.append({sign * kFarthestJerkSigns[i] * j, d[i]});
-    return arrives(out);
+    for (std::size_t i = 0; i < d.size(); ++i) pieces[n++] = {sign * kFarthestJerkSigns[i] * j, d[i]};
+  } else {
+    // Merge the two switching sequences; in each piece the jerk is the blend of both.
+    std::size_t iu = 0;
+    std::size_t id = 0;
+    double left_u = up[0];
+    double left_d = down[0];
+    while (iu < up.size() && id < down.size() && n < pieces.size()) {
+      const double piece = std::min(left_u, left_d);
+      pieces[n++] = {j * (share * kFarthestJerkSigns[iu] - (1.0 - share) * kFarthestJerkSigns[id]), piece};
+      left_u -= piece;
+      left_d -= piece;
+      if (left_u <= 0.0 && ++iu < up.size()) left_u = up[iu];
+      if (left_d <= 0.0 && ++id < down.size()) left_d = down[id];
+    }
   }
-  // Merge the two switching sequences; in each piece the jerk is the blend of both.
-  std::size_t iu = 0;
-  std::size_t id = 0;
-  double left_u = up[0];
-  double left_d = down[0];
-  while (iu < up.size() && id < down.size()) {
-    const double piece = std::min(left_u, left_d);
-    const double jerk = j * (share * kFarthestJerkSigns[iu] - (1.0 - share) * kFarthestJerkSigns[id]);
-    out.append({jerk, piece});
-    left_u -= piece;
-    left_d -= piece;
-    if (left_u <= 0.0 && ++iu < up.size()) left_u = up[iu];
-    if (left_d <= 0.0 && ++id < down.size()) left_d = down[id];
-  }
+  out.append(pieces.data(), n);
   return arrives(out);
 }
 

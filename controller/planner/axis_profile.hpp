@@ -12,8 +12,9 @@
 // independent optimum found no second one). A target at rest has no dips (it can be reached at the
 // reach time and held); otherwise dips are searched by sampling, crowded towards the reach time,
 // and a golden-section refinement (the extremes are not convex near the reach time). Roots are found by
-// regula falsi on T to the last bit; the optimum itself is an extreme profile, any other feasible duration a
-// blend of the two.
+// regula falsi on T to the last bit, the shortest duration to a target at rest by Newton steps on the
+// extreme's position and slope (root_search.hpp); the optimum itself is an extreme profile, any other
+// feasible duration a blend of the two.
 //
 // A non-zero target acceleration can make its velocity and acceleration alone unreachable for a
 // span of durations after the reach time (velocity_gap, in closed form): the search then runs
@@ -73,9 +74,15 @@ class AxisProfile {
     bool gap = false;  // some duration searched had no extreme profile
   };
   [[nodiscard]] bool arrives(const JerkProfile& p) const noexcept;
-  // The short set of one side, searched from t0 (the reach time, or the end of a velocity gap).
+  // The short set of one side, searched from t0 (the reach time, or the end of a velocity gap), for a
+  // target not at rest (plan() handles one at rest, which has no dip).
   [[nodiscard]] ShortSet short_set(const FarthestProfile& f, double target, double slope,
                                    double t0) const noexcept;
+  // The first duration from t0 on at which f gets to `target`, given g0 = f.position(t0) - target < 0
+  // and f's position never falling with more time (a target at rest); +infinity when some duration
+  // searched had no extreme profile.
+  [[nodiscard]] double shortest(const FarthestProfile& f, double target, double slope, double t0,
+                                double g0) const noexcept;
   // The durations in [lo, hi] (between the reach time and a velocity gap) that reach the target,
   // taken as one window; false when neither the samples nor narrow_window between them find one.
   [[nodiscard]] bool feasible_window(double lo, double hi, Interval& window) const noexcept;
@@ -93,6 +100,7 @@ class AxisProfile {
   AxisLimits limits_;
   // Farthest in the positive direction, and in the mirrored frame (the nearest profile).
   std::array<FarthestProfile, 2> extremes_{};
+  bool symmetric_ = false;  // the second extreme is the first one mirrored: computed once
   double reach_ = 0.0;
   double min_duration_ = 0.0;                    // brake included
   std::array<Interval, kMaxBlocked> blocked_{};  // brake included

@@ -4,28 +4,54 @@
 #include <cmath>
 #include <limits>
 
+#include "planner/jerk_profile.hpp"
+
 namespace cellctl::planner {
 namespace {
 
-// The shortest velocity change (a0 -> peak >= max(a0, af) -> af) raising the velocity by dv,
-// with the peak held at a_cap if it would exceed it; infinity when this shape cannot do it.
-double rise_time(double a0, double af, double dv, double a_cap, double j) noexcept {
+// The free quantities of one case of active bounds (or their derivatives with respect to T).
+struct Levels {
+  double a1, t2, a3, t6;
+};
+
+// The shortest velocity change (a0 -> peak >= max(a0, af) -> af) from v0 to vf: its peak and
+// how long that is held (at a_cap, when the peak would exceed it), and its duration; an infinite
+// duration when this shape cannot do it.
+struct Rise {
+  double peak = 0.0;
+  double hold = 0.0;
+  double time = std::numeric_limits<double>::infinity();
+};
+Rise rise(double v0, double a0, double vf, double af, double a_cap, double j) noexcept {
+  const double dv = vf - v0;
   const double floor_peak = std::max(a0, af);
   const double x = (2.0 * j * dv + a0 * a0 + af * af) / 2.0;
   const double tol = 1e-12 * (std::abs(a0) + std::abs(af) + a_cap);
-  if (x < -tol * tol * 1e12) return std::numeric_limits<double>::infinity();
+  if (x < -tol * tol * 1e12) return {};
   const double r = std::sqrt(std::max(x, 0.0));
-  double peak = 0.0;
+  Rise rise;
   if (-r >= floor_peak - tol) {
-    peak = std::max(-r, floor_peak);  // both ends below zero and the change small: peak below zero
+    rise.peak = std::max(-r, floor_peak);  // both ends below zero and the change small: peak below zero
   } else if (r >= floor_peak - tol) {
-    peak = std::max(r, floor_peak);
+    rise.peak = std::max(r, floor_peak);
   } else {
-    return std::numeric_limits<double>::infinity();
+    return {};
   }
-  if (peak <= a_cap) return (2.0 * peak - a0 - af) / j;
-  const double hold = (dv - (2.0 * a_cap * a_cap - a0 * a0 - af * af) / (2.0 * j)) / a_cap;
-  return (2.0 * a_cap - a0 - af) / j + std::max(0.0, hold);
+  if (rise.peak > a_cap) {
+    rise.peak = a_cap;
+    rise.hold = std::max(0.0, (dv - (2.0 * a_cap * a_cap - a0 * a0 - af * af) / (2.0 * j)) / a_cap);
+  }
+  rise.time = (2.0 * rise.peak - a0 - af) / j + rise.hold;
+  return rise;
+}
+
+// The distance a rise from (v0, a0) to af covers.
+double distance(const Rise& rise, double v0, double a0, double af, double j) noexcept {
+  MotionState s{0.0, v0, a0};
+  s = integrate(s, j, (rise.peak - a0) / j);
+  s = integrate(s, 0.0, rise.hold);
+  s = integrate(s, -j, (rise.peak - af) / j);
+  return s.position;
 }
 
 // The gap for a0, af >= 0 (see velocity_gap): dv the velocity change, amin < 0.
@@ -53,53 +79,63 @@ Gap velocity_gap(double v0, double a0, double vf, double af, const AxisLimits& l
   return {};
 }
 
-double reach_time(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept {
+Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept {
   const double j = limits.jerk;
-  const double up = rise_time(a0, af, vf - v0, limits.max_acceleration, j);
-  const double down = rise_time(-a0, -af, v0 - vf, -limits.min_acceleration, j);
-  return std::min(up, down);
+  const Rise up = rise(v0, a0, vf, af, limits.max_acceleration, j);
+  const Rise down = rise(-v0, -a0, -vf, -af, -limits.min_acceleration, j);
+  if (down.time < up.time) return {down.time, -distance(down, -v0, -a0, -af, j)};
+  if (std::isinf(up.time)) return {up.time, std::numeric_limits<double>::quiet_NaN()};
+  return {up.time, distance(up, v0, a0, af, j)};
 }
 
 FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
                                  const AxisLimits& limits) noexcept
     : v0_(v0), a0_(a0), vf_(vf), af_(af), lim_(limits) {
   const double j = lim_.jerk;
+  inv_jerk_ = 1.0 / j;
   const double amax = lim_.max_acceleration;
   const double amin = lim_.min_acceleration;
   const double vmax = lim_.max_velocity;
   SevenDurations& t = cruise_shape_;
-  // Up to (max_velocity, 0): +J to a1, hold, -J to 0.
+  // Up to (max_velocity, 0): +J to a1 = sqrt(x), hold, -J to 0. (Where the level is capped, as in
+  // most long moves, its root is not needed.)
   const double rise = vmax - v0;
-  double a1 = std::max(std::sqrt(std::max(0.0, (2.0 * j * rise + a0 * a0) / 2.0)), std::max(a0, 0.0));
-  if (a1 <= amax) {
-    t[0] = (a1 - a0) / j;
-    t[2] = a1 / j;
+  const double x1 = (2.0 * j * rise + a0 * a0) / 2.0;
+  if (x1 <= amax * amax) {
+    const double a1 = std::max(std::sqrt(std::max(0.0, x1)), std::max(a0, 0.0));
+    t[0] = (a1 - a0) * inv_jerk_;
+    t[2] = a1 * inv_jerk_;
   } else {
-    t[0] = (amax - a0) / j;
-    t[1] = std::max(0.0, (rise - (2.0 * amax * amax - a0 * a0) / (2.0 * j)) / amax);
-    t[2] = amax / j;
+    t[0] = (amax - a0) * inv_jerk_;
+    t[1] = std::max(0.0, (rise - (2.0 * amax * amax - a0 * a0) * 0.5 * inv_jerk_) / amax);
+    t[2] = amax * inv_jerk_;
   }
-  // Down from (max_velocity, 0) to (vf, af): -J to a3, hold, +J to af.
+  // Down from (max_velocity, 0) to (vf, af): -J to a3 = -sqrt(x), hold, +J to af.
   const double fall = vmax - vf;
-  double a3 = std::min(-std::sqrt(std::max(0.0, (2.0 * j * fall + af * af) / 2.0)), std::min(af, 0.0));
-  if (a3 >= amin) {
-    t[4] = -a3 / j;
-    t[6] = (af - a3) / j;
+  const double x3 = (2.0 * j * fall + af * af) / 2.0;
+  if (x3 <= amin * amin) {
+    const double a3 = std::min(-std::sqrt(std::max(0.0, x3)), std::min(af, 0.0));
+    t[4] = -a3 * inv_jerk_;
+    t[6] = (af - a3) * inv_jerk_;
   } else {
-    t[4] = -amin / j;
-    t[5] = std::max(0.0, (fall - (2.0 * amin * amin - af * af) / (2.0 * j)) / -amin);
-    t[6] = (af - amin) / j;
+    t[4] = -amin * inv_jerk_;
+    t[5] = std::max(0.0, (fall - (2.0 * amin * amin - af * af) * 0.5 * inv_jerk_) / -amin);
+    t[6] = (af - amin) * inv_jerk_;
   }
   for (const double d : t) cruise_from_ += d;
+  half_jerk_ = j / 2.0;
+  sixth_jerk_ = j / 6.0;
+  cruise_position_ = position_of(t);
 }
 
-bool FarthestProfile::durations(double T, SevenDurations& t) const noexcept {
+bool FarthestProfile::durations(double T, SevenDurations& t, SevenDurations* rates) const noexcept {
   if (T >= cruise_from_) {
     t = cruise_shape_;
     t[3] = T - cruise_from_;
+    if (rates != nullptr) *rates = SevenDurations{0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0};
     return true;
   }
-  return no_cruise(T, t);
+  return no_cruise(T, t, rates);
 }
 
 bool FarthestProfile::peak_within_velocity(double a1, double t2) const noexcept {
@@ -109,7 +145,7 @@ bool FarthestProfile::peak_within_velocity(double a1, double t2) const noexcept 
   return peak <= lim_.max_velocity * (1.0 + 1e-12) + 1e-12;
 }
 
-bool FarthestProfile::no_cruise(double T, SevenDurations& t) const noexcept {
+bool FarthestProfile::no_cruise(double T, SevenDurations& t, SevenDurations* rates) const noexcept {
   const double j = lim_.jerk;
   const double amax = lim_.max_acceleration;
   const double amin = lim_.min_acceleration;
@@ -123,7 +159,9 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t) const noexcept {
   const double tol_disc = 1e-12 * (amax - amin) * (amax - amin);
 
   // One set of active bounds: peak level a1 (held t2), low level a3 (held t6); checks and fills t.
-  const auto accept = [&](double a1, double t2, double a3, double t6) {
+  // `rate` gives the derivatives of (a1, t2, a3, t6) with respect to T in this case; it is only
+  // called when `rates` is wanted (it may divide by a root that is zero at the case's edge).
+  const auto accept = [&](double a1, double t2, double a3, double t6, const auto& rate) {
     if (!(a1 >= a0 - tol_a && a1 <= amax + tol_a && a3 <= af + tol_a && a3 >= amin - tol_a &&
           a3 <= a1 + tol_a && t2 >= -tol_t && t6 >= -tol_t)) {
       return false;
@@ -132,9 +170,9 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t) const noexcept {
     a3 = std::clamp(a3, amin, std::min(af, a1));
     t2 = std::max(t2, 0.0);
     t6 = std::max(t6, 0.0);
-    const double t1 = (a1 - a0) / j;
-    double t3 = (a1 - a3) / j;
-    const double t7 = (af - a3) / j;
+    const double t1 = (a1 - a0) * inv_jerk_;
+    double t3 = (a1 - a3) * inv_jerk_;
+    const double t7 = (af - a3) * inv_jerk_;
     // What T leaves over these durations: rounding, or what the clamping moved.
     const double left = T - t1 - t2 - t3 - t6 - t7;
     if (t3 + left < -tol_t) return false;
@@ -146,16 +184,39 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t) const noexcept {
     taker = std::max(taker + left, 0.0);
     if (a1 > 0.0 && a3 < 0.0 && !peak_within_velocity(a1, t2)) return false;
     t = SevenDurations{t1, t2, t3, 0.0, 0.0, t6, t7};
+    if (rates != nullptr) {
+      const Levels r = rate();
+      *rates = SevenDurations{r.a1 * inv_jerk_, r.t2, (r.a1 - r.a3) * inv_jerk_, 0.0, 0.0, r.t6,
+                              -r.a3 * inv_jerk_};
+    }
     return true;
   };
 
+  // Both held: linear in the two hold times. Tried first: the commonest case (long moves).
+  {
+    const double rest = T - (2.0 * amax - a0 - 2.0 * amin + af) * inv_jerk_;
+    const double base = (2.0 * amax * amax - a0 * a0 + af * af - 2.0 * amin * amin) * 0.5 * inv_jerk_;
+    const double t2 = (dv - base - amin * rest) / (amax - amin);
+    const auto rate = [&] {
+      const double dt2 = -amin / (amax - amin);
+      return Levels{0.0, dt2, 0.0, 1.0 - dt2};
+    };
+    if (accept(amax, t2, amin, rest - t2, rate)) return true;
+  }
   // No bound active: T = (2 (a1 - a3) + af - a0) / J and 2 J dv = 2 a1^2 - 2 a3^2 + af^2 - a0^2.
+  // s grows with T at J / 2.
   const double s = (j * T + a0 - af) / 2.0;
   if (s <= tol_a) {
-    if (accept(a0, 0.0, a0, 0.0)) return true;
+    // The reach time itself: a point, any split of the slope will do.
+    if (accept(a0, 0.0, a0, 0.0, [&] { return Levels{j / 4.0, 0.0, -j / 4.0, 0.0}; })) return true;
   } else {
-    const double a1 = (2.0 * j * dv - af * af + a0 * a0 + 2.0 * s * s) / (4.0 * s);
-    if (accept(a1, 0.0, a1 - s, 0.0)) return true;
+    const double c = 2.0 * j * dv - af * af + a0 * a0;
+    const double a1 = (c + 2.0 * s * s) / (4.0 * s);
+    const auto rate = [&] {
+      const double da1 = j / 2.0 * (0.5 - c / (4.0 * s * s));
+      return Levels{da1, 0.0, da1 - j / 2.0, 0.0};
+    };
+    if (accept(a1, 0.0, a1 - s, 0.0, rate)) return true;
   }
   // max_acceleration held: a quadratic in a3.
   {
@@ -163,8 +224,13 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t) const noexcept {
     const double c = 2.0 * amax * amax - a0 * a0 + af * af + 2.0 * j * amax * (T - k) - 2.0 * j * dv;
     const double disc = amax * amax + c / 2.0;
     if (disc >= -tol_disc) {
-      const double a3 = amax - std::sqrt(std::max(disc, 0.0));
-      if (accept(amax, T - k + 2.0 * a3 / j, a3, 0.0)) return true;
+      const double root = std::sqrt(std::max(disc, 0.0));
+      const double a3 = amax - root;
+      const auto rate = [&] {
+        const double da3 = root > 0.0 ? -j * amax / (2.0 * root) : 0.0;  // disc grows at J amax
+        return Levels{0.0, 1.0 + 2.0 * da3 / j, da3, 0.0};
+      };
+      if (accept(amax, T - k + 2.0 * a3 / j, a3, 0.0, rate)) return true;
     }
   }
   // min_acceleration held: a quadratic in a1.
@@ -172,31 +238,43 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t) const noexcept {
     const double d = -a0 * a0 + 2.0 * amin * amin + af * af + 2.0 * amin * (j * T + a0 - af) - 2.0 * j * dv;
     const double disc = amin * amin - d / 2.0;
     if (disc >= -tol_disc) {
-      const double a1 = amin + std::sqrt(std::max(disc, 0.0));
-      if (accept(a1, 0.0, amin, T - (2.0 * a1 - a0 - 2.0 * amin + af) / j)) return true;
+      const double root = std::sqrt(std::max(disc, 0.0));
+      const double a1 = amin + root;
+      const auto rate = [&] {
+        const double da1 = root > 0.0 ? -j * amin / (2.0 * root) : 0.0;  // disc grows at -J amin
+        return Levels{da1, 0.0, 0.0, 1.0 - 2.0 * da1 / j};
+      };
+      if (accept(a1, 0.0, amin, T - (2.0 * a1 - a0 - 2.0 * amin + af) / j, rate)) return true;
     }
-  }
-  // Both held: linear in the two hold times.
-  {
-    const double rest = T - (2.0 * amax - a0 - 2.0 * amin + af) / j;
-    const double base = (2.0 * amax * amax - a0 * a0 + af * af - 2.0 * amin * amin) / (2.0 * j);
-    const double t2 = (dv - base - amin * rest) / (amax - amin);
-    if (accept(amax, t2, amin, rest - t2)) return true;
   }
   return false;
 }
 
-double FarthestProfile::position_of(const SevenDurations& t) const noexcept {
-  const double j = lim_.jerk;
+template <bool kSlope>
+double FarthestProfile::position_of(const SevenDurations& t, const SevenDurations& rates,
+                                    double& slope) const noexcept {
+  // Lengthening segment i by dt moves the state at its end by (v, a, jerk) dt, which the rest of
+  // the profile (r long, its jerks unchanged) carries to the end as (v + a r + jerk r^2 / 2) dt of
+  // position: the slope is the sum of these weighted by the rates.
+  double left = 0.0;
+  if constexpr (kSlope) {
+    for (const double d : t) left += d;
+    slope = 0.0;
+  }
   double p = 0.0;
   double v = v0_;
   double a = a0_;
   for (std::size_t i = 0; i < t.size(); ++i) {
     const double d = t[i];
-    const double jk = kFarthestJerkSigns[i] * j;
-    p += d * (v + d * (a / 2.0 + d * jk / 6.0));
-    v += d * (a + d * jk / 2.0);
-    a += d * jk;
+    const double sign = kFarthestJerkSigns[i];
+    const double half_jerk = sign * half_jerk_;
+    p += d * (v + d * (a * 0.5 + d * sign * sixth_jerk_));
+    v += d * (a + d * half_jerk);
+    a += d * sign * lim_.jerk;
+    if constexpr (kSlope) {
+      left -= d;
+      slope += rates[i] * (v + left * (a + left * half_jerk));
+    }
   }
   return p;
 }
@@ -216,10 +294,30 @@ double FarthestProfile::lowest_velocity_of(const SevenDurations& t) const noexce
   return lowest;
 }
 
+double FarthestProfile::position_of(const SevenDurations& t) const noexcept {
+  double unused = 0.0;
+  return position_of<false>(t, t, unused);
+}
+
 double FarthestProfile::position(double T) const noexcept {
   SevenDurations t{};
+  return position(T, t);
+}
+
+double FarthestProfile::position(double T, SevenDurations& t) const noexcept {
   if (!durations(T, t)) return std::numeric_limits<double>::quiet_NaN();
-  return position_of(t);
+  return T >= cruise_from_ ? cruise_position_ + lim_.max_velocity * t[3] : position_of(t);
+}
+
+double FarthestProfile::position_and_slope(double T, double& slope) const noexcept {
+  SevenDurations t{};
+  SevenDurations rates{};
+  if (!durations(T, t, &rates)) return std::numeric_limits<double>::quiet_NaN();
+  if (T >= cruise_from_) {
+    slope = lim_.max_velocity;
+    return cruise_position_ + lim_.max_velocity * t[3];
+  }
+  return position_of<true>(t, rates, slope);
 }
 
 }  // namespace cellctl::planner

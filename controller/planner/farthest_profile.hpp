@@ -25,10 +25,15 @@ inline constexpr std::array<double, 7> kFarthestJerkSigns{1.0, 0.0, -1.0, 0.0, -
 
 using SevenDurations = std::array<double, 7>;
 
-// The shortest time in which (v0, a0) can become (vf, af) within the limits, the position ignored.
-// Both states must be inside the limits (see is_safe in axis_profile.hpp).
-[[nodiscard]] double reach_time(double v0, double a0, double vf, double af,
-                                const AxisLimits& limits) noexcept;
+// The shortest time in which (v0, a0) can become (vf, af) within the limits (the reach time), and
+// the distance covered in it: only one profile is that fast, so the farthest and the nearest
+// position at the reach time are this one. Both states must be inside the limits (see is_safe in
+// brake.hpp); the time is infinite (the distance NaN) when no such change exists.
+struct Reach {
+  double time = 0.0;
+  double position = 0.0;
+};
+[[nodiscard]] Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept;
 
 // Durations (lo, hi) in which (v0, a0) cannot become (vf, af), the position ignored. With a0 and af
 // of one sign, say both >= 0, the least velocity change in T is made by dipping the acceleration
@@ -56,18 +61,29 @@ class FarthestProfile {
   // grows linearly with slope max_velocity.
   [[nodiscard]] double cruise_from() const noexcept { return cruise_from_; }
 
-  // The seven durations for duration T (>= reach_time). False only if no case fits, which means
-  // T is below the reach time (by more than rounding).
-  [[nodiscard]] bool durations(double T, SevenDurations& t) const noexcept;
+  // The seven durations for duration T (>= the reach time). False only if no case fits, which means
+  // T is below the reach time (by more than rounding). `rates`, if given, gets each duration's
+  // derivative with respect to T within the case that fits (for position_and_slope).
+  [[nodiscard]] bool durations(double T, SevenDurations& t, SevenDurations* rates = nullptr) const noexcept;
   // The end position of the farthest profile of duration T (NaN when durations() fails).
   [[nodiscard]] double position(double T) const noexcept;
+  // The same, and the durations in `t` (unusable when NaN is returned).
+  [[nodiscard]] double position(double T, SevenDurations& t) const noexcept;
+  // The same and its derivative with respect to T, for a Newton step on the shortest duration
+  // (NaN when durations() fails). The slope is that of the case of active bounds that fits T; where
+  // the case changes it may jump, so its users keep a bracket.
+  [[nodiscard]] double position_and_slope(double T, double& slope) const noexcept;
   // The lowest velocity along the profile with these durations.
   [[nodiscard]] double lowest_velocity_of(const SevenDurations& t) const noexcept;
-  // The end position of the profile with these durations.
-  [[nodiscard]] double position_of(const SevenDurations& t) const noexcept;
 
  private:
-  bool no_cruise(double T, SevenDurations& t) const noexcept;
+  bool no_cruise(double T, SevenDurations& t, SevenDurations* rates) const noexcept;
+  // The end position of the profile with these durations.
+  [[nodiscard]] double position_of(const SevenDurations& t) const noexcept;
+  // The same, and with kSlope its slope from `rates` (the durations' derivatives with respect to T).
+  template <bool kSlope>
+  [[nodiscard]] double position_of(const SevenDurations& t, const SevenDurations& rates,
+                                   double& slope) const noexcept;
   [[nodiscard]] bool peak_within_velocity(double a1, double t2) const noexcept;
 
   double v0_ = 0.0;
@@ -77,6 +93,10 @@ class FarthestProfile {
   AxisLimits lim_;
   SevenDurations cruise_shape_{};  // with zero cruise
   double cruise_from_ = 0.0;
+  double cruise_position_ = 0.0;  // the end position at cruise_from_: later ones are linear in T
+  double inv_jerk_ = 0.0;         // 1 / jerk, jerk / 2 and / 6: the hot paths multiply, never divide
+  double half_jerk_ = 0.0;
+  double sixth_jerk_ = 0.0;
 };
 
 }  // namespace cellctl::planner

@@ -1,25 +1,8 @@
 #include "planner/jerk_profile.hpp"
 
-#include <cassert>
 #include <cmath>
 
 namespace cellctl::planner {
-
-MotionState integrate(const MotionState& s, double jerk, double t) noexcept {
-  return MotionState{
-      s.position + t * (s.velocity + t * (s.acceleration / 2.0 + t * jerk / 6.0)),
-      s.velocity + t * (s.acceleration + t * jerk / 2.0),
-      s.acceleration + t * jerk,
-  };
-}
-
-void JerkProfile::append(JerkSegment segment) noexcept {
-  if (!(segment.duration > 0.0)) return;
-  assert(count_ < kMaxSegments);
-  segments_[count_++] = segment;
-  end_ = integrate(end_, segment.jerk, segment.duration);
-  duration_ += segment.duration;
-}
 
 MotionState JerkProfile::at(double t) const noexcept {
   if (t <= 0.0) return start_;

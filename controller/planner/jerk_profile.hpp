@@ -5,6 +5,7 @@
 // place where the physics lives. Fixed-size storage: building and evaluating never allocate.
 
 #include <array>
+#include <cassert>
 #include <cstddef>
 
 namespace cellctl::planner {
@@ -15,13 +16,22 @@ struct MotionState {
   double acceleration = 0.0;
 };
 
+// A plain aggregate (JerkSegment{} is zero; no default member values): a profile's unused segment
+// slots are then left unwritten, which saved zeroing 256 bytes per profile and plan.
 struct JerkSegment {
-  double jerk = 0.0;
-  double duration = 0.0;
+  double jerk;
+  double duration;
 };
 
-// The state reached from `s` after `t` seconds at constant jerk `jerk`.
-[[nodiscard]] MotionState integrate(const MotionState& s, double jerk, double t) noexcept;
+// The state reached from `s` after `t` seconds at constant jerk `jerk`. Inline (as append() is):
+// building a profile chains these, and out of line each state went through memory.
+[[nodiscard]] inline MotionState integrate(const MotionState& s, double jerk, double t) noexcept {
+  return MotionState{
+      s.position + t * (s.velocity + t * (s.acceleration / 2.0 + t * jerk * (1.0 / 6.0))),
+      s.velocity + t * (s.acceleration + t * jerk / 2.0),
+      s.acceleration + t * jerk,
+  };
+}
 
 // Where a position extremum of a profile is, and when.
 struct PositionExtremum {
@@ -42,10 +52,40 @@ class JerkProfile {
 
   JerkProfile() = default;
   explicit JerkProfile(const MotionState& start) noexcept : start_(start), end_(start) {}
+  // Copies only the segments in use: planning copies profiles several times each (a brake into its
+  // axis, into the built profile, the trajectory into the caller's), and a whole copy cost more than
+  // building them.
+  JerkProfile(const JerkProfile& other) noexcept { *this = other; }
+  JerkProfile& operator=(const JerkProfile& other) noexcept {
+    start_ = other.start_;
+    end_ = other.end_;
+    count_ = other.count_;
+    duration_ = other.duration_;
+    for (std::size_t i = 0; i < count_; ++i) segments_[i] = other.segments_[i];
+    return *this;
+  }
+  ~JerkProfile() = default;
 
-  // Adds a segment after the last one; zero-length segments are dropped. Precondition: fewer than
-  // kMaxSegments segments so far (the shapes are built by code that knows their length).
-  void append(JerkSegment segment) noexcept;
+  // Adds segments after the last one; zero-length segments are dropped. Precondition: they fit in
+  // kMaxSegments (the shapes are built by code that knows their length). Several at once keep the
+  // state in registers: one at a time it went through memory, a stall per segment.
+  void append(const JerkSegment* segments, std::size_t n) noexcept {
+    MotionState end = end_;
+    double duration = duration_;
+    std::size_t count = count_;
+    for (std::size_t i = 0; i < n; ++i) {
+      const JerkSegment& segment = segments[i];
+      if (!(segment.duration > 0.0)) continue;
+      assert(count < kMaxSegments);
+      segments_[count++] = segment;
+      end = integrate(end, segment.jerk, segment.duration);
+      duration += segment.duration;
+    }
+    end_ = end;
+    duration_ = duration;
+    count_ = count;
+  }
+  void append(JerkSegment segment) noexcept { append(&segment, 1); }
 
   [[nodiscard]] const MotionState& start() const noexcept { return start_; }
   [[nodiscard]] const MotionState& end() const noexcept { return end_; }
@@ -64,7 +104,7 @@ class JerkProfile {
  private:
   MotionState start_;
   MotionState end_;
-  std::array<JerkSegment, kMaxSegments> segments_{};
+  std::array<JerkSegment, kMaxSegments> segments_;  // the first count_ are set (see JerkSegment)
   std::size_t count_ = 0;
   double duration_ = 0.0;
 };

@@ -163,6 +163,32 @@ TEST(BlockedInterval, AShallowDipStartsWhereTheOptimumSays) {
   plan_checked(start, target, l, "problem 3963501 of seed 3");
 }
 
+// Random problem 507850 of seed 3 (AxisProfileRandom.AcceleratingTarget): the farthest profile is
+// at the target from the reach time (0.348 s) on, then falls short of it from about 0.505 s to
+// 0.577 s. The samples from the reach time to its cruise (1.317 s) lie 0.12 s apart there, none in
+// the dip, and the lowest sample was the first one: the dip was missed, and the blend built for a
+// duration inside it missed the target by 7e-4 m.
+TEST(BlockedInterval, ADipBetweenTwoSamplesIsFound) {
+  const AxisLimits l = AxisLimits::symmetric(2.8511353938366777, 10.057552606369146, 49.530997181285251);
+  const MotionState start{-1.2220424491266058, -1.4333964585860439, -1.4250614010092182};
+  const MotionState target{-1.4720626125193226, 0.71016589251542594, 8.4126152324430414};
+  const oracle::Problem p = problem(start, target, l);
+  AxisProfile axis;
+  ASSERT_EQ(axis.plan(start, target, l), AxisStatus::ok);
+  ASSERT_EQ(axis.blocked_count(), 1u);
+  const Interval& b = axis.blocked(0);
+  EXPECT_TRUE(b.contains(0.51822753989998382)) << b.lo << ".." << b.hi;
+  EXPECT_FALSE(oracle::feasible(p, 0.5 * (b.lo + b.hi)));
+  EXPECT_TRUE(oracle::feasible(p, b.lo * (1 - 1e-12)));
+  EXPECT_TRUE(oracle::feasible(p, b.hi * (1 + 1e-12)));
+  for (const double T : {b.lo, b.hi}) {
+    JerkProfile profile;
+    ASSERT_TRUE(axis.build(T, profile)) << T;
+    EXPECT_NEAR(profile.end().position, target.position, 1e-8) << T;
+  }
+  plan_checked(start, target, l, "problem 507850 of seed 3");
+}
+
 // Accelerating at 1 towards a target accelerating at 1, 0.02 faster: held at 1 the acceleration
 // makes it in 0.02 s; from about 0.0211 s to 0.3789 s even the deepest dip of the acceleration
 // gains more than 0.02 (velocity_gap), so no profile exists; later one does again. A target

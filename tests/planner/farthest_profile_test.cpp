@@ -1,0 +1,60 @@
+// The farthest profile's slope (d position / d T), which the Newton search for the shortest
+// duration relies on: against finite differences on random problems, every case of active bounds.
+// The reach time's distance, which stands for both extremes there.
+
+#include "planner/farthest_profile.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "planner/random_problems.hpp"
+
+namespace cellctl::planner {
+namespace {
+
+TEST(FarthestProfile, SlopeMatchesFiniteDifferences) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  int checked = 0;
+  for (int n = 0; n < 3000; ++n) {
+    const oracle::Problem p = testing::random_problem(
+        rng, testing::Start::moving, n % 2 == 0 ? testing::Target::at_rest : testing::Target::moving);
+    const AxisLimits l{p.limits.vmax, p.limits.vmin, p.limits.amax, p.limits.amin, p.limits.jerk};
+    const FarthestProfile f(p.v0, p.a0, p.vf, p.af, l);
+    const double reach = planner::reach(p.v0, p.a0, p.vf, p.af, l).time;
+    if (!(f.cruise_from() > reach)) continue;
+    const double T = reach + (f.cruise_from() - reach) * (0.01 + 0.98 * u01(rng));
+    double slope = 0.0;
+    const double at = f.position_and_slope(T, slope);
+    ASSERT_EQ(at, f.position(T)) << n;
+    // Where the case of active bounds changes the slope may jump: it must then match one side.
+    const double h = 1e-6 * T;
+    const double left = (f.position(T) - f.position(T - h)) / h;
+    const double right = (f.position(T + h) - f.position(T)) / h;
+    const double tol = 1e-3 * (std::abs(left) + std::abs(right)) + 1e-6;
+    EXPECT_TRUE(std::abs(slope - left) <= tol || std::abs(slope - right) <= tol)
+        << "problem " << n << " T " << T << ": slope " << slope << ", differences " << left << " " << right;
+    ++checked;
+  }
+  EXPECT_GT(checked, 1000);
+}
+
+TEST(FarthestProfile, BothExtremesAtTheReachTimeAreTheFastestProfile) {
+  std::mt19937_64 rng(8);
+  for (int n = 0; n < 20000; ++n) {
+    const auto target = static_cast<testing::Target>(n % 3);
+    const oracle::Problem p = testing::random_problem(rng, testing::Start::moving, target);
+    const AxisLimits l{p.limits.vmax, p.limits.vmin, p.limits.amax, p.limits.amin, p.limits.jerk};
+    const Reach r = reach(p.v0, p.a0, p.vf, p.af, l);
+    ASSERT_TRUE(std::isfinite(r.time)) << n;
+    const double far = FarthestProfile(p.v0, p.a0, p.vf, p.af, l).position(r.time);
+    const double near = -FarthestProfile(-p.v0, -p.a0, -p.vf, -p.af, l.mirrored()).position(r.time);
+    EXPECT_NEAR(r.position, far, 1e-10 * (1.0 + std::abs(far))) << n;
+    EXPECT_NEAR(r.position, near, 1e-10 * (1.0 + std::abs(near))) << n;
+  }
+}
+
+}  // namespace
+}  // namespace cellctl::planner
