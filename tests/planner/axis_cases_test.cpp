@@ -55,6 +55,24 @@ JerkProfile plan_checked(const MotionState& start, const MotionState& target, co
   return profile;
 }
 
+// The axis's one blocked interval is what the oracle says: nothing feasible inside it, feasible just
+// outside it, and a profile built at each end arrives. Returns the interval.
+Interval expect_one_oracle_blocked_interval(const AxisProfile& axis, const oracle::Problem& p,
+                                            const MotionState& target) {
+  EXPECT_EQ(axis.blocked_count(), 1u);
+  if (axis.blocked_count() != 1u) return {};
+  const Interval b = axis.blocked(0);
+  EXPECT_FALSE(oracle::feasible(p, 0.5 * (b.lo + b.hi)));
+  EXPECT_TRUE(oracle::feasible(p, b.lo * (1 - 1e-12)));
+  EXPECT_TRUE(oracle::feasible(p, b.hi * (1 + 1e-12)));
+  for (const double T : {b.lo, b.hi}) {
+    JerkProfile profile;
+    EXPECT_TRUE(axis.build(T, profile)) << T;
+    EXPECT_NEAR(profile.end().position, target.position, 1e-8) << T;
+  }
+  return b;
+}
+
 const AxisLimits kLimits = AxisLimits::symmetric(1.0, 2.0, 10.0);
 
 TEST(Brake, FromAboveMaxVelocityBrakesAtFullDecelerationFirst) {
@@ -149,17 +167,8 @@ TEST(BlockedInterval, AShallowDipStartsWhereTheOptimumSays) {
   AxisProfile axis;
   ASSERT_EQ(axis.plan(start, target, l), AxisStatus::ok);
   EXPECT_TRUE(oracle::confirms_min_duration(p, axis.min_duration(), 1e-9));
-  ASSERT_EQ(axis.blocked_count(), 1u);
-  const Interval& b = axis.blocked(0);
+  const Interval b = expect_one_oracle_blocked_interval(axis, p, target);
   EXPECT_NEAR(b.lo, 1.57512138976815, 5e-13);  // the farthest profile evaluated in long double
-  EXPECT_FALSE(oracle::feasible(p, 0.5 * (b.lo + b.hi)));
-  EXPECT_TRUE(oracle::feasible(p, b.lo * (1 - 1e-12)));
-  EXPECT_TRUE(oracle::feasible(p, b.hi * (1 + 1e-12)));
-  for (const double T : {b.lo, b.hi}) {
-    JerkProfile profile;
-    ASSERT_TRUE(axis.build(T, profile)) << T;
-    EXPECT_NEAR(profile.end().position, target.position, 1e-8) << T;
-  }
   plan_checked(start, target, l, "problem 3963501 of seed 3");
 }
 
@@ -175,17 +184,8 @@ TEST(BlockedInterval, ADipBetweenTwoSamplesIsFound) {
   const oracle::Problem p = problem(start, target, l);
   AxisProfile axis;
   ASSERT_EQ(axis.plan(start, target, l), AxisStatus::ok);
-  ASSERT_EQ(axis.blocked_count(), 1u);
-  const Interval& b = axis.blocked(0);
+  const Interval b = expect_one_oracle_blocked_interval(axis, p, target);
   EXPECT_TRUE(b.contains(0.51822753989998382)) << b.lo << ".." << b.hi;
-  EXPECT_FALSE(oracle::feasible(p, 0.5 * (b.lo + b.hi)));
-  EXPECT_TRUE(oracle::feasible(p, b.lo * (1 - 1e-12)));
-  EXPECT_TRUE(oracle::feasible(p, b.hi * (1 + 1e-12)));
-  for (const double T : {b.lo, b.hi}) {
-    JerkProfile profile;
-    ASSERT_TRUE(axis.build(T, profile)) << T;
-    EXPECT_NEAR(profile.end().position, target.position, 1e-8) << T;
-  }
   plan_checked(start, target, l, "problem 507850 of seed 3");
 }
 
@@ -246,13 +246,9 @@ TEST(VelocityGap, ANarrowWindowBeforeTheGapIsFound) {
   EXPECT_TRUE(oracle::confirms_min_duration(p, axis.min_duration(), 1e-9))
       << "planned " << axis.min_duration() << " s";
   EXPECT_NEAR(axis.min_duration(), 0.2006585562, 1e-9);
-  ASSERT_EQ(axis.blocked_count(), 1u);
-  const Interval& b = axis.blocked(0);
+  const Interval b = expect_one_oracle_blocked_interval(axis, p, target);
   EXPECT_NEAR(b.lo, 0.2016377913, 1e-9);
   EXPECT_NEAR(b.hi, 2.4122944200917, 1e-12);
-  EXPECT_FALSE(oracle::feasible(p, 0.5 * (b.lo + b.hi)));
-  EXPECT_TRUE(oracle::feasible(p, b.lo * (1 - 1e-12)));
-  EXPECT_TRUE(oracle::feasible(p, b.hi * (1 + 1e-12)));
   plan_checked(start, target, l, "problem 4547520 of seed 4");
 }
 
