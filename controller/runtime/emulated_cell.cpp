@@ -7,11 +7,15 @@
 namespace cellctl::runtime {
 namespace {
 
-// The shaft's lead: what the encoder session takes a revolution to be, so that a perfect coupling
-// reads the axis exactly; slip is the plant's deviation from it. The session reads position_mm as
-// measuring units ÷ counts_per_mm, and a revolution is the session's units per revolution — scaled
-// units when scaling is on, not physical steps (encoder::Session's length per count).
-double mm_per_revolution(const config::EncoderSection& e) {
+// The shaft's lead: the plant's (plant.encoder_mm_per_revolution) when given — mechanics, the same
+// whatever the encoder was taught. Otherwise what the encoder session takes a revolution to be, so
+// that a perfect coupling reads the axis exactly; slip is the plant's deviation from it. The session
+// reads position_mm as measuring units ÷ counts_per_mm, and a revolution is the session's units per
+// revolution — scaled units when scaling is on, not physical steps (encoder::Session's length per
+// count). That fallback follows the config: after a Teach-In (which writes counts_per_mm and the
+// taught resolution) it is the taught belief, so each Teach-In would turn a different shaft.
+double mm_per_revolution(const config::EncoderSection& e, const PlantConfig& plant) {
+  if (plant.encoder_mm_per_revolution > 0.0) return plant.encoder_mm_per_revolution;
   if (e.session.mm_per_revolution > 0.0) return e.session.mm_per_revolution;
   const encoder::Scaling scaling(e.session.parameters, e.session.physical);
   return scaling.units_per_revolution() / e.session.counts_per_mm;
@@ -31,7 +35,7 @@ EmulatedCell::EmulatedCell(const config::CellConfig& cell, const EmulatorSetup& 
       throw std::invalid_argument(
           "an emulated encoder needs an emulated SCU axis to turn its shaft (axes[].encoder)");
     const plant::Actuator& actuator = scu_->actuator(measured->actuator);
-    const double per_revolution = mm_per_revolution(*cell.encoder);
+    const double per_revolution = mm_per_revolution(*cell.encoder, setup.plant);
     shaft_.emplace(plant::ShaftParams{.mm_per_revolution = per_revolution,
                                       .slip = setup.plant.encoder_slip,
                                       .offset_revolutions = setup.plant.encoder_mount_mm / per_revolution},

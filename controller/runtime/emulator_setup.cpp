@@ -9,8 +9,10 @@ namespace {
 using config::YamlNode;
 
 PlantConfig parse_plant(const YamlNode& n) {
-  n.only_keys({"encoder_slip", "encoder_mount_mm"});
+  n.only_keys({"encoder_mm_per_revolution", "encoder_slip", "encoder_mount_mm"});
   PlantConfig p;
+  p.encoder_mm_per_revolution =
+      n.double_in_or("encoder_mm_per_revolution", 1e-6, 1e6, p.encoder_mm_per_revolution);
   p.encoder_slip = n.double_in_or("encoder_slip", -0.5, 0.5, p.encoder_slip);
   p.encoder_mount_mm = n.double_in_or("encoder_mount_mm", -1e6, 1e6, p.encoder_mount_mm);
   return p;

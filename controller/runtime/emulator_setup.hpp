@@ -16,9 +16,13 @@
 namespace cellctl::runtime {
 
 // The emulated cell's physics beyond each device's own (what couples them): the encoder's shaft
-// slips this fraction against the axis it measures, and is mounted so that it reads as if the axis
-// stood encoder_mount_mm further (a replaced or remounted encoder reads the same axis differently).
+// turns once per encoder_mm_per_revolution of the axis's true travel (its lead: mechanics, which no
+// Teach-In changes; 0 takes the one the encoder section's scaling implies, a coupling that reads the
+// axis exactly — with a taught config that is the taught belief, not the shaft), slips this fraction
+// against the axis it measures, and is mounted so that it reads as if the axis stood encoder_mount_mm
+// further (a replaced or remounted encoder reads the same axis differently).
 struct PlantConfig {
+  double encoder_mm_per_revolution = 0.0;
   double encoder_slip = 0.0;
   double encoder_mount_mm = 0.0;
 };

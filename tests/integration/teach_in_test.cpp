@@ -82,6 +82,25 @@ TEST_F(TeachInTest, TeachesVerifiesAndGivesTheTotalResolution) {
   EXPECT_DOUBLE_EQ(o.taught.counts_per_mm, 1000.0);
 }
 
+TEST_F(TeachInTest, TeachingAgainOnAnUnchangedCellTeachesTheSameResolution) {
+  // The cell as `cellctl teach-in` leaves it: the config rewritten with the taught resolution, the
+  // encoder's EEPROM holding it. A second Teach-In on the same emulated plant (same shaft, same
+  // SCU scale error) must find the same resolution; it once grew 0.2 % a time, because the emulated
+  // shaft's lead was derived from the taught scaling instead of being the plant's.
+  auto& first_run = make_run();
+  const auto first = first_run.run(interrupt_);
+  ASSERT_TRUE(first.done) << first.failure;
+  run_.reset();  // its emulators saved the EEPROM; the next run starts from it
+  cell_.encoder->session = first.taught;
+  auto& second_run = make_run();
+  const auto second = second_run.run(interrupt_);
+  ASSERT_TRUE(second.done) << second.failure;
+  EXPECT_NEAR(second.result.scu_distance_mm, first.result.scu_distance_mm, 0.001);
+  EXPECT_NEAR(static_cast<double>(second.result.total_resolution),
+              static_cast<double>(first.result.total_resolution), 1.0);
+  EXPECT_EQ(encoder::load_eeprom(dir_ / "encoder.eeprom").taught_units, second.result.total_resolution);
+}
+
 TEST_F(TeachInTest, AbortDuringTheTravelRestoresTheEncoder) {
   auto& run = make_run();
   bool aborted_travelling = false;
