@@ -263,9 +263,8 @@ std::string CellStandby::run_recipe(const recipe::Recipe& recipe, const std::fil
     if (const auto& s = result.safety[d]; s && s->safe == runtime::Safe::unknown) {
       std::lock_guard lock(mutex_);
       blocked_ = fmt::format(
-          "no start is taken: the {} safe state is UNKNOWN since the last job ({}); look at the cell, then "
-          "start "
-          "cellctl again",
+          "no start is taken: the {} safe state is UNKNOWN since the last job ({}); look at the cell, "
+          "then start cellctl again",
           cell::to_string(static_cast<cell::Device>(d)), s->evidence);
       words += "; WARNING: " + blocked_;
     }
