@@ -38,13 +38,6 @@ class HomingTest : public RunFixture {
     return routines::load_home_record(routines::home_record_path(dir_ / "state", "virtual-time"), cell_,
                                       journal::file_sha256(cell_.source));
   }
-  // Notes of the run that contain `text`.
-  std::size_t notes_with(const std::string& text) const {
-    std::size_t n = 0;
-    for (const auto& e : events("note"))
-      if (e.dump().find(text) != std::string::npos) ++n;
-    return n;
-  }
   // A new process with new emulators: the SCU's actuators as the emulator config says (after a
   // power loss: not initialised), the encoder's EEPROM from its file.
   void next_process() {

@@ -76,6 +76,13 @@ class RunFixture : public ::testing::Test {
       if (j["event"] == kind) out.push_back(j);
     return out;
   }
+  // Notes of the run that contain `text`.
+  std::size_t notes_with(const std::string& text) const {
+    std::size_t n = 0;
+    for (const auto& e : events("note"))
+      if (e["text"].get<std::string>().find(text) != std::string::npos) ++n;
+    return n;
+  }
 
   std::filesystem::path dir_;
   config::CellConfig cell_;
