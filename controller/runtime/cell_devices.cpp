@@ -177,8 +177,20 @@ void CellDevices::apply_axes(const cell::Intents& in) {
       continue;
     }
     if (intent.move_id != cmd.applied_move) {
+      // A new target while the function's RE is still open (the axis moving, say): the manual wants
+      // every RE closed by its RS before the next, so a soft RS goes first. The SCU starts to ramp
+      // down for the few milliseconds until the new RE, which takes the axis on from that speed.
+      const bool re_open = fn.execution_open || fn.outcome == scu::MoveOutcome::queued;
+      if (re_open) {
+        const bool stop_pending = cmd.stop_sent && snap.refusals == cmd.stop_refusals;
+        if (!stop_pending && scu_->stop(axis.function, true)) {
+          cmd.stop_sent = true;
+          cmd.stop_refusals = snap.refusals;
+        }
+        continue;
+      }
       const scu::ActuatorTarget target{axis.actuator, intent.target_mm};
-      // Refused while the function's previous RE is still open: tried again next cycle.
+      // Refused while the RS is still on its way: tried again next cycle.
       if (scu_->move_to(axis.function, std::span(&target, 1), intent.speed_mm_s, intent.soft)) {
         cmd.applied_move = intent.move_id;
         cmd.stop_sent = false;
