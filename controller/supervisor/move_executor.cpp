@@ -122,6 +122,11 @@ void MoveExecutor::plan(const cell::CellState& s, double t, std::uint32_t& move_
     auto& a = axes_[i];
     if (!a.in_move) continue;
     a.start_mm = best_position(s, i);
+    a.start_scu_mm = s.axes[i].scu_mm;
+    a.anchored = from[i].velocity == 0.0 && from[i].acceleration == 0.0 && !s.axes[i].moving;
+    a.retargeted = false;
+    a.sampled_mm_s = 0.0;
+    a.drift.reset();
     const double to_go = a.target_mm - a.start_mm;
     const double v = std::min(speed_, cell_.axes[i].max_speed_mm_s);
     const double ramp = cell_.axes[i].max_accel_mm_s2;
@@ -179,6 +184,58 @@ void MoveExecutor::plan(const cell::CellState& s, double t, std::uint32_t& move_
   best_remaining_ = lead;
   still_since_.reset();
   seen_moving_ = {};
+  last_scu_age_ = s.scu_position_age;
+}
+
+double MoveExecutor::reachable_scu_target(std::size_t i, double mm) const noexcept {
+  const auto& c = cell_.axes[i];
+  return std::clamp(mm, std::max(0.0, c.min_mm - cell_.limits.disagreement_mm),
+                    c.max_mm + cell_.limits.disagreement_mm);
+}
+
+void MoveExecutor::correct_in_motion(const cell::CellState& s, double t, std::uint32_t& move_id) {
+  // A sample needs a fresh SCU reading (a keep-alive reply): between replies it stands still.
+  const bool fresh = s.scu_position_age < last_scu_age_;
+  last_scu_age_ = s.scu_position_age;
+  if (!fresh || !settings_.correct_in_motion || reference_ != Reference::best) return;
+  const double age_s = link::to_seconds(s.scu_position_age);
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    auto& a = axes_[i];
+    const auto& st = s.axes[i];
+    if (!a.in_move || !a.commanded || !a.anchored || a.retargeted || !st.measured || !st.moving ||
+        a.corrections >= settings_.max_corrections)
+      continue;
+    // Only samples at a steady speed towards the target: at a steady speed the SCU's reply delay
+    // shifts every offset alike, which leaves the slope alone (see OffsetSlope).
+    const double v = st.encoder_mm_s;
+    const double to_go = a.target_mm - st.encoder_mm;
+    const bool steady = v * to_go > 0.0 && std::abs(v - a.sampled_mm_s) <= 0.05 * std::abs(v);
+    a.sampled_mm_s = v;
+    if (!steady) continue;
+    const double at = st.encoder_mm - v * age_s;  // where the encoder was when the reply came
+    a.drift.add(at, st.scu_mm - at);
+    // Judged once the samples span a quarter of the travel and the correction they give is known
+    // to a quarter of the tolerance; given only while the SCU is still short of its own approach
+    // (its braking distance, and half a second for the RS, RT and RE on the line).
+    const double travel = a.target_mm - a.start_mm;
+    const double change = a.drift.slope() * travel;
+    const double ramp = cell_.axes[i].max_accel_mm_s2;
+    if (a.drift.count() < 8 || a.drift.span_mm() < 0.25 * std::abs(travel) ||
+        a.drift.slope_error() * std::abs(travel) > a.tolerance_mm / 4.0 ||
+        std::abs(to_go) < v * v / (2.0 * ramp) + std::abs(v) * 0.5 || std::abs(change) < a.tolerance_mm / 4.0)
+      continue;
+    // The SCU's offset at the start, where both stood still, plus the drift over the travel.
+    a.scu_target_mm = reachable_scu_target(i, a.start_scu_mm + travel + change);
+    a.move_id = ++move_id;
+    a.commanded_at = t;
+    a.retargeted = true;
+    ++a.corrections;
+    ++corrections_total_;
+    note_ = journal::Text::format(
+        "axis {} corrected while moving: its SCU reads {:+.2f} % along the travel, so its SCU target "
+        "moves by {:+.3f} mm",
+        cell_.axes[i].name, 100.0 * a.drift.slope(), change);
+  }
 }
 
 void MoveExecutor::command(cell::Intents& out) const noexcept {
@@ -202,7 +259,7 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
   note_ = {};
   if (!planner::is_error(planner_.update(input_, output_))) {
     output_.pass_to_input(input_);
-    if (output_.new_calculation) note_ = output_.note;
+    if (output_.new_calculation && !output_.note.empty()) note_ = journal::Text::format("{}", output_.note);
   }
   double worst_remaining = 0.0;
   bool all_inside = true;
@@ -216,6 +273,7 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
     if (remaining > a.tolerance_mm) all_inside = false;
     if (s.axes[i].moving) seen_moving_[i] = true;
   }
+  correct_in_motion(s, t, move_id);
 
   if (worst_remaining < best_remaining_ - 0.05) {
     best_remaining_ = worst_remaining;
@@ -262,7 +320,8 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
     for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
       auto& a = axes_[i];
       const double span = a.target_mm - a.start_mm;
-      if (!a.in_move || std::abs(span) < 1e-9 || a.corrections > 0) continue;
+      // (Not after a correction at rest: that is a short move of its own.)
+      if (!a.in_move || std::abs(span) < 1e-9 || a.corrections > (a.retargeted ? 1 : 0)) continue;
       const double lag = (planned_[i] - best_position(s, i)) / span;
       const double factor = std::clamp(1.0 + settings_.sync_gain * lag, 0.5, 1.5);
       const double axis_max =
@@ -308,12 +367,7 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
                                       a.tolerance_mm);
       return MoveStatus::failed;
     }
-    // Corrections stay within what the monitor tolerates between SCU and encoder beyond the travel:
-    // the SCU is never sent a target outside the axis's reach.
-    const auto& c = cell_.axes[i];
-    a.scu_target_mm =
-        std::clamp(a.scu_target_mm + error, std::max(0.0, c.min_mm - cell_.limits.disagreement_mm),
-                   c.max_mm + cell_.limits.disagreement_mm);
+    a.scu_target_mm = reachable_scu_target(i, a.scu_target_mm + error);
     a.move_id = ++move_id;
     a.commanded_at = t;
     a.commanded = true;

@@ -6,7 +6,10 @@
 // move to keep each on its planned profile. The move is done only when every axis is inside its
 // tolerance by its best measurement (the encoder where it has one). When the SCU has stopped but the
 // encoder says the axis is off (scale error, slip), the SCU target is corrected by the measured error
-// and the axis moved again, a bounded number of times. A move that produces no motion is detected.
+// and the axis moved again, a bounded number of times. Where the encoder measures an axis that moves
+// steadily, how its SCU reading drifts along the travel (a scale error) is learnt on the way, and the
+// SCU's target corrected while the axis still moves: it then arrives with the others, not a correction
+// later. A move that produces no motion is detected.
 // A hold brakes the move (the SCU's soft stop, which the plan follows); resume() goes on from the
 // moving state the brake has reached: no stop first.
 
@@ -19,8 +22,10 @@
 #include "cell/intents.hpp"
 #include "config/cell_core.hpp"
 #include "journal/event.hpp"
+#include "link/clock.hpp"
 #include "planner/planner.hpp"
 #include "recipe/recipe.hpp"
+#include "supervisor/offset_slope.hpp"
 
 namespace cellctl::supervisor {
 
@@ -30,6 +35,7 @@ struct MoveSettings {
   double settle_s = 0.15;       // the SCU must show no motion for this long before we judge
   double speed_update_s = 0.1;  // at most this often a new speed goes to the SCU
   double sync_gain = 2.0;       // speed correction per unit of normalised lag
+  bool correct_in_motion = true;  // a new SCU target while moving (counts as one of max_corrections)
 };
 
 enum class MoveStatus : std::uint8_t { running, done, failed };
@@ -58,9 +64,10 @@ class MoveExecutor {
   void resume(const cell::CellState& s, double t, std::uint32_t& move_id);
 
   [[nodiscard]] const journal::Text& reason() const noexcept { return reason_; }
-  // What the planner said of the plan the last step() made (phase synchronisation impossible: time
-  // synchronised instead); empty when that step made no new plan or it needed no note.
-  [[nodiscard]] std::string_view note() const noexcept { return note_; }
+  // What the last step() has to say: the planner's note on a new plan (phase synchronisation
+  // impossible: time synchronised instead), or an SCU target corrected while moving; empty when
+  // that step did neither.
+  [[nodiscard]] std::string_view note() const noexcept { return note_.view(); }
   [[nodiscard]] int corrections() const noexcept { return corrections_total_; }
   // The move's planned time: the slowest axis's trapezoid at the move speed (as the SCU runs it).
   [[nodiscard]] double planned_s() const noexcept { return planned_s_; }
@@ -75,7 +82,12 @@ class MoveExecutor {
     double scu_target_mm = 0.0;  // what the SCU is told (target + corrections)
     double nominal_speed = 0.0;  // its share of the move speed, so that all arrive together
     double tolerance_mm = 0.0;
-    int corrections = 0;
+    int corrections = 0;          // SCU targets corrected, at rest or in motion
+    bool retargeted = false;      // corrected in motion (at most once per plan)
+    bool anchored = false;        // the plan began at rest: start_scu_mm and start_mm are one instant
+    double start_scu_mm = 0.0;    // the SCU's reading then
+    double sampled_mm_s = 0.0;    // the encoder's speed at the last drift sample
+    OffsetSlope drift;            // SCU − encoder along the travel, while moving steadily
     bool commanded = false;     // told to move (an axis already inside its tolerance is left alone)
     double commanded_at = 0.0;  // when the last command to it went out
     std::uint32_t move_id = 0;  // bumped for every command to this axis (start, correction)
@@ -93,6 +105,12 @@ class MoveExecutor {
   // Plans from the axes' positions in `s` and `from`, sets the SCU speeds so that all arrive together,
   // and commands every axis not yet inside its tolerance (or still moving).
   void plan(const cell::CellState& s, double t, std::uint32_t& move_id, const Motions& from);
+  // Learns each measured axis's drift from a fresh SCU reading, and gives the SCU a corrected target
+  // while the axis moves once the drift is known well enough (see the file comment).
+  void correct_in_motion(const cell::CellState& s, double t, std::uint32_t& move_id);
+  // An SCU target for axis i, kept within what the monitor tolerates between SCU and encoder
+  // beyond the travel: the SCU is never sent a target outside the axis's reach.
+  [[nodiscard]] double reachable_scu_target(std::size_t i, double mm) const noexcept;
   // The SCU's soft stop of axis i, `since` seconds after the hold: its planned state then.
   [[nodiscard]] planner::MotionState braked(std::size_t i, double since) const noexcept;
 
@@ -117,7 +135,8 @@ class MoveExecutor {
   planner::Synchronization synchronization_ = planner::Synchronization::time;
   std::optional<double> held_since_;                              // the hold's start, while held
   std::array<planner::MotionState, cell::kMaxAxes> held_from_{};  // the planned position and speed then
-  std::string_view note_;
+  journal::Text note_;
+  link::Duration last_scu_age_{};  // the SCU reading's age last cycle: it drops when a fresh one is in
   std::array<bool, cell::kMaxAxes> seen_moving_{};  // the SCU showed motion since the last command
   int corrections_total_ = 0;
   journal::Text reason_;

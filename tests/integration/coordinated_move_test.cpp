@@ -22,6 +22,7 @@ class CoordinatedMove : public RunFixture {
   struct Arrival {
     std::optional<double> x_t;
     std::optional<double> z_t;
+    int x_halts = 0;  // times x came to rest before it arrived
   };
 
   // Runs a one-move recipe (x and z from 0 to the targets) and returns when each rod first stood
@@ -42,12 +43,15 @@ steps:
     emulators().scu->actuators[0].physics.scale_error = x_scale_error;
     auto& run = make_run();
     Arrival a;
-    run.on_cycle([&a, x_mm, z_mm](double t, runtime::CellRun& r) {
+    bool x_was_moving = false;
+    run.on_cycle([&a, &x_was_moving, x_mm, z_mm](double t, runtime::CellRun& r) {
       const auto* scu = r.emulators()->scu();
       const auto arrived = [](const plant::Actuator& rod, double target_mm) {
         return std::abs(rod.true_position_mm() - target_mm) <= 0.1 && !rod.moving();
       };
       if (!a.x_t && arrived(scu->actuator(1), x_mm)) a.x_t = t;
+      if (!a.x_t && x_was_moving && !scu->actuator(1).moving()) ++a.x_halts;
+      x_was_moving = scu->actuator(1).moving();
       if (!a.z_t && arrived(scu->actuator(2), z_mm)) a.z_t = t;
     });
     const auto result = go();
@@ -95,18 +99,34 @@ TEST_P(CoordinatedMoveCases, TwoAxesArriveWithinOneScuRefreshPeriod) {
 
 INSTANTIATE_TEST_SUITE_P(Ratios, CoordinatedMoveCases, ::testing::ValuesIn(kCases));
 
-// The shipped cell's x sensor reads 0.2 % long: the SCU stops x short by that share of the travel,
-// and x arrives only after the encoder's correction (a settle time, then a short move). The skew is
-// then the correction's time: shown, and bounded by the settle time plus a second approach.
-TEST_F(CoordinatedMove, ScaleErrorDelaysTheMeasuredAxisByItsCorrection) {
+// The shipped cell's x sensor reads 0.2 % long: the SCU would stop x short by that share of the
+// travel. The executor learns the drift on the way and corrects x's SCU target while x still moves
+// (a new target while moving: RS, RT, RE), so x arrives with z. Without that, x arrives only after a
+// correction at rest (a settle time, then a short move): the skew is then that correction's time.
+TEST_F(CoordinatedMove, ScaleErrorIsCorrectedWhileMovingSoBothStillArriveTogether) {
   const Case c = kCases[0];
   const Arrival a = run_move(c.x, c.z, c.speed, c.path, 0.002);
   ASSERT_TRUE(a.x_t && a.z_t);
   const double skew = *a.x_t - *a.z_t;
-  std::cout << "  with x reading 0.2 % long: x arrives at " << *a.x_t << " s, z at " << *a.z_t
-            << " s, x later by " << skew * 1e3 << " ms\n";
-  EXPECT_GT(skew, 0.0);
+  std::cout << "  with x reading 0.2 % long, corrected while moving: x arrives at " << *a.x_t << " s, z at "
+            << *a.z_t << " s, x later by " << skew * 1e3 << " ms\n";
+  EXPECT_LE(std::abs(skew), refresh_period_s());
+  EXPECT_EQ(a.x_halts, 0) << "x went on to its corrected target without a stop";
+  EXPECT_EQ(events("summary").at(0)["corrections"].get<int>(), 1) << "one correction, made in motion";
+  EXPECT_EQ(notes_with("axis x corrected while moving: its SCU reads +0.2"), 1u);
+}
+
+TEST_F(CoordinatedMove, ScaleErrorCorrectedOnlyAtRestDelaysTheMeasuredAxisByTheCorrection) {
+  supervisor_settings_.move.correct_in_motion = false;
+  const Case c = kCases[0];
+  const Arrival a = run_move(c.x, c.z, c.speed, c.path, 0.002);
+  ASSERT_TRUE(a.x_t && a.z_t);
+  const double skew = *a.x_t - *a.z_t;
+  std::cout << "  with x reading 0.2 % long, corrected at rest: x arrives at " << *a.x_t << " s, z at "
+            << *a.z_t << " s, x later by " << skew * 1e3 << " ms\n";
+  EXPECT_GT(skew, refresh_period_s());
   EXPECT_LE(skew, 1.0);
+  EXPECT_EQ(a.x_halts, 1) << "x stopped short, then went on by the correction";
 }
 
 }  // namespace
