@@ -31,10 +31,10 @@ namespace cellctl::supervisor {
 
 struct MoveSettings {
   int max_corrections = 3;
-  double no_motion_s = 1.5;     // no measurable progress for this long → "no motion"
-  double settle_s = 0.15;       // the SCU must show no motion for this long before we judge
-  double speed_update_s = 0.1;  // at most this often a new speed goes to the SCU
-  double sync_gain = 2.0;       // speed correction per unit of normalised lag
+  double no_motion_s = 1.5;       // no measurable progress for this long → "no motion"
+  double settle_s = 0.15;         // the SCU must show no motion for this long before we judge
+  double speed_update_s = 0.1;    // at most this often a new speed goes to the SCU
+  double sync_gain = 2.0;         // speed correction per unit of normalised lag
   bool correct_in_motion = true;  // a new SCU target while moving (counts as one of max_corrections)
 };
 
@@ -82,12 +82,12 @@ class MoveExecutor {
     double scu_target_mm = 0.0;  // what the SCU is told (target + corrections)
     double nominal_speed = 0.0;  // its share of the move speed, so that all arrive together
     double tolerance_mm = 0.0;
-    int corrections = 0;          // SCU targets corrected, at rest or in motion
-    bool retargeted = false;      // corrected in motion (at most once per plan)
-    bool anchored = false;        // the plan began at rest: start_scu_mm and start_mm are one instant
-    double start_scu_mm = 0.0;    // the SCU's reading then
-    double sampled_mm_s = 0.0;    // the encoder's speed at the last drift sample
-    OffsetSlope drift;            // SCU − encoder along the travel, while moving steadily
+    int corrections = 0;        // SCU targets corrected, at rest or in motion
+    bool retargeted = false;    // corrected in motion (at most once per plan)
+    bool anchored = false;      // the plan began at rest: start_scu_mm and start_mm are one instant
+    double start_scu_mm = 0.0;  // the SCU's reading then
+    double sampled_mm_s = 0.0;  // the encoder's speed at the last drift sample
+    OffsetSlope drift;          // SCU − encoder along the travel, while moving steadily
     bool commanded = false;     // told to move (an axis already inside its tolerance is left alone)
     double commanded_at = 0.0;  // when the last command to it went out
     std::uint32_t move_id = 0;  // bumped for every command to this axis (start, correction)

@@ -22,8 +22,7 @@ TEST(OffsetSlope, ASteadyMoveGivesTheScaleErrorWhateverTheReplyDelay) {
     OffsetSlope fit;
     const double speed = 10.0;
     // One reading per 100 ms keep-alive from 5 to 65 mm.
-    for (double x = 5.0; x <= 65.0; x += speed * 0.1)
-      fit.add(x, scu_reading(x, 0.002, delay_s, speed) - x);
+    for (double x = 5.0; x <= 65.0; x += speed * 0.1) fit.add(x, scu_reading(x, 0.002, delay_s, speed) - x);
     EXPECT_EQ(fit.count(), 61u);
     EXPECT_NEAR(fit.span_mm(), 60.0, 1e-9);
     EXPECT_NEAR(fit.slope(), 0.002, 3.0 * fit.slope_error()) << "delay " << delay_s;
