@@ -73,6 +73,21 @@ RealtimeReport apply_realtime(const RealtimeConfig& config) {
   return report;
 }
 
+RealtimeScope::RealtimeScope(const RealtimeConfig& config) {
+  // What to go back to: read before anything is changed (both calls only read the calling thread).
+  (void)pthread_getschedparam(pthread_self(), &policy_, &param_);
+  CPU_ZERO(&cpus_);
+  (void)sched_getaffinity(0, sizeof(cpus_), &cpus_);
+  report_ = apply_realtime(config);
+}
+
+RealtimeScope::~RealtimeScope() {
+  if (report_.scheduler.outcome == RealtimeOutcome::obtained)
+    (void)pthread_setschedparam(pthread_self(), policy_, &param_);
+  if (report_.affinity.outcome == RealtimeOutcome::obtained) (void)sched_setaffinity(0, sizeof(cpus_), &cpus_);
+  if (report_.memory_lock.outcome == RealtimeOutcome::obtained) (void)munlockall();
+}
+
 std::vector<std::string> RealtimeReport::warnings() const {
   std::vector<std::string> out;
   for (const RealtimeItem* item : {&scheduler, &memory_lock, &affinity}) {

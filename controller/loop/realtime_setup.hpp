@@ -4,6 +4,8 @@
 // system refuses (no CAP_SYS_NICE, RLIMIT_MEMLOCK, no such CPU) the report says so and why, and the
 // caller logs it and goes on: lack of privileges never stops the controller.
 
+#include <sched.h>
+
 #include <string>
 #include <vector>
 
@@ -36,5 +38,25 @@ struct RealtimeReport {
 // Validates first: throws std::invalid_argument naming the field and value when fifo_priority is not
 // in 0..99 or cpu < -1 (config errors). Then applies each configured item to the calling thread.
 [[nodiscard]] RealtimeReport apply_realtime(const RealtimeConfig& config);
+
+// apply_realtime for as long as the scope lives; at its end the calling thread's scheduler and CPU
+// affinity are put back as they were and the memory unlocked, as far as they had been obtained. A
+// controller that stands by between jobs (`cellctl serve`) must not keep real-time priority while it
+// only waits. Must end on the thread that made it.
+class RealtimeScope {
+ public:
+  explicit RealtimeScope(const RealtimeConfig& config);
+  ~RealtimeScope();
+  RealtimeScope(const RealtimeScope&) = delete;
+  RealtimeScope& operator=(const RealtimeScope&) = delete;
+
+  [[nodiscard]] const RealtimeReport& report() const noexcept { return report_; }
+
+ private:
+  int policy_ = 0;
+  sched_param param_{};
+  cpu_set_t cpus_{};
+  RealtimeReport report_;
+};
 
 }  // namespace cellctl::loop

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "journal/record_header.hpp"
 #include "loop/control_stages.hpp"
@@ -349,10 +350,13 @@ void CellRun::save_home_record(double t, std::int64_t unix_start, RunResult& r) 
 
 RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminate) {
   terminate_ = terminate;
+  // For this run only: the thread goes back to its scheduler and CPUs at the end (serve's thread
+  // waits between jobs, at normal priority).
+  std::optional<loop::RealtimeScope> realtime;
   if (options_.mode != RunMode::virtual_time && cell_.loop.realtime) {
-    const auto report = loop::apply_realtime(
-        {.fifo_priority = cell_.loop.priority, .lock_memory = true, .cpu = cell_.loop.cpu});
-    realtime_warnings_ = report.warnings();
+    realtime.emplace(loop::RealtimeConfig{
+        .fifo_priority = cell_.loop.priority, .lock_memory = true, .cpu = cell_.loop.cpu});
+    realtime_warnings_ = realtime->report().warnings();
   }
   const auto wall_start = std::chrono::steady_clock::now();
   const auto unix_start =
@@ -361,7 +365,7 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   start_ = clock_.now();
   parts_.links->start_trace_clock(start_);
   if (parts_.rehearsal) parts_.rehearsal->start(start_, parts_.links->fault_links());
-  // Started after apply_realtime, so it inherits the loop's SCHED_FIFO priority and memory lock: an
+  // Started after the real-time set-up, so it inherits the loop's SCHED_FIFO priority and memory lock: an
   // emulator the load keeps off the CPU would look like a device that stops answering.
   if (parts_.emulated && options_.mode != RunMode::virtual_time)
     emulator_thread_ = std::thread([this] { run_emulator_thread(); });

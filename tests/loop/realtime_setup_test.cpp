@@ -62,5 +62,37 @@ TEST(RealtimeSetup, FifoIsObtainedOrRefusedNeverFatal) {
   }
 }
 
+// What a scope obtained is given back at its end: the scheduler (when SCHED_FIFO was permitted) and
+// the CPU affinity (always permitted for the thread's own CPU).
+TEST(RealtimeSetup, AScopePutsTheThreadBackAsItWas) {
+  int policy = 0;
+  sched_param param{};
+  ASSERT_EQ(pthread_getschedparam(pthread_self(), &policy, &param), 0);
+  cpu_set_t before;
+  ASSERT_EQ(sched_getaffinity(0, sizeof(before), &before), 0);
+  const int cpu = sched_getcpu();
+  {
+    const RealtimeScope scope({.fifo_priority = 10, .cpu = cpu});
+    EXPECT_EQ(scope.report().affinity.outcome, RealtimeOutcome::obtained) << scope.report().affinity.detail;
+    cpu_set_t inside;
+    ASSERT_EQ(sched_getaffinity(0, sizeof(inside), &inside), 0);
+    EXPECT_EQ(CPU_COUNT(&inside), 1);
+    int inside_policy = 0;
+    sched_param inside_param{};
+    ASSERT_EQ(pthread_getschedparam(pthread_self(), &inside_policy, &inside_param), 0);
+    if (scope.report().scheduler.outcome == RealtimeOutcome::obtained) {
+      EXPECT_EQ(inside_policy, SCHED_FIFO);
+    }
+  }
+  cpu_set_t after;
+  ASSERT_EQ(sched_getaffinity(0, sizeof(after), &after), 0);
+  EXPECT_TRUE(CPU_EQUAL(&before, &after)) << CPU_COUNT(&before) << " CPUs before, " << CPU_COUNT(&after) << " after";
+  int after_policy = 0;
+  sched_param after_param{};
+  ASSERT_EQ(pthread_getschedparam(pthread_self(), &after_policy, &after_param), 0);
+  EXPECT_EQ(after_policy, policy);
+  EXPECT_EQ(after_param.sched_priority, param.sched_priority);
+}
+
 }  // namespace
 }  // namespace cellctl::loop
