@@ -84,7 +84,8 @@ RealtimeScope::RealtimeScope(const RealtimeConfig& config) {
 RealtimeScope::~RealtimeScope() {
   if (report_.scheduler.outcome == RealtimeOutcome::obtained)
     (void)pthread_setschedparam(pthread_self(), policy_, &param_);
-  if (report_.affinity.outcome == RealtimeOutcome::obtained) (void)sched_setaffinity(0, sizeof(cpus_), &cpus_);
+  if (report_.affinity.outcome == RealtimeOutcome::obtained)
+    (void)sched_setaffinity(0, sizeof(cpus_), &cpus_);
   if (report_.memory_lock.outcome == RealtimeOutcome::obtained) (void)munlockall();
 }
 

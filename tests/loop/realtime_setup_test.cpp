@@ -86,7 +86,8 @@ TEST(RealtimeSetup, AScopePutsTheThreadBackAsItWas) {
   }
   cpu_set_t after;
   ASSERT_EQ(sched_getaffinity(0, sizeof(after), &after), 0);
-  EXPECT_TRUE(CPU_EQUAL(&before, &after)) << CPU_COUNT(&before) << " CPUs before, " << CPU_COUNT(&after) << " after";
+  EXPECT_TRUE(CPU_EQUAL(&before, &after))
+      << CPU_COUNT(&before) << " CPUs before, " << CPU_COUNT(&after) << " after";
   int after_policy = 0;
   sched_param after_param{};
   ASSERT_EQ(pthread_getschedparam(pthread_self(), &after_policy, &after_param), 0);
