@@ -166,27 +166,29 @@ void CellDevices::apply_axes(const cell::Intents& in) {
     // A move just sent shows no motion until the next RC reply: it must be stopped all the same.
     const bool busy = snap.actuators[static_cast<std::size_t>(axis.actuator - 1)].status.motion_active ||
                       fn.execution_open || fn.outcome == scu::MoveOutcome::queued;
-    if (immediate || in.halt == cell::Halt::controlled || !intent.move) {
-      // Every axis gets its own stop too (fast under category 0): a refused F20 leaves none running.
-      const bool stop_pending = cmd.stop_sent && snap.refusals == cmd.stop_refusals;
-      if (busy && !stop_pending && scu_->stop(axis.function, !immediate)) {
+    // One stop per motion, sent again after a new refusal; a soft one still pending is made fast
+    // (the session re-encodes a queued RS in place) when a fast one is asked for.
+    const auto request_stop = [&](bool soft) {
+      const bool pending = cmd.stop_sent && snap.refusals == cmd.stop_refusals && (soft || !cmd.stop_soft);
+      if (!pending && scu_->stop(axis.function, soft)) {
         cmd.stop_sent = true;
+        cmd.stop_soft = soft;
         cmd.stop_refusals = snap.refusals;
       }
+    };
+    if (immediate || in.halt == cell::Halt::controlled || !intent.move) {
+      // Every axis gets its own stop too (fast under category 0): a refused F20 leaves none running.
+      if (busy) request_stop(!immediate);
       if (!busy) cmd.stop_sent = false;
       continue;
     }
     if (intent.move_id != cmd.applied_move) {
       // A new target while the function's RE is still open (the axis moving, say): the manual wants
-      // every RE closed by its RS before the next, so a soft RS goes first. The SCU starts to ramp
-      // down for the few milliseconds until the new RE, which takes the axis on from that speed.
-      const bool re_open = fn.execution_open || fn.outcome == scu::MoveOutcome::queued;
-      if (re_open) {
-        const bool stop_pending = cmd.stop_sent && snap.refusals == cmd.stop_refusals;
-        if (!stop_pending && scu_->stop(axis.function, true)) {
-          cmd.stop_sent = true;
-          cmd.stop_refusals = snap.refusals;
-        }
+      // every RE closed by its RS before the next, so a soft RS goes first. The SCU ramps down until
+      // the new RE (RS, two RT and the RE on the line: some 30 ms at 38400 baud, with a keep-alive
+      // between them), which takes the axis on from that speed.
+      if (fn.execution_open || fn.outcome == scu::MoveOutcome::queued) {
+        request_stop(true);
         continue;
       }
       const scu::ActuatorTarget target{axis.actuator, intent.target_mm};

@@ -51,6 +51,7 @@ class CellDevices {
   struct AxisCommand {
     std::uint32_t applied_move = 0;   // the last move id the SCU accepted
     bool stop_sent = false;           // a stop went out for the motion now ending
+    bool stop_soft = false;           // and it was a soft one
     std::uint64_t stop_refusals = 0;  // the SCU's refusal count when it went (a new refusal: send again)
   };
   void apply_axes(const cell::Intents& in);

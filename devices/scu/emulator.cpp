@@ -264,6 +264,10 @@ Status Emulator::handle(const ExecuteRequest& r) {
     if (r.start_stop != kFastStartStop && r.start_stop != kSoftStartStop && r.start_stop != kUnusedParam)
       return Status::parameter_data_error;
     if (emergency_stop_) return Status::permission_error;  // F20 holds until its RS
+    if (config_.refuses_execute_while_moving) {
+      for (std::size_t a = 0; a < actuators_.size(); ++a)
+        if (fn.moves(static_cast<int>(a) + 1) && actuators_[a].moving()) return Status::permission_error;
+    }
     running_[r.function] = true;
     const auto d = static_cast<Direction>(r.direction);
     if (d != Direction::none) start_function(r.function, d, r.start_stop != kFastStartStop);

@@ -24,6 +24,10 @@ struct EmulatorConfig {
   std::uint16_t default_speed_percent = 100;  // remote speed 0x3011.. after reset
   // Status 2 bit 0 at power-up, per actuator [a-1]: not initialised unless set (tests).
   std::array<bool, kActuatorCount> initialised{};
+  // The manual does not say whether an RE is taken while an actuator still ramps down from the RS
+  // before it; this emulator takes it (and the actuator on from its speed) unless this is set, when
+  // it answers PE, as a stricter SCU might (tests of the controller's fallback).
+  bool refuses_execute_while_moving = false;
   std::string firmware = "SCU V2B3 cellctl emulator";
   std::string configuration = "SCP11 cellctl emulator";
 };

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <string>
 #include <vector>
 
 #include "config/cell_config.hpp"
@@ -12,6 +14,7 @@
 #include "runtime/cell_devices.hpp"
 #include "runtime/emulated_cell.hpp"
 #include "scu/codec.hpp"
+#include "scu/data_list.hpp"
 #include "spindle/codec.hpp"
 
 namespace cellctl::testing {
@@ -32,6 +35,13 @@ class RecordingLink final : public link::Link {
   [[nodiscard]] std::string describe() const override { return inner_.describe(); }
 
   void mark() { mark_ = written_.size(); }
+  [[nodiscard]] std::size_t size() const { return written_.size(); }
+  // Where `telegram` was first written at or after byte `from` (npos: not at all).
+  [[nodiscard]] std::size_t find(std::span<const std::uint8_t> telegram, std::size_t from) const {
+    const auto begin = written_.begin() + static_cast<std::ptrdiff_t>(from);
+    const auto it = std::search(begin, written_.end(), telegram.begin(), telegram.end());
+    return it == written_.end() ? std::string::npos : static_cast<std::size_t>(it - written_.begin());
+  }
   // Whether `telegram` was written since mark().
   [[nodiscard]] bool wrote_since_mark(std::span<const std::uint8_t> telegram) const {
     const auto from = written_.begin() + static_cast<std::ptrdiff_t>(mark_);
@@ -116,6 +126,84 @@ TEST_F(Boundary, AnEmergencyStopDecidedInCycleKIsOnTheScuLineInCycleK) {
   // And the SCU acts on it: the actuator stops.
   ASSERT_TRUE(cycle_until([&] { return scu->snapshot().emergency_stop_open; }, 200));
   EXPECT_TRUE(emulated_.scu()->emergency_stop_active());
+}
+
+// A new target for an axis whose RE is still open (a correction while it moves): the RE is closed by
+// a soft RS first, as the manual wants of every RE, then the new remote position, speed and RE go
+// out; the emulated SCU takes the actuator on from its speed.
+class NewTargetWhileMoving : public Boundary {
+ protected:
+  // Activates, starts x towards 150 mm at 10 mm/s, waits for it to run at speed, then asks for 120.
+  void retarget_x() {
+    devices_.activate(clock_.now());
+    ASSERT_TRUE(cycle_until([&] { return state_.links[0].active && state_.axes[0].present; }));
+    intents_.axes[0] = {.move_id = 1, .move = true, .target_mm = 150.0, .speed_mm_s = 10.0, .soft = true};
+    ASSERT_TRUE(cycle_until([&] { return emulated_.scu()->actuator(1).velocity_mm_s() >= 10.0 - 1e-9; }));
+    ASSERT_TRUE(cycle_until([&] { return state_.axes[0].scu_mm > 20.0; }, 5000));
+    from_ = scu_rec_.size();
+    intents_.axes[0].move_id = 2;
+    intents_.axes[0].target_mm = 120.0;
+  }
+  [[nodiscard]] std::size_t written(const scu::Request& r) const {
+    scu::RequestBytes bytes;
+    EXPECT_TRUE(scu::encode_request(r, bytes));
+    return scu_rec_.find(bytes.view(), from_);
+  }
+  [[nodiscard]] std::uint8_t x_function() const {
+    return static_cast<std::uint8_t>(cell_.axes[0].function - 1);
+  }
+
+  std::size_t from_ = 0;
+};
+
+TEST_F(NewTargetWhileMoving, GoesOutAsSoftRsThenRtAndReAndTheAxisGoesOnWithoutStopping) {
+  retarget_x();
+  double slowest = 10.0;
+  ASSERT_TRUE(cycle_until(
+      [&] {
+        const auto& rod = emulated_.scu()->actuator(1);
+        if (rod.position_mm() < 119.0) slowest = std::min(slowest, rod.velocity_mm_s());
+        return !rod.moving();
+      },
+      20000));
+  EXPECT_NEAR(emulated_.scu()->actuator(1).position_mm(), 120.0, 0.1) << "at the new target (SCU frame)";
+  // 120 mm at the actuator's 10 edges per mm, little-endian.
+  const std::array<std::uint8_t, 4> edges{0xB0, 0x04, 0x00, 0x00};
+  const auto rs = written(scu::StopRequest{x_function(), scu::kSoftStartStop});
+  const auto rt = written(scu::TransferRequest{scu::data_id::remote_position(cell_.axes[0].actuator), edges});
+  const auto re = written(scu::ExecuteRequest{x_function(), 9, scu::kSoftStartStop});
+  ASSERT_NE(rs, std::string::npos) << "no soft RS before the new move";
+  ASSERT_NE(rt, std::string::npos) << "the new remote position never went out";
+  ASSERT_NE(re, std::string::npos) << "the new RE never went out";
+  EXPECT_LT(rs, rt);
+  EXPECT_LT(rt, re);
+  // The RS ramps the actuator down only until the RE: some 30 ms at 40 mm/s², about 1.2 mm/s.
+  EXPECT_GT(slowest, 7.0) << "the actuator stopped (or nearly) before it went on";
+}
+
+// The RE is refused (as a stricter SCU might, while the actuator still ramps down): the RS has
+// stopped the actuator, the move is reported refused, nothing runs on.
+TEST_F(NewTargetWhileMoving, ARefusedReLeavesTheAxisStoppedAndTheMoveReportedRefused) {
+  retarget_x();
+  emulated_.scu()->refuse_next_requests(1, scu::Status::permission_error, scu::Command::execute);
+  ASSERT_TRUE(cycle_until([&] { return state_.axes[0].move_refused; }, 2000));
+  ASSERT_TRUE(cycle_until([&] { return !emulated_.scu()->actuator(1).moving(); }, 2000));
+  EXPECT_LT(emulated_.scu()->actuator(1).position_mm(), 119.0) << "stopped short, where the RS left it";
+}
+
+// A category 0 stop while the soft RS of a new target still waits: besides the F20, the axis's own
+// stop goes out fast too (were the F20 refused, only that stop would act).
+TEST_F(NewTargetWhileMoving, ACategoryZeroStopMakesThePendingSoftRsFast) {
+  retarget_x();
+  cycle([] {});  // the soft RS is asked for
+  intents_.halt = cell::Halt::immediate;
+  // Behind the F20, within a few round trips.
+  EXPECT_TRUE(cycle_until(
+      [&] {
+        return written(scu::StopRequest{x_function(), scu::kFastStartStop}) != std::string::npos;
+      },
+      200))
+      << "category 0 left the axis on its soft stop";
 }
 
 TEST_F(Boundary, ASpindleStopDecidedInCycleKIsOnTheSpindleLineInCycleK) {
