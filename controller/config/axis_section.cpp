@@ -14,8 +14,8 @@ std::vector<AxisConfig> parse_axes(const YamlNode& list) {
   if (items.size() > 6) list.fail("the SCU drives at most 6 actuators");
   for (const auto& n : items) {
     n.only_keys({"name", "actuator", "function", "edges_per_mm", "min_mm", "max_mm", "max_speed_mm_s",
-                 "min_speed_mm_s", "max_accel_mm_s2", "max_jerk_mm_s3", "encoder", "min_ferror_mm",
-                 "ferror_mm", "homing"});
+                 "min_speed_mm_s", "max_accel_mm_s2", "max_jerk_mm_s3", "encoder", "correct_in_motion",
+                 "min_ferror_mm", "ferror_mm", "homing"});
     AxisConfig a;
     a.name = n.string_at("name");
     if (a.name.empty() ||
@@ -38,6 +38,9 @@ std::vector<AxisConfig> parse_axes(const YamlNode& list) {
     a.max_accel_mm_s2 = n.double_in_or("max_accel_mm_s2", 0.001, 1e5, a.max_accel_mm_s2);
     a.max_jerk_mm_s3 = n.double_in_or("max_jerk_mm_s3", 0.001, 1e7, a.max_jerk_mm_s3);
     a.encoder = n.bool_or("encoder", false);
+    a.correct_in_motion = n.bool_or("correct_in_motion", false);
+    if (a.correct_in_motion && !a.encoder)
+      n.at("correct_in_motion").fail("a correction in motion needs the encoder on this axis (encoder: true)");
     a.min_ferror_mm = n.double_in_or("min_ferror_mm", 0.001, 1000.0, a.min_ferror_mm);
     a.ferror_mm = n.double_in_or("ferror_mm", 0.001, 1000.0, a.ferror_mm);
     if (a.ferror_mm < a.min_ferror_mm)

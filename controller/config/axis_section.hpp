@@ -24,6 +24,9 @@ struct AxisConfig {
   double max_accel_mm_s2 = 40.0;
   double max_jerk_mm_s3 = 400.0;
   bool encoder = false;  // measured by the cell's encoder
+  // The SCU target corrected while the axis moves, from the drift learnt against the encoder (a soft
+  // RS, then RT and RE while the actuator still runs down): off unless the SCU is known to take that.
+  bool correct_in_motion = false;
   // Following error as LinuxCNC's MIN_FERROR / FERROR: the measured position may differ from the
   // planned one by ferror_mm × |planned speed| / max_speed_mm_s, never less than min_ferror_mm.
   double min_ferror_mm = 1.0;

@@ -267,6 +267,8 @@ HomingStatus Homing::step(const cell::CellState& s, double t, cell::Intents& out
     case Stage::to_end:
     case Stage::to_home: {
       const auto status = executor_.step(s, t, out, move_id);
+      // (A correction in motion on the way home, say.)
+      if (!executor_.note().empty()) journal::post_note(events_, t, "homing: {}", executor_.note());
       if (status == supervisor::MoveStatus::failed) return fail(executor_.reason());
       if (status == supervisor::MoveStatus::running) return HomingStatus::running;
       stage_since_ = t;

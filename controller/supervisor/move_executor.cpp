@@ -124,7 +124,7 @@ void MoveExecutor::plan(const cell::CellState& s, double t, std::uint32_t& move_
     a.start_mm = best_position(s, i);
     a.start_scu_mm = s.axes[i].scu_mm;
     a.anchored = from[i].velocity == 0.0 && from[i].acceleration == 0.0 && !s.axes[i].moving;
-    a.retargeted = false;
+    a.correcting_at_rest = false;
     a.sampled_mm_s = 0.0;
     a.drift.reset();
     const double to_go = a.target_mm - a.start_mm;
@@ -197,45 +197,57 @@ void MoveExecutor::correct_in_motion(const cell::CellState& s, double t, std::ui
   // A sample needs a fresh SCU reading (a keep-alive reply): between replies it stands still.
   const bool fresh = s.scu_position_age < last_scu_age_;
   last_scu_age_ = s.scu_position_age;
-  if (!fresh || !settings_.correct_in_motion || reference_ != Reference::best) return;
+  if (!fresh || reference_ != Reference::best) return;
   const double age_s = link::to_seconds(s.scu_position_age);
   for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
     auto& a = axes_[i];
     const auto& st = s.axes[i];
-    if (!a.in_move || !a.commanded || !a.anchored || a.retargeted || !st.measured || !st.moving ||
-        a.corrections >= settings_.max_corrections)
+    if (!a.in_move || !a.commanded || !a.anchored || a.retargeted || !cell_.axes[i].correct_in_motion ||
+        !st.measured || !st.moving || a.corrections >= settings_.max_corrections)
       continue;
-    // Only samples at a steady speed towards the target: at a steady speed the SCU's reply delay
-    // shifts every offset alike, which leaves the slope alone (see OffsetSlope).
+    // Only samples at a steady speed towards the target (no ramp: the SCU's reply delay then
+    // shifts each offset by its speed's share, which OffsetSlope takes out).
     const double v = st.encoder_mm_s;
     const double to_go = a.target_mm - st.encoder_mm;
     const bool steady = v * to_go > 0.0 && std::abs(v - a.sampled_mm_s) <= 0.05 * std::abs(v);
     a.sampled_mm_s = v;
     if (!steady) continue;
     const double at = st.encoder_mm - v * age_s;  // where the encoder was when the reply came
-    a.drift.add(at, st.scu_mm - at);
-    // Judged once the samples span a quarter of the travel and the correction they give is known
-    // to a quarter of the tolerance; given only while the SCU is still short of its own approach
-    // (its braking distance, and half a second for the RS, RT and RE on the line).
+    a.drift.add(at, v, st.scu_mm - at);
+    // Judged once the samples span a quarter of the travel, the drift is three times its standard
+    // error (a real one, not the scatter of the SCU's 0.1 mm edges) and no larger than a sensor's
+    // plausible scale error (beyond that something slips: left to the correction at rest and the
+    // monitor), and the correction it gives is known to a quarter of the tolerance and worth one;
+    // given only while the SCU is still short of its own approach (its braking distance, and half a
+    // second for the RS, RT and RE on the line).
     const double travel = a.target_mm - a.start_mm;
-    const double change = a.drift.slope() * travel;
+    const double slope = a.drift.slope();
+    const double error = a.drift.slope_error();
+    const double change = slope * travel;
     const double ramp = cell_.axes[i].max_accel_mm_s2;
-    if (a.drift.count() < 8 || a.drift.span_mm() < 0.25 * std::abs(travel) ||
-        a.drift.slope_error() * std::abs(travel) > a.tolerance_mm / 4.0 ||
-        std::abs(to_go) < v * v / (2.0 * ramp) + std::abs(v) * 0.5 || std::abs(change) < a.tolerance_mm / 4.0)
+    if (a.drift.count() < 8 || a.drift.span_mm() < 0.25 * std::abs(travel) || std::abs(slope) < 3.0 * error ||
+        std::abs(slope) > settings_.max_scale_error || error * std::abs(travel) > a.tolerance_mm / 4.0 ||
+        std::abs(change) < a.tolerance_mm / 4.0 || std::abs(to_go) < v * v / (2.0 * ramp) + std::abs(v) * 0.5)
       continue;
     // The SCU's offset at the start, where both stood still, plus the drift over the travel.
-    a.scu_target_mm = reachable_scu_target(i, a.start_scu_mm + travel + change);
-    a.move_id = ++move_id;
-    a.commanded_at = t;
+    retarget(i, a.start_scu_mm + travel + change, t, move_id);
     a.retargeted = true;
-    ++a.corrections;
-    ++corrections_total_;
+    a.in_motion_move_id = a.move_id;
     note_ = journal::Text::format(
         "axis {} corrected while moving: its SCU reads {:+.2f} % along the travel, so its SCU target "
         "moves by {:+.3f} mm",
-        cell_.axes[i].name, 100.0 * a.drift.slope(), change);
+        cell_.axes[i].name, 100.0 * slope, change);
   }
+}
+
+void MoveExecutor::retarget(std::size_t i, double scu_target_mm, double t, std::uint32_t& move_id) {
+  auto& a = axes_[i];
+  a.scu_target_mm = reachable_scu_target(i, scu_target_mm);
+  a.move_id = ++move_id;
+  a.commanded_at = t;
+  a.commanded = true;
+  ++a.corrections;
+  ++corrections_total_;
 }
 
 void MoveExecutor::command(cell::Intents& out) const noexcept {
@@ -280,8 +292,18 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
     last_progress_t_ = t;
   }
   for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    auto& a = axes_[i];
     // (Not in the cycle that sent the command: that cycle's state is from before it.)
-    if (!axes_[i].commanded || !s.axes[i].move_refused || t <= axes_[i].commanded_at) continue;
+    if (!a.commanded || !s.axes[i].move_refused || t <= a.commanded_at) continue;
+    if (a.move_id == a.in_motion_move_id) {
+      // The SCU would not take a new RE while the axis still ran down from the RS before it (the
+      // manual does not say it must): the RS has stopped the axis mid-move.
+      reason_ = journal::Text::format(
+          "the SCU refused axis {}'s corrected target while it moved ({}): set correct_in_motion: false "
+          "for it in the cell config",
+          cell_.axes[i].name, s.scu_refusal.empty() ? "no reason given" : s.scu_refusal);
+      return MoveStatus::failed;
+    }
     reason_ = journal::Text::format("the SCU refused the move of axis {} to {:.3f} mm ({})",
                                     cell_.axes[i].name, axes_[i].scu_target_mm,
                                     s.scu_refusal.empty() ? "no reason given" : s.scu_refusal);
@@ -320,8 +342,8 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
     for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
       auto& a = axes_[i];
       const double span = a.target_mm - a.start_mm;
-      // (Not after a correction at rest: that is a short move of its own.)
-      if (!a.in_move || std::abs(span) < 1e-9 || a.corrections > (a.retargeted ? 1 : 0)) continue;
+      // (Not during a correction at rest: that is a short move of its own.)
+      if (!a.in_move || std::abs(span) < 1e-9 || a.correcting_at_rest) continue;
       const double lag = (planned_[i] - best_position(s, i)) / span;
       const double factor = std::clamp(1.0 + settings_.sync_gain * lag, 0.5, 1.5);
       const double axis_max =
@@ -367,12 +389,10 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
                                       a.tolerance_mm);
       return MoveStatus::failed;
     }
-    a.scu_target_mm = reachable_scu_target(i, a.scu_target_mm + error);
-    a.move_id = ++move_id;
-    a.commanded_at = t;
-    a.commanded = true;
-    ++a.corrections;
-    ++corrections_total_;
+    // From the SCU's target, which it reached (its reading is 0.1 mm edges); from its reading when
+    // it stopped short of a target it refused.
+    retarget(i, a.scu_target_mm + error, t, move_id);
+    a.correcting_at_rest = true;
     seen_moving_[i] = false;
     // A short correction at full share of the speed is fine; never below the threshold.
     speed_sent_[i] = std::max(a.nominal_speed, cell_.axes[i].min_speed_mm_s * 1.2);

@@ -7,7 +7,8 @@
 // tolerance by its best measurement (the encoder where it has one). When the SCU has stopped but the
 // encoder says the axis is off (scale error, slip), the SCU target is corrected by the measured error
 // and the axis moved again, a bounded number of times. Where the encoder measures an axis that moves
-// steadily, how its SCU reading drifts along the travel (a scale error) is learnt on the way, and the
+// steadily and the cell config allows it (correct_in_motion), how its SCU reading drifts along the
+// travel (a scale error) is learnt on the way, and the
 // SCU's target corrected while the axis still moves: it then arrives with the others, not a correction
 // later. A move that produces no motion is detected.
 // A hold brakes the move (the SCU's soft stop, which the plan follows); resume() goes on from the
@@ -31,11 +32,11 @@ namespace cellctl::supervisor {
 
 struct MoveSettings {
   int max_corrections = 3;
-  double no_motion_s = 1.5;       // no measurable progress for this long → "no motion"
-  double settle_s = 0.15;         // the SCU must show no motion for this long before we judge
-  double speed_update_s = 0.1;    // at most this often a new speed goes to the SCU
-  double sync_gain = 2.0;         // speed correction per unit of normalised lag
-  bool correct_in_motion = true;  // a new SCU target while moving (counts as one of max_corrections)
+  double no_motion_s = 1.5;        // no measurable progress for this long → "no motion"
+  double settle_s = 0.15;          // the SCU must show no motion for this long before we judge
+  double speed_update_s = 0.1;     // at most this often a new speed goes to the SCU
+  double sync_gain = 2.0;          // speed correction per unit of normalised lag
+  double max_scale_error = 0.015;  // a larger drift of the SCU from the encoder is not corrected in motion
 };
 
 enum class MoveStatus : std::uint8_t { running, done, failed };
@@ -82,15 +83,17 @@ class MoveExecutor {
     double scu_target_mm = 0.0;  // what the SCU is told (target + corrections)
     double nominal_speed = 0.0;  // its share of the move speed, so that all arrive together
     double tolerance_mm = 0.0;
-    int corrections = 0;        // SCU targets corrected, at rest or in motion
-    bool retargeted = false;    // corrected in motion (at most once per plan)
-    bool anchored = false;      // the plan began at rest: start_scu_mm and start_mm are one instant
-    double start_scu_mm = 0.0;  // the SCU's reading then
-    double sampled_mm_s = 0.0;  // the encoder's speed at the last drift sample
-    OffsetSlope drift;          // SCU − encoder along the travel, while moving steadily
-    bool commanded = false;     // told to move (an axis already inside its tolerance is left alone)
-    double commanded_at = 0.0;  // when the last command to it went out
-    std::uint32_t move_id = 0;  // bumped for every command to this axis (start, correction)
+    int corrections = 0;                  // SCU targets corrected, at rest or in motion
+    bool retargeted = false;              // corrected in motion (at most once per move)
+    std::uint32_t in_motion_move_id = 0;  // the command that did it
+    bool correcting_at_rest = false;      // a correction at rest is under way (no speed modulation)
+    bool anchored = false;                // the plan began at rest: start_scu_mm and start_mm are one instant
+    double start_scu_mm = 0.0;            // the SCU's reading then
+    double sampled_mm_s = 0.0;            // the encoder's speed at the last drift sample
+    OffsetSlope drift;                    // SCU − encoder along the travel, while moving steadily
+    bool commanded = false;               // told to move (an axis already inside its tolerance is left alone)
+    double commanded_at = 0.0;            // when the last command to it went out
+    std::uint32_t move_id = 0;            // bumped for every command to this axis (start, correction)
   };
 
   // Where an axis stands and how it moves when a plan begins.
@@ -111,6 +114,8 @@ class MoveExecutor {
   // An SCU target for axis i, kept within what the monitor tolerates between SCU and encoder
   // beyond the travel: the SCU is never sent a target outside the axis's reach.
   [[nodiscard]] double reachable_scu_target(std::size_t i, double mm) const noexcept;
+  // A new SCU target for axis i (reachable), commanded now: a correction.
+  void retarget(std::size_t i, double scu_target_mm, double t, std::uint32_t& move_id);
   // The SCU's soft stop of axis i, `since` seconds after the hold: its planned state then.
   [[nodiscard]] planner::MotionState braked(std::size_t i, double since) const noexcept;
 

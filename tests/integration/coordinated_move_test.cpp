@@ -25,10 +25,10 @@ class CoordinatedMove : public RunFixture {
     int x_halts = 0;  // times x came to rest before it arrived
   };
 
-  // Runs a one-move recipe (x and z from 0 to the targets) and returns when each rod first stood
-  // still within the recipe's tolerance (0.1 mm) of its target.
-  Arrival run_move(double x_mm, double z_mm, double speed_mm_s, const std::string& path,
-                   double x_scale_error) {
+  // Runs a one-move recipe (x from x_from_mm, z from 0, to the targets) and returns when each rod
+  // first stood still within the recipe's tolerance (0.1 mm) of its target.
+  Arrival run_move(double x_mm, double z_mm, double speed_mm_s, const std::string& path, double x_scale_error,
+                   double x_from_mm = 0.0) {
     load_recipe_text(std::string(R"(
 recipe: {name: coordinated, version: "1", cell: demo-cell}
 limits:
@@ -41,6 +41,7 @@ steps:
                      std::to_string(x_mm) + ", z: " + std::to_string(z_mm) +
                      "}, speed_mm_s: " + std::to_string(speed_mm_s) + path + "}}\n");
     emulators().scu->actuators[0].physics.scale_error = x_scale_error;
+    emulators().scu->actuators[0].physics.start_position_mm = x_from_mm;
     auto& run = make_run();
     Arrival a;
     bool x_was_moving = false;
@@ -95,6 +96,7 @@ TEST_P(CoordinatedMoveCases, TwoAxesArriveWithinOneScuRefreshPeriod) {
             << ": x arrives at " << *a.x_t << " s, z at " << *a.z_t << " s, skew " << skew * 1e3
             << " ms (refresh period " << refresh_period_s() * 1e3 << " ms)\n";
   EXPECT_LE(skew, refresh_period_s()) << "x " << c.x << " z " << c.z;
+  EXPECT_EQ(notes_with("corrected while moving"), 0u) << "a sensor that reads true needs no correction";
 }
 
 INSTANTIATE_TEST_SUITE_P(Ratios, CoordinatedMoveCases, ::testing::ValuesIn(kCases));
@@ -116,8 +118,41 @@ TEST_F(CoordinatedMove, ScaleErrorIsCorrectedWhileMovingSoBothStillArriveTogethe
   EXPECT_EQ(notes_with("axis x corrected while moving: its SCU reads +0.2"), 1u);
 }
 
+// The same on the way back (x 140 → 20): the correction has the travel's sign.
+TEST_F(CoordinatedMove, ScaleErrorIsCorrectedWhileMovingTowardsTheRetractedEndToo) {
+  const Arrival a = run_move(20, 60, 10, "", 0.002, 140);
+  ASSERT_TRUE(a.x_t && a.z_t);
+  EXPECT_LE(std::abs(*a.x_t - *a.z_t), refresh_period_s());
+  EXPECT_EQ(a.x_halts, 0);
+  EXPECT_EQ(notes_with("axis x corrected while moving: its SCU reads +0.20 % along the travel, so its SCU "
+                       "target moves by -0.2"),
+            1u);
+}
+
+// An SCU that refuses an RE while the actuator still ramps down from the RS before it (the manual
+// does not say it must take one): the move fails with the SCU's answer and the remedy in the config.
+TEST_F(CoordinatedMove, AnScuThatRefusesTheNewTargetInMotionStopsTheRunNamingTheRemedy) {
+  emulators().scu->refuses_execute_while_moving = true;
+  load_recipe_text(R"(
+recipe: {name: refused, version: "1", cell: demo-cell}
+limits:
+  axes:
+    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
+steps:
+  - {name: out, move: {to: {x: 120}, speed_mm_s: 10}}
+)");
+  emulators().scu->actuators[0].physics.scale_error = 0.002;
+  make_run();
+  const auto result = go();
+  EXPECT_EQ(result.final_state, supervisor::State::stopped) << result.summary_text;
+  EXPECT_NE(result.failure.find("the SCU refused axis x's corrected target while it moved (not permitted"),
+            std::string::npos)
+      << result.failure;
+  EXPECT_NE(result.failure.find("set correct_in_motion: false"), std::string::npos) << result.failure;
+}
+
 TEST_F(CoordinatedMove, ScaleErrorCorrectedOnlyAtRestDelaysTheMeasuredAxisByTheCorrection) {
-  supervisor_settings_.move.correct_in_motion = false;
+  cell_.axes[0].correct_in_motion = false;
   const Case c = kCases[0];
   const Arrival a = run_move(c.x, c.z, c.speed, c.path, 0.002);
   ASSERT_TRUE(a.x_t && a.z_t);
