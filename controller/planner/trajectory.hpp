@@ -88,7 +88,9 @@ class Trajectory {
   }
   [[nodiscard]] bool plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept;
 
-  std::array<JerkProfile, kN> profiles_{};
+  // Default-initialised, not value-initialised ({}): that zeroed every profile's unused segment
+  // slots on each plan (see JerkSegment).
+  std::array<JerkProfile, kN> profiles_;
   std::array<double, kN> min_duration_{};
   std::array<std::array<Interval, AxisProfile::kMaxBlocked>, kN> blocked_{};
   std::array<std::size_t, kN> blocked_count_{};
@@ -212,7 +214,7 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
     }
   }
   if (!planned) {
-    std::array<AxisProfile, kN> axes{};
+    std::array<AxisProfile, kN> axes;  // not {}: that zeroed their brakes' unused segment slots
     double common = 0.0;
     for (int i = 0; i < N; ++i) {
       if (!in.enabled[idx(i)]) continue;
