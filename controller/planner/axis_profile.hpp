@@ -101,6 +101,7 @@ class AxisProfile {
   // Farthest in the positive direction, and in the mirrored frame (the nearest profile).
   std::array<FarthestProfile, 2> extremes_{};
   bool symmetric_ = false;  // the second extreme is the first one mirrored: computed once
+  int min_side_ = -1;       // the extreme whose profile is the shortest duration's (-1: a blend)
   double reach_ = 0.0;
   double min_duration_ = 0.0;                    // brake included
   std::array<Interval, kMaxBlocked> blocked_{};  // brake included
