@@ -90,7 +90,7 @@ Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits
 
 FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
                                  const AxisLimits& limits) noexcept
-    : v0_(v0), a0_(a0), vf_(vf), af_(af), lim_(limits) {
+    : v0_(v0), a0_(a0), vf_(vf), af_(af), lim_(limits), cruise_shape_{} {
   const double j = lim_.jerk;
   inv_jerk_ = 1.0 / j;
   const double amax = lim_.max_acceleration;
