@@ -31,10 +31,11 @@
 
 namespace cellctl::planner {
 
-// An open interval of durations [s].
+// An open interval of durations [s]. A plain aggregate (Interval{} is (0, 0); no default member
+// values): a trajectory's unused interval slots are then left unwritten (see Trajectory).
 struct Interval {
-  double lo = 0.0;
-  double hi = 0.0;
+  double lo;
+  double hi;
   [[nodiscard]] bool contains(double t) const noexcept { return t > lo && t < hi; }
 };
 
