@@ -83,23 +83,15 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   const Reach fastest = reach(v, a, target.velocity, target.acceleration, limits);
   reach_ = fastest.time;
 
-  // A target acceleration may leave a gap of durations with no way to its velocity and
-  // acceleration (see velocity_gap): the search then runs before it (a window) and after it.
-  double from = reach_;
-  Interval window{};
-  bool has_window = false;
-  const Gap gap = velocity_gap(v, a, target.velocity, target.acceleration, limits);
-  if (gap.hi > gap.lo && gap.hi > reach_) {
-    if (gap.lo > reach_) has_window = feasible_window(reach_, gap.lo, window);
-    from = gap.hi;
-  }
   const double brake = brake_.duration();
-  if (target.velocity == 0.0 && target.acceleration == 0.0 && !has_window) {
+  if (target.velocity == 0.0 && target.acceleration == 0.0) {
     // A target at rest can be reached at any duration from the shortest on and then held, so the
     // reachable positions only grow with the duration: no dip on either side. At the reach time
     // they are one point (only one profile gets to rest that fast): the target is beyond it on one
-    // side at most, which then falls short until its root. (A velocity gap before a target at rest
-    // ends at the reach time: `from` is the reach time up to rounding.)
+    // side at most, which then falls short until its root. Nor is there a velocity gap after the
+    // reach time (one before it ends there), so it is not computed: its end was the reach time up
+    // to rounding (the same durations, bit for bit, in 65 million random problems).
+    const double from = reach_;
     const double p = fastest.position;
     if (std::isnan(p)) return AxisStatus::unsupported_target;
     double t = from;
@@ -111,6 +103,16 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
     }
     min_duration_ = brake + t;
     return std::isfinite(min_duration_) ? AxisStatus::ok : AxisStatus::unsupported_target;
+  }
+  // A target acceleration may leave a gap of durations with no way to its velocity and
+  // acceleration (see velocity_gap): the search then runs before it (a window) and after it.
+  double from = reach_;
+  Interval window{};
+  bool has_window = false;
+  const Gap gap = velocity_gap(v, a, target.velocity, target.acceleration, limits);
+  if (gap.hi > gap.lo && gap.hi > reach_) {
+    if (gap.lo > reach_) has_window = feasible_window(reach_, gap.lo, window);
+    from = gap.hi;
   }
   const ShortSet up = short_set(extremes_[0], target_offset_, limits.max_velocity, from);
   const ShortSet down = short_set(extremes_[1], -target_offset_, -limits.min_velocity, from);
