@@ -99,8 +99,9 @@ class AxisProfile {
   MotionState target_;
   double target_offset_ = 0.0;  // target position - main start position
   AxisLimits limits_;
-  // Farthest in the positive direction, and in the mirrored frame (the nearest profile).
-  std::array<FarthestProfile, 2> extremes_;  // not {}: that zeroed them (a rep stos) for every axis planned
+  // Farthest in the positive direction, and in the mirrored frame (the nearest profile); plan()
+  // constructs both. Not {}: that zeroed them (a rep stos) for every axis planned.
+  std::array<FarthestProfile, 2> extremes_;
   bool symmetric_ = false;  // the second extreme is the first one mirrored: computed once
   int min_side_ = -1;       // the extreme whose profile is the shortest duration's (-1: a blend)
   double reach_ = 0.0;
