@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "planner/brake.hpp"
 #include "planner/rest_to_rest.hpp"
@@ -47,7 +48,11 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   if (!target_within(target, limits)) return AxisStatus::target_outside_limits;
   brake_ = brake_profile(start, limits);
   const MotionState s = brake_.end();
-  if (!is_safe(s.velocity, s.acceleration, limits)) return AxisStatus::limits_too_narrow;
+  // An empty brake means brake_profile found the start safe by is_safe's own tests (all but a NaN
+  // acceleration, which is_safe refuses): only a brake's end is checked again.
+  if ((brake_.size() > 0 || std::isnan(s.acceleration)) && !is_safe(s.velocity, s.acceleration, limits)) {
+    return AxisStatus::limits_too_narrow;
+  }
   main_start_ = {s.position, std::clamp(s.velocity, limits.min_velocity, limits.max_velocity),
                  std::clamp(s.acceleration, limits.min_acceleration, limits.max_acceleration)};
   target_offset_ = target.position - s.position;
@@ -59,19 +64,46 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   // the same one: the nearest profile is the farthest one negated.
   symmetric_ = rest_to_rest && limits.min_velocity == -limits.max_velocity &&
                limits.min_acceleration == -limits.max_acceleration;
-  extremes_[0] = FarthestProfile(v, a, target.velocity, target.acceleration, limits);
-  extremes_[1] = symmetric_
-                     ? extremes_[0]
-                     : FarthestProfile(-v, -a, -target.velocity, -target.acceleration, limits.mirrored());
+  // Constructed in place: one built elsewhere and copied in is read back with wide loads straight
+  // after its narrow stores, a stalled store forward per piece.
+  std::construct_at(&extremes_[0], v, a, target.velocity, target.acceleration, limits);
+  if (symmetric_) {
+    extremes_[1] = extremes_[0];
+  } else {
+    std::construct_at(&extremes_[1], -v, -a, -target.velocity, -target.acceleration, limits.mirrored());
+  }
   if (rest_to_rest) {
     // From rest to rest: closed form, and never a blocked interval.
     reach_ = 0.0;
     min_duration_ = brake_.duration() + rest_to_rest_time(target_offset_, limits);
+    min_side_ = target_offset_ >= 0.0 ? 0 : 1;
     return AxisStatus::ok;
   }
+  min_side_ = -1;
   const Reach fastest = reach(v, a, target.velocity, target.acceleration, limits);
   reach_ = fastest.time;
 
+  const double brake = brake_.duration();
+  if (target.velocity == 0.0 && target.acceleration == 0.0) {
+    // A target at rest can be reached at any duration from the shortest on and then held, so the
+    // reachable positions only grow with the duration: no dip on either side. At the reach time
+    // they are one point (only one profile gets to rest that fast): the target is beyond it on one
+    // side at most, which then falls short until its root. Nor is there a velocity gap after the
+    // reach time (one before it ends there), so it is not computed: its end was the reach time up
+    // to rounding (the same durations, bit for bit, in 65 million random problems).
+    const double from = reach_;
+    const double p = fastest.position;
+    if (std::isnan(p)) return AxisStatus::unsupported_target;
+    double t = from;
+    min_side_ = p > target_offset_ ? 1 : 0;
+    if (p < target_offset_) {
+      t = shortest(extremes_[0], target_offset_, limits.max_velocity, from, p - target_offset_);
+    } else if (p > target_offset_) {
+      t = shortest(extremes_[1], -target_offset_, -limits.min_velocity, from, target_offset_ - p);
+    }
+    min_duration_ = brake + t;
+    return std::isfinite(min_duration_) ? AxisStatus::ok : AxisStatus::unsupported_target;
+  }
   // A target acceleration may leave a gap of durations with no way to its velocity and
   // acceleration (see velocity_gap): the search then runs before it (a window) and after it.
   double from = reach_;
@@ -81,24 +113,6 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   if (gap.hi > gap.lo && gap.hi > reach_) {
     if (gap.lo > reach_) has_window = feasible_window(reach_, gap.lo, window);
     from = gap.hi;
-  }
-  const double brake = brake_.duration();
-  if (target.velocity == 0.0 && target.acceleration == 0.0 && !has_window) {
-    // A target at rest can be reached at any duration from the shortest on and then held, so the
-    // reachable positions only grow with the duration: no dip on either side. At the reach time
-    // they are one point (only one profile gets to rest that fast): the target is beyond it on one
-    // side at most, which then falls short until its root. (A velocity gap before a target at rest
-    // ends at the reach time: `from` is the reach time up to rounding.)
-    const double p = fastest.position;
-    if (std::isnan(p)) return AxisStatus::unsupported_target;
-    double t = from;
-    if (p < target_offset_) {
-      t = shortest(extremes_[0], target_offset_, limits.max_velocity, from, p - target_offset_);
-    } else if (p > target_offset_) {
-      t = shortest(extremes_[1], -target_offset_, -limits.min_velocity, from, target_offset_ - p);
-    }
-    min_duration_ = brake + t;
-    return std::isfinite(min_duration_) ? AxisStatus::ok : AxisStatus::unsupported_target;
   }
   const ShortSet up = short_set(extremes_[0], target_offset_, limits.max_velocity, from);
   const ShortSet down = short_set(extremes_[1], -target_offset_, -limits.min_velocity, from);
@@ -314,6 +328,25 @@ bool AxisProfile::feasible(double T) const noexcept {
 bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
   out = brake_;
   const double main = std::max(T - brake_.duration(), reach_);
+  const double j = limits_.jerk;
+  std::array<JerkSegment, 2 * kFarthestJerkSigns.size() - 1> pieces;  // the first n are set
+  std::size_t n = 0;
+  // The shortest duration to a target at rest is the extreme profile on the target's side: no blend
+  // (whose share of the other extreme would only be rounding, yet its merge cost the most here).
+  // Unless that profile misses the target by more than rounding (the shortest duration lies a few
+  // ulps past the root; where the position's slope is steep, 2 in 10^5 problems missed by 1e-11 m):
+  // the blend then ends on the target.
+  if (T == min_duration_ && min_side_ >= 0) {
+    const auto side = static_cast<std::size_t>(min_side_);
+    const double sign = side == 0 ? 1.0 : -1.0;
+    SevenDurations d{};
+    const double reached = extremes_[side].position(main, d);
+    if (std::abs(sign * reached - target_offset_) <= 1e-13 * (1.0 + std::abs(target_offset_))) {
+      for (std::size_t i = 0; i < d.size(); ++i) pieces[n++] = {sign * kFarthestJerkSigns[i] * j, d[i]};
+      out.append(pieces.data(), n);
+      return arrives(out);
+    }
+  }
   SevenDurations up{};
   SevenDurations down{};
   const double far = extremes_[0].position(main, up);
@@ -329,9 +362,6 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
   } else if (has_down && far - near > 0.0) {
     share = std::clamp((target_offset_ - near) / (far - near), 0.0, 1.0);
   }
-  const double j = limits_.jerk;
-  std::array<JerkSegment, 2 * kFarthestJerkSigns.size() - 1> pieces;  // the first n are set
-  std::size_t n = 0;
   if (share == 1.0 || share == 0.0) {
     const bool use_up = share == 1.0;
     const SevenDurations& d = use_up ? up : down;

@@ -31,10 +31,11 @@
 
 namespace cellctl::planner {
 
-// An open interval of durations [s].
+// An open interval of durations [s]. A plain aggregate (Interval{} is (0, 0); no default member
+// values): a trajectory's unused interval slots are then left unwritten (see Trajectory).
 struct Interval {
-  double lo = 0.0;
-  double hi = 0.0;
+  double lo;
+  double hi;
   [[nodiscard]] bool contains(double t) const noexcept { return t > lo && t < hi; }
 };
 
@@ -98,9 +99,11 @@ class AxisProfile {
   MotionState target_;
   double target_offset_ = 0.0;  // target position - main start position
   AxisLimits limits_;
-  // Farthest in the positive direction, and in the mirrored frame (the nearest profile).
-  std::array<FarthestProfile, 2> extremes_{};
+  // Farthest in the positive direction, and in the mirrored frame (the nearest profile); plan()
+  // constructs both. Not {}: that zeroed them (a rep stos) for every axis planned.
+  std::array<FarthestProfile, 2> extremes_;
   bool symmetric_ = false;  // the second extreme is the first one mirrored: computed once
+  int min_side_ = -1;       // the extreme whose profile is the shortest duration's (-1: a blend)
   double reach_ = 0.0;
   double min_duration_ = 0.0;                    // brake included
   std::array<Interval, kMaxBlocked> blocked_{};  // brake included

@@ -1,5 +1,6 @@
 #include "planner/brake.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace cellctl::planner {
@@ -11,8 +12,10 @@ double tolerance(double bound) noexcept {
 }
 
 bool over_max(double v, double a, const AxisLimits& l) noexcept {
-  const double tol = tolerance(l.max_velocity);
-  return v > l.max_velocity + tol || (a > 0.0 && v + a * a / (2.0 * l.jerk) > l.max_velocity + tol);
+  // Beyond max_velocity, or bound to cross it (a > 0): one test on v plus the ramp, zero for a <= 0
+  // (v + ramp >= v, so it covers both; a branch on the sign of a was a misprediction in two).
+  const double rising = std::max(0.0, a);
+  return v + rising * rising / (2.0 * l.jerk) > l.max_velocity + tolerance(l.max_velocity);
 }
 
 // Full negative jerk, the acceleration held at min_acceleration, until v is back at max_velocity.

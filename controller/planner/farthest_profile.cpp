@@ -90,7 +90,7 @@ Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits
 
 FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
                                  const AxisLimits& limits) noexcept
-    : v0_(v0), a0_(a0), vf_(vf), af_(af), lim_(limits) {
+    : v0_(v0), a0_(a0), vf_(vf), af_(af), lim_(limits), cruise_shape_{} {
   const double j = lim_.jerk;
   inv_jerk_ = 1.0 / j;
   const double amax = lim_.max_acceleration;
@@ -122,7 +122,9 @@ FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
     t[5] = std::max(0.0, (fall - (2.0 * amin * amin - af * af) * 0.5 * inv_jerk_) / -amin);
     t[6] = (af - amin) * inv_jerk_;
   }
-  for (const double d : t) cruise_from_ += d;
+  double from = 0.0;  // summed in a local: a member store per term otherwise (t may alias it)
+  for (const double d : t) from += d;
+  cruise_from_ = from;
   half_jerk_ = j / 2.0;
   sixth_jerk_ = j / 6.0;
   cruise_position_ = position_of(t);
@@ -259,23 +261,40 @@ double FarthestProfile::position_of(const SevenDurations& t, const SevenDuration
   double left = 0.0;
   if constexpr (kSlope) {
     for (const double d : t) left += d;
-    slope = 0.0;
   }
+  double sum_slope = 0.0;
   double p = 0.0;
   double v = v0_;
   double a = a0_;
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    const double d = t[i];
+  const double half_jerk_abs = half_jerk_;
+  const double sixth_jerk_abs = sixth_jerk_;
+  const double jerk = lim_.jerk;
+  // Unrolled, each segment's jerk sign a constant (the same arithmetic as with the sign as a factor:
+  // a factor of 1 or -1 is exact, a zero jerk only drops terms that are zero): the loop's overhead
+  // and its multiplications by the sign were half its cost.
+#pragma GCC unroll 7
+  for (std::size_t i = 0; i < kFarthestJerkSigns.size(); ++i) {
     const double sign = kFarthestJerkSigns[i];
-    const double half_jerk = sign * half_jerk_;
-    p += d * (v + d * (a * 0.5 + d * sign * sixth_jerk_));
-    v += d * (a + d * half_jerk);
-    a += d * sign * lim_.jerk;
-    if constexpr (kSlope) {
-      left -= d;
-      slope += rates[i] * (v + left * (a + left * half_jerk));
+    const double d = t[i];
+    if (sign == 0.0) {
+      p += d * (v + d * (a * 0.5));
+      v += d * a;
+      if constexpr (kSlope) {
+        left -= d;
+        sum_slope += rates[i] * (v + left * a);
+      }
+    } else {
+      const double half_jerk = sign * half_jerk_abs;
+      p += d * (v + d * (a * 0.5 + d * sign * sixth_jerk_abs));
+      v += d * (a + d * half_jerk);
+      a += d * sign * jerk;
+      if constexpr (kSlope) {
+        left -= d;
+        sum_slope += rates[i] * (v + left * (a + left * half_jerk));
+      }
     }
   }
+  if constexpr (kSlope) slope = sum_slope;
   return p;
 }
 

@@ -53,7 +53,7 @@ struct Gap {
 
 class FarthestProfile {
  public:
-  FarthestProfile() = default;
+  FarthestProfile() = default;  // unusable until one is constructed in its place (see the members)
   // Start (v0, a0) at position 0; end (vf, af); both inside `limits`.
   FarthestProfile(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept;
 
@@ -86,17 +86,19 @@ class FarthestProfile {
                                    double& slope) const noexcept;
   [[nodiscard]] bool peak_within_velocity(double a1, double t2) const noexcept;
 
-  double v0_ = 0.0;
-  double a0_ = 0.0;
-  double vf_ = 0.0;
-  double af_ = 0.0;
+  // No default values: a default-constructed profile is only a place to construct one in (an axis
+  // holds two, and zeroing them cost a rep stos per axis planned); the constructor sets every member.
+  double v0_;
+  double a0_;
+  double vf_;
+  double af_;
   AxisLimits lim_;
-  SevenDurations cruise_shape_{};  // with zero cruise
-  double cruise_from_ = 0.0;
-  double cruise_position_ = 0.0;  // the end position at cruise_from_: later ones are linear in T
-  double inv_jerk_ = 0.0;         // 1 / jerk, jerk / 2 and / 6: the hot paths multiply, never divide
-  double half_jerk_ = 0.0;
-  double sixth_jerk_ = 0.0;
+  SevenDurations cruise_shape_;  // with zero cruise
+  double cruise_from_;
+  double cruise_position_;  // the end position at cruise_from_: later ones are linear in T
+  double inv_jerk_;         // 1 / jerk, jerk / 2 and / 6: the hot paths multiply, never divide
+  double half_jerk_;
+  double sixth_jerk_;
 };
 
 }  // namespace cellctl::planner

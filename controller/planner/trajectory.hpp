@@ -35,6 +35,26 @@ class Trajectory {
   static constexpr auto kN = static_cast<std::size_t>(N);
 
  public:
+  Trajectory() = default;
+  // Copies only the blocked intervals in use (the other slots are unset): zeroing and copying all
+  // of them cost a rep stos and, for 6 axes, a rep movs per plan, whose start-ups cost more than the
+  // intervals.
+  Trajectory(const Trajectory& other) noexcept { *this = other; }
+  Trajectory& operator=(const Trajectory& other) noexcept {
+    profiles_ = other.profiles_;
+    min_duration_ = other.min_duration_;
+    blocked_count_ = other.blocked_count_;
+    for (std::size_t i = 0; i < kN; ++i) {
+      for (std::size_t b = 0; b < blocked_count_[i]; ++b) blocked_[i][b] = other.blocked_[i][b];
+    }
+    enabled_ = other.enabled_;
+    duration_ = other.duration_;
+    synchronization_ = other.synchronization_;
+    note_ = other.note_;
+    return *this;
+  }
+  ~Trajectory() = default;
+
   [[nodiscard]] double duration() const noexcept { return duration_; }
   [[nodiscard]] bool enabled(int axis) const noexcept { return enabled_[idx(axis)]; }
   [[nodiscard]] Synchronization synchronization() const noexcept { return synchronization_; }
@@ -88,9 +108,11 @@ class Trajectory {
   }
   [[nodiscard]] bool plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept;
 
-  std::array<JerkProfile, kN> profiles_{};
+  // Default-initialised, not value-initialised ({}): that zeroed every profile's unused segment
+  // slots on each plan (see JerkSegment).
+  std::array<JerkProfile, kN> profiles_;
   std::array<double, kN> min_duration_{};
-  std::array<std::array<Interval, AxisProfile::kMaxBlocked>, kN> blocked_{};
+  std::array<std::array<Interval, AxisProfile::kMaxBlocked>, kN> blocked_;  // the first blocked_count_ set
   std::array<std::size_t, kN> blocked_count_{};
   AxisArray<N> enabled_{};
   double duration_ = 0.0;
@@ -212,7 +234,7 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
     }
   }
   if (!planned) {
-    std::array<AxisProfile, kN> axes{};
+    std::array<AxisProfile, kN> axes;  // not {}: that zeroed their brakes' unused segment slots
     double common = 0.0;
     for (int i = 0; i < N; ++i) {
       if (!in.enabled[idx(i)]) continue;
