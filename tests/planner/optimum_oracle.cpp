@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace cellctl::planner::oracle {
@@ -136,71 +137,169 @@ Problem mirrored(const Problem& p) {
                  Limits{-p.limits.vmin, -p.limits.vmax, -p.limits.amin, -p.limits.amax, p.limits.jerk}};
 }
 
+// The reachable end positions at T, relative to the start: [near, far]; NaN when the target's
+// end velocity and acceleration cannot be reached at T.
+struct Reach {
+  double near, far;
+  [[nodiscard]] bool defined() const { return std::isfinite(near) && std::isfinite(far); }
+};
+
+Reach reach(const Problem& p, double T) {
+  return Reach{-farthest(mirrored(p), T), farthest(p, T)};
+}
+
+bool holds(const Reach& r, double target) {
+  return r.defined() && r.near <= target && target <= r.far;
+}
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// What the insertion argument (see the header) knows about one problem, independent of T: bounds
+// on the velocity w of a cruise that can be inserted into every motion, and the durations that a
+// motion without a zero-acceleration point could have (where it knows nothing).
+struct Insertion {
+  double w_lo = 0.0;           // some insertion point of every motion has w >= w_lo ...
+  double w_hi = 0.0;           // ... and one has w <= w_hi
+  double mono_lo = kInfinity;  // [mono_lo, mono_hi]: empty unless a0 and af share a sign
+  double mono_hi = -kInfinity;
+};
+
+Insertion insertion(const Problem& p) {
+  Insertion in;
+  if (p.af == 0.0 || p.a0 == 0.0) {  // cruise at the end (with vf) or at the start (with v0)
+    in.w_lo = -kInfinity;
+    in.w_hi = kInfinity;
+    if (p.af == 0.0) in.w_lo = in.w_hi = p.vf;
+    if (p.a0 == 0.0) {
+      in.w_lo = std::max(in.w_lo, p.v0);
+      in.w_hi = std::min(in.w_hi, p.v0);
+    }
+    return in;
+  }
+  // Otherwise at a zero of the acceleration inside, at some velocity within the limits.
+  in.w_lo = p.limits.vmin;
+  in.w_hi = p.limits.vmax;
+  if ((p.a0 > 0.0) == (p.af > 0.0)) {
+    // The acceleration may keep its sign throughout (say positive: else mirrored). The velocity then
+    // rises from v0 at least as a >= max(0, a0 - J t) lets it and ends at vf no faster than
+    // a >= max(0, af - J (T - t)) lets it; integrated, and bounded by the tangents of those convex
+    // curves: (v0 + c0) T - k0 <= D <= (vf - cf) T + kf, c = a^2 / 2J, k = a^3 / 6J^2. Those T form
+    // an interval.
+    const Problem q = p.a0 > 0.0 ? p : mirrored(p);
+    const double j = q.limits.jerk;
+    const double D = q.pf - q.p0;
+    const double low_slope = q.v0 + q.a0 * q.a0 / (2.0 * j);  // low_slope T - k0 <= D
+    const double k0 = q.a0 * q.a0 * q.a0 / (6.0 * j * j);
+    const double high_slope = q.vf - q.af * q.af / (2.0 * j);  // high_slope T + kf >= D
+    const double kf = q.af * q.af * q.af / (6.0 * j * j);
+    double lo = 0.0;
+    double hi = kInfinity;
+    // s T <= c, T >= 0
+    const auto at_most = [&](double slope, double c) {
+      if (slope > 0.0) hi = std::min(hi, c / slope);
+      if (slope < 0.0) lo = std::max(lo, c / slope);
+      if (slope == 0.0 && c < 0.0) hi = -kInfinity;
+    };
+    at_most(low_slope, D + k0);
+    at_most(-high_slope, kf - D);
+    if (lo <= hi) {
+      in.mono_lo = lo;
+      in.mono_hi = hi;
+    }
+  }
+  return in;
+}
+
+// How far below b (infeasible for p, reach r there) every duration is proven infeasible too:
+// [b - step, b], up to the position tolerance eps. 0 when nothing is proven (b lies in the
+// unresolved interval).
+double proven_step(const Problem& p, const Insertion& in, const Reach& r, double b, double eps) {
+  const double target = p.pf - p.p0;
+  double step = 0.0;
+  if (!r.defined()) {
+    step = kInfinity;  // a motion at T < b with an insertion point would reach the end state at b
+  } else if (r.far < target) {
+    step = in.w_lo >= 0.0 ? kInfinity : std::max(target - r.far, eps) / -in.w_lo;
+  } else if (r.near > target) {
+    step = in.w_hi <= 0.0 ? kInfinity : std::max(r.near - target, eps) / in.w_hi;
+  }
+  if (in.mono_lo < b) step = b <= in.mono_hi ? 0.0 : std::min(step, b - in.mono_hi);
+  return step;
+}
+
+// The position tolerance of a proof at b: far below the oracle's rounding, far below anything
+// the planner's 1e-9 relative duration could mean.
+double tolerance(const Problem& p, double b) {
+  return 1e-12 * (1.0 + std::abs(p.pf - p.p0) + std::max(p.limits.vmax, -p.limits.vmin) * b);
+}
+
+enum class Below { none, found, undecided };
+
+// Whether any duration in [0, x] is feasible for every problem: the scan down from x, each step
+// as long as the proof at its top allows (a grid step where none does).
+Below scan_below(const std::vector<Problem>& problems, double x) {
+  constexpr double kGrid = 1024.0;  // points over [0, x] inside an unresolved interval
+  constexpr long kMaxSteps = 200000;
+  std::vector<Insertion> ins;
+  ins.reserve(problems.size());
+  for (const Problem& p : problems) ins.push_back(insertion(p));
+  double b = x;
+  for (long n = 0; n < kMaxSteps; ++n) {
+    double step = 0.0;
+    bool all = true;
+    for (std::size_t i = 0; i < problems.size(); ++i) {
+      const Reach r = reach(problems[i], b);
+      if (holds(r, problems[i].pf - problems[i].p0)) continue;
+      all = false;
+      step = std::max(step, proven_step(problems[i], ins[i], r, b, tolerance(problems[i], b)));
+    }
+    if (all) return Below::found;
+    if (b <= 0.0 || step >= b) return Below::none;
+    b = step > 0.0 ? b - step : std::max(b - x / kGrid, 0.0);
+  }
+  return Below::undecided;
+}
+
+bool feasible_all(const std::vector<Problem>& problems, double T) {
+  return std::all_of(problems.begin(), problems.end(), [T](const Problem& p) { return feasible(p, T); });
+}
+
 }  // namespace
 
 bool feasible(const Problem& p, double T) {
-  const double far = farthest(p, T);
-  const double near = -farthest(mirrored(p), T);
-  const double target = p.pf - p.p0;
-  return std::isfinite(far) && std::isfinite(near) && near <= target && target <= far;
+  return holds(reach(p, T), p.pf - p.p0);
 }
-
-namespace {
-
-template <typename Feasible>
-double first_feasible(const Feasible& ok, double upper) {
-  constexpr int kScan = 24;
-  double prev = 0.0;
-  if (ok(0.0)) return 0.0;
-  for (int k = 1; k <= kScan; ++k) {
-    const double T = upper * k / kScan;
-    if (!ok(T)) {
-      prev = T;
-      continue;
-    }
-    double lo = prev;
-    double hi = T;
-    for (int i = 0; i < 200; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      if (mid <= lo || mid >= hi) break;
-      (ok(mid) ? hi : lo) = mid;
-    }
-    return hi;
-  }
-  return std::numeric_limits<double>::infinity();
-}
-
-}  // namespace
 
 bool confirms_min_common_duration(const std::vector<Problem>& problems, double T, double relative) {
-  const auto all = [&](double t) {
-    return std::all_of(problems.begin(), problems.end(), [t](const Problem& p) { return feasible(p, t); });
-  };
-  if (T == 0.0) return all(0.0);
-  if (!all(T * (1.0 + relative) + 1e-15)) return false;
-  const double below = T * (1.0 - relative);
-  constexpr int kScan = 12;
-  for (int k = 0; k <= kScan; ++k) {
-    if (all(below * k / kScan)) return false;
+  if (T == 0.0) return feasible_all(problems, 0.0);
+  if (!feasible_all(problems, T * (1.0 + relative) + 1e-15)) return false;
+  const Below below = scan_below(problems, T * (1.0 - relative));
+  if (below == Below::undecided) {
+    std::fprintf(stderr, "optimum_oracle: the scan below %.17g s gave up (the target grazes a reach)\n", T);
   }
-  return true;
+  return below == Below::none;
 }
 
 bool confirms_min_duration(const Problem& p, double T, double relative) {
   return confirms_min_common_duration({p}, T, relative);
 }
 
-double min_duration(const Problem& p, double upper) {
-  return first_feasible([&](double T) { return feasible(p, T); }, upper);
+double min_common_duration(const std::vector<Problem>& problems, double upper) {
+  if (feasible_all(problems, 0.0)) return 0.0;
+  if (scan_below(problems, upper) == Below::none) return kInfinity;
+  // Bisection on "some duration in [0, x] is feasible", which holds from the optimum on.
+  double lo = 0.0;
+  double hi = upper;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    (scan_below(problems, mid) == Below::none ? lo : hi) = mid;
+  }
+  return hi;
 }
 
-double min_common_duration(const std::vector<Problem>& problems, double upper) {
-  return first_feasible(
-      [&](double T) {
-        return std::all_of(problems.begin(), problems.end(),
-                           [T](const Problem& p) { return feasible(p, T); });
-      },
-      upper);
+double min_duration(const Problem& p, double upper) {
+  return min_common_duration({p}, upper);
 }
 
 }  // namespace cellctl::planner::oracle
