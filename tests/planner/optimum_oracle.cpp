@@ -39,7 +39,10 @@ double solve_increasing(const F& f, double lo, double hi) {
     if (mid <= lo || mid >= hi) break;
     (f(mid) < 0.0 ? lo : hi) = mid;
   }
-  return 0.5 * (lo + hi);
+  // Where f ends in a jump to "no such motion" (1e300) rather than crossing zero — the end velocity
+  // just after the reach time — the root is the last x that has a motion: lo, not the midpoint.
+  const double mid = 0.5 * (lo + hi);
+  return f(mid) >= 1e300 ? lo : mid;
 }
 
 // The jerk sequence of effort u (0 .. max) for duration T: +J for the first part of u, then the
@@ -81,8 +84,11 @@ double farthest(const Problem& pr, double T) {
   const double u_top = (l.amax - pr.a0) + j * T;
   std::array<Piece, 7> seq{};
   const auto end_v = [&](double u) { return sequence(pr, T, u, seq) ? run(s0, seq).v - pr.vf : 1e300; };
-  if (end_v(0.0) > 0.0) return std::numeric_limits<double>::quiet_NaN();
-  const double u = end_v(0.0) == 0.0 ? 0.0 : solve_increasing(end_v, 0.0, u_top);
+  // The least effort already too fast: no motion — but for rounding at the reach time, where the
+  // least effort is the only motion.
+  const double least = end_v(0.0);
+  if (least > 1e-12 * (1.0 + std::abs(pr.vf) + l.vmax)) return std::numeric_limits<double>::quiet_NaN();
+  const double u = least >= 0.0 ? 0.0 : solve_increasing(end_v, 0.0, u_top);
   if (!sequence(pr, T, u, seq) ||
       std::abs(run(s0, seq).v - pr.vf) > 1e-9 * (1.0 + std::abs(pr.vf) + l.vmax)) {
     return std::numeric_limits<double>::quiet_NaN();  // even the most effort cannot reach vf at T
@@ -137,16 +143,17 @@ Problem mirrored(const Problem& p) {
                  Limits{-p.limits.vmin, -p.limits.vmax, -p.limits.amin, -p.limits.amax, p.limits.jerk}};
 }
 
-// The reachable end positions at T, relative to the start: [near, far]; NaN when the target's
-// end velocity and acceleration cannot be reached at T.
-struct Reach {
-  double near, far;
-  [[nodiscard]] bool defined() const { return std::isfinite(near) && std::isfinite(far); }
-};
+}  // namespace
+
+bool Reach::defined() const {
+  return std::isfinite(near) && std::isfinite(far);
+}
 
 Reach reach(const Problem& p, double T) {
   return Reach{-farthest(mirrored(p), T), farthest(p, T)};
 }
+
+namespace {
 
 bool holds(const Reach& r, double target) {
   return r.defined() && r.near <= target && target <= r.far;
@@ -215,9 +222,9 @@ Insertion insertion(const Problem& p) {
 // unresolved interval).
 double proven_step(const Problem& p, const Insertion& in, const Reach& r, double b, double eps) {
   const double target = p.pf - p.p0;
-  double step = 0.0;
-  if (!r.defined()) {
-    step = kInfinity;  // a motion at T < b with an insertion point would reach the end state at b
+  double step = 0.0;  // a side the bisection could not settle (NaN) proves nothing on its own
+  if (std::isnan(r.far) && std::isnan(r.near)) {
+    step = kInfinity;  // a motion at t < b with an insertion point would reach the end state at b
   } else if (r.far < target) {
     step = in.w_lo >= 0.0 ? kInfinity : std::max(target - r.far, eps) / -in.w_lo;
   } else if (r.near > target) {
@@ -252,9 +259,10 @@ Below scan_below(const std::vector<Problem>& problems, double x) {
       if (holds(r, problems[i].pf - problems[i].p0)) continue;
       all = false;
       step = std::max(step, proven_step(problems[i], ins[i], r, b, tolerance(problems[i], b)));
+      if (step >= b) return Below::none;  // this problem alone rules out [0, b]
     }
     if (all) return Below::found;
-    if (b <= 0.0 || step >= b) return Below::none;
+    if (b <= 0.0) return Below::none;
     b = step > 0.0 ? b - step : std::max(b - x / kGrid, 0.0);
   }
   return Below::undecided;

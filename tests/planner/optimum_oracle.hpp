@@ -3,11 +3,14 @@
 // controller/planner.
 //
 // Feasibility at a fixed duration T: the end positions reachable at T with the target's end
-// velocity and acceleration are taken to form an interval [near(T), far(T)] whose ends are met by
-// bang-bang jerk with the bounds held (the maximum principle). far(T) is found the slow, simple
-// way: bisecting the end velocity over a one-parameter family of jerk sequences and integrating
-// them; near(T) is far of the mirrored problem. T is feasible when near(T) <= D <= far(T), D the
-// distance to the target. (This part is assumed, not proven here; it is what `feasible` answers.)
+// velocity and acceleration form an interval [near(T), far(T)] — the motions within the limits
+// that end in (vf, af) at T are a convex set of jerk functions (every constraint is linear in the
+// jerk) and the end position is linear in the jerk. T is feasible when near(T) <= D <= far(T), D
+// the distance to the target. far(T) is found the slow, simple way, taking its motion to be
+// bang-bang in jerk with the bounds held (the maximum principle): bisecting the end velocity over
+// a one-parameter family of jerk sequences and integrating them; near(T) is far of the mirrored
+// problem. That far and near are the true extremes is assumed, not proven here; oracle_test.cpp
+// checks that no random motion within the limits ends beyond them.
 //
 // Minimality — that no duration below T is feasible — is proven, not sampled (the old check, 13
 // evenly spread durations, passed claims that skipped a narrow feasible window: oracle_test.cpp).
@@ -59,6 +62,14 @@ struct Problem {
   double pf, vf, af;  // target, likewise
   Limits limits;
 };
+
+// The end positions reachable at T relative to the start, with the target's end velocity and
+// acceleration: [near, far]; NaN when that end state cannot be reached at T.
+struct Reach {
+  double near, far;
+  [[nodiscard]] bool defined() const;
+};
+[[nodiscard]] Reach reach(const Problem& p, double T);
 
 // Whether some motion of exactly duration T solves the problem within the limits.
 [[nodiscard]] bool feasible(const Problem& p, double T);

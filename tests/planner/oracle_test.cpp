@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -95,6 +96,80 @@ TEST(OptimumOracle, ThePlannerFindsTheNarrowWindowAndItsBlockedInterval) {
   ASSERT_EQ(axis.blocked_count(), 1u);
   EXPECT_NEAR(axis.blocked(0).lo, kWindowEnd, 1e-8);
   EXPECT_NEAR(axis.blocked(0).hi, kBlockedEnd, 1e-8);
+}
+
+// A random motion within the limits (piecewise constant jerk, the acceleration held where it would
+// pass a bound), or nothing when its velocity leaves the limits. Returns its end state and duration.
+struct Motion {
+  double v0, a0, p, v, a, T;
+};
+bool random_motion(std::mt19937_64& rng, const oracle::Limits& l, Motion& m) {
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  m.p = 0.0;
+  m.v = m.v0;
+  m.a = m.a0;
+  m.T = 0.0;
+  const int pieces = 1 + static_cast<int>(u01(rng) * 8);
+  for (int k = 0; k < pieces; ++k) {
+    const double pick = u01(rng);
+    double j = pick < 0.4 ? -l.jerk : pick < 0.8 ? l.jerk : pick < 0.9 ? 0.0 : l.jerk * (2 * u01(rng) - 1);
+    double left = u01(rng) < 0.7 ? 2.0 * u01(rng) * l.amax / l.jerk : 0.5 * u01(rng);
+    while (left > 0.0) {
+      double t = left;  // up to where the acceleration would pass a bound, then held there
+      if (j > 0.0 && m.a + j * t > l.amax) t = (l.amax - m.a) / j;
+      if (j < 0.0 && m.a + j * t < l.amin) t = (l.amin - m.a) / j;
+      if (j != 0.0 && -m.a / j > 0.0 && -m.a / j < t) {  // a velocity extremum inside
+        const double tz = -m.a / j;
+        const double vz = m.v + m.a * tz + j * tz * tz / 2.0;
+        if (vz > l.vmax || vz < l.vmin) return false;
+      }
+      m.p += m.v * t + m.a * t * t / 2.0 + j * t * t * t / 6.0;
+      m.v += m.a * t + j * t * t / 2.0;
+      m.a = std::clamp(m.a + j * t, l.amin, l.amax);  // no rounding past a bound it was cut at
+      m.T += t;
+      if (m.v > l.vmax || m.v < l.vmin) return false;
+      left -= t;
+      if (left > 0.0) j = 0.0;
+    }
+  }
+  return true;
+}
+
+// The oracle's reach contains every motion it could be asked about: a random motion within the
+// limits, from its start to its own end state, ends within the reach at its duration (up to 1e-9
+// in position). far or near short of a real motion would make the minimality proof unsound.
+TEST(OptimumOracle, EveryRandomMotionWithinTheLimitsIsFeasibleAtItsDuration) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  long motions = 0;
+  while (motions < 50000) {
+    const auto U = [&](double lo, double hi) { return lo + (hi - lo) * u01(rng); };
+    const double vmax = U(0.5, 5.0);
+    const double amax = U(1.0, 20.0);
+    const oracle::Limits l{vmax, -vmax, amax, -amax, U(10.0, 200.0)};
+    Motion m{};
+    if (u01(rng) < 0.5) {
+      m.v0 = U(l.vmin, l.vmax);
+      m.a0 = U(l.amin, l.amax);
+    }
+    if (!testing::stays_within(m.v0, m.a0, l) || !random_motion(rng, l, m) ||
+        !testing::stays_within(m.v, -m.a, l) || m.T <= 0.0) {
+      continue;
+    }
+    ++motions;
+    const double tol = 1e-9 * (1.0 + std::abs(m.p));
+    const oracle::Problem p{0.0, m.v0, m.a0, m.p, m.v, m.a, l};
+    oracle::Reach r = oracle::reach(p, m.T);
+    // A motion that ends exactly as soon as its end state can be reached (a pure ramp, a saturated
+    // one) is the only one; the rounding of its integrated end state decides whether that state is
+    // reachable at T or a rounding error later.
+    if (!r.defined()) r = oracle::reach(p, m.T * (1 + 1e-12));
+    EXPECT_TRUE(r.defined() && r.near - tol <= m.p && m.p <= r.far + tol)
+        << "motion " << motions << ": v0 " << m.v0 << " a0 " << m.a0 << " -> p " << m.p << " v " << m.v
+        << " a " << m.a << " in " << m.T << " s; vmax " << l.vmax << " amax " << l.amax << " jerk " << l.jerk
+        << "; reach " << r.near << " .. " << r.far;
+    if (::testing::Test::HasFailure()) break;
+  }
 }
 
 // On random moving-to-moving problems (every kind of insertion point: at the end, inside, none
