@@ -173,19 +173,17 @@ struct Insertion {
 
 Insertion insertion(const Problem& p) {
   Insertion in;
-  if (p.af == 0.0 || p.a0 == 0.0) {  // cruise at the end (with vf) or at the start (with v0)
-    in.w_lo = -kInfinity;
-    in.w_hi = kInfinity;
-    if (p.af == 0.0) in.w_lo = in.w_hi = p.vf;
-    if (p.a0 == 0.0) {
-      in.w_lo = std::max(in.w_lo, p.v0);
-      in.w_hi = std::min(in.w_hi, p.v0);
-    }
-    return in;
-  }
-  // Otherwise at a zero of the acceleration inside, at some velocity within the limits.
+  // Every velocity on the way is within the limits. Better: at the first zero of the acceleration
+  // the velocity has risen from v0 if a0 > 0 (w >= v0), fallen if a0 < 0 (w <= v0); at the last it
+  // rises on to vf if af > 0 (w <= vf), falls if af < 0 (w >= vf); a0 = 0 or af = 0 is a zero with
+  // w = v0 or vf. The proof at hand picks the point with the better bound.
   in.w_lo = p.limits.vmin;
   in.w_hi = p.limits.vmax;
+  if (p.a0 >= 0.0) in.w_lo = std::max(in.w_lo, p.v0);
+  if (p.a0 <= 0.0) in.w_hi = std::min(in.w_hi, p.v0);
+  if (p.af <= 0.0) in.w_lo = std::max(in.w_lo, p.vf);
+  if (p.af >= 0.0) in.w_hi = std::min(in.w_hi, p.vf);
+  if (p.a0 == 0.0 || p.af == 0.0) return in;
   if ((p.a0 > 0.0) == (p.af > 0.0)) {
     // The acceleration may keep its sign throughout (say positive: else mirrored). The velocity then
     // rises from v0 at least as a >= max(0, a0 - J t) lets it and ends at vf no faster than
@@ -217,25 +215,58 @@ Insertion insertion(const Problem& p) {
   return in;
 }
 
+// The end velocities reachable at T with the end acceleration af under the acceleration and jerk
+// limits alone (a superset of those within the velocity limits too): [lo, hi], the least and the
+// most effort (the acceleration along its lower or upper envelope). False when af itself cannot be
+// reached at T.
+bool end_velocities(const Problem& p, double T, double& lo, double& hi) {
+  std::array<Piece, 7> seq{};
+  if (!sequence(p, T, 0.0, seq)) return false;
+  lo = run(State{0.0, p.v0, p.a0}, seq).v;
+  const Problem m = mirrored(p);
+  if (!sequence(m, T, 0.0, seq)) return false;
+  hi = -run(State{0.0, m.v0, m.a0}, seq).v;
+  return true;
+}
+
+// How far below b, where the end state (vf, af) is out of reach, it is proven out of reach for every
+// motion: holding the acceleration for b - t at its highest point a* >= max(a0, af) turns a motion
+// of duration t into one of duration b ending a* (b - t) faster, so hi(b) < vf rules out every t
+// with a* (b - t) > hi(b) - vf (all t < b when a* can be >= 0); likewise lo(b) > vf with
+// min(a0, af). No insertion point needed: this covers the unresolved interval too.
+double unreachable_step(const Problem& p, double b) {
+  double lo = 0.0;
+  double hi = 0.0;
+  if (!end_velocities(p, b, lo, hi)) return kInfinity;  // |af - a0| > J b > J t
+  const double eps = 1e-12 * (1.0 + std::abs(p.vf) + std::max(p.limits.vmax, -p.limits.vmin));
+  const double top = std::max(p.a0, p.af);
+  const double bottom = std::min(p.a0, p.af);
+  if (hi < p.vf) return top >= 0.0 ? kInfinity : std::max(p.vf - hi, eps) / -top;
+  if (lo > p.vf) return bottom <= 0.0 ? kInfinity : std::max(lo - p.vf, eps) / bottom;
+  return 0.0;
+}
+
 // How far below b (infeasible for p, reach r there) every duration is proven infeasible too:
 // [b - step, b], up to the position tolerance eps. 0 when nothing is proven (b lies in the
-// unresolved interval).
+// unresolved interval and the end state is within reach).
 double proven_step(const Problem& p, const Insertion& in, const Reach& r, double b, double eps) {
   const double target = p.pf - p.p0;
-  double step = 0.0;  // a side the bisection could not settle (NaN) proves nothing on its own
+  double step = 0.0;   // a side the bisection could not settle (NaN) proves nothing on its own
+  double every = 0.0;  // what holds for motions without an insertion point too
   if (std::isnan(r.far) && std::isnan(r.near)) {
     step = kInfinity;  // a motion at t < b with an insertion point would reach the end state at b
+    every = unreachable_step(p, b);
   } else if (r.far < target) {
     step = in.w_lo >= 0.0 ? kInfinity : std::max(target - r.far, eps) / -in.w_lo;
   } else if (r.near > target) {
     step = in.w_hi <= 0.0 ? kInfinity : std::max(r.near - target, eps) / in.w_hi;
   }
   if (in.mono_lo < b) step = b <= in.mono_hi ? 0.0 : std::min(step, b - in.mono_hi);
-  return step;
+  return std::max(step, every);
 }
 
-// The position tolerance of a proof at b: far below the oracle's rounding, far below anything
-// the planner's 1e-9 relative duration could mean.
+// The position tolerance of a proof at b: above the oracle's rounding, far below anything the
+// planner's 1e-9 relative duration could mean.
 double tolerance(const Problem& p, double b) {
   return 1e-12 * (1.0 + std::abs(p.pf - p.p0) + std::max(p.limits.vmax, -p.limits.vmin) * b);
 }
