@@ -254,8 +254,10 @@ double proven_step(const Problem& p, const Insertion& in, const Reach& r, double
   double step = 0.0;   // a side the bisection could not settle (NaN) proves nothing on its own
   double every = 0.0;  // what holds for motions without an insertion point too
   if (std::isnan(r.far) && std::isnan(r.near)) {
-    step = kInfinity;  // a motion at t < b with an insertion point would reach the end state at b
+    // The end state out of reach at b (confirmed by the end velocities, in closed form): a motion at
+    // t < b with an insertion point would reach it at b.
     every = unreachable_step(p, b);
+    step = every > 0.0 ? kInfinity : 0.0;
   } else if (r.far < target) {
     step = in.w_lo >= 0.0 ? kInfinity : std::max(target - r.far, eps) / -in.w_lo;
   } else if (r.near > target) {
