@@ -276,13 +276,19 @@ double tolerance(const Problem& p, double b) {
 enum class Below { none, found, undecided };
 
 // Whether any duration in [0, x] is feasible for every problem: the scan down from x, each step
-// as long as the proof at its top allows (a grid step where none does).
+// as long as the proof at its top allows; where none does (inside an unresolved interval), a grid
+// step of 1/1024 of the unresolved interval below x (the narrowest of the problems').
 Below scan_below(const std::vector<Problem>& problems, double x) {
-  constexpr double kGrid = 1024.0;  // points over [0, x] inside an unresolved interval
+  constexpr double kGrid = 1024.0;
   constexpr long kMaxSteps = 200000;
   std::vector<Insertion> ins;
   ins.reserve(problems.size());
-  for (const Problem& p : problems) ins.push_back(insertion(p));
+  double grid = x / kGrid;
+  for (const Problem& p : problems) {
+    ins.push_back(insertion(p));
+    const double unresolved = std::min(ins.back().mono_hi, x) - ins.back().mono_lo;
+    if (unresolved > 0.0) grid = std::min(grid, unresolved / kGrid);
+  }
   double b = x;
   for (long n = 0; n < kMaxSteps; ++n) {
     double step = 0.0;
@@ -296,7 +302,7 @@ Below scan_below(const std::vector<Problem>& problems, double x) {
     }
     if (all) return Below::found;
     if (b <= 0.0) return Below::none;
-    b = step > 0.0 ? b - step : std::max(b - x / kGrid, 0.0);
+    b = step > 0.0 ? b - step : std::max(b - grid, 0.0);
   }
   return Below::undecided;
 }

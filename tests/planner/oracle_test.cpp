@@ -98,6 +98,27 @@ TEST(OptimumOracle, ThePlannerFindsTheNarrowWindowAndItsBlockedInterval) {
   EXPECT_NEAR(axis.blocked(0).hi, kBlockedEnd, 1e-8);
 }
 
+// Accelerating throughout from 3.70 to 3.98 (a0 5.25, af 5.62): motions that never stop accelerating
+// reach the target only between 0.090508 and 0.091886 s, then not until 2.6147 s. Those durations
+// lie in the unresolved interval (no cruise can be inserted), searched on a grid: one of 1/1024 of
+// [0, x] stepped over this window (x/1024 = 0.0026 s); 1/1024 of the unresolved interval finds it.
+TEST(OptimumOracle, FindsAWindowOfMotionsThatNeverStopAccelerating) {
+  const oracle::Problem p{
+      0.63438295705671344,
+      3.6988900048505133,
+      5.2533765425529451,
+      0.98441829962125382,
+      3.9842796144694077,
+      5.6208436422666006,
+      {4.2565693845735399, -4.2565693845735399, 5.9367124631114381, -5.9367124631114381, 179.24824867242046}};
+  EXPECT_NEAR(oracle::min_duration(p, 3.0), 0.0905084742905, 1e-12);
+  EXPECT_TRUE(oracle::confirms_min_duration(p, 0.0905084742905, 1e-9));
+  EXPECT_TRUE(oracle::feasible(p, 0.0918));
+  EXPECT_FALSE(oracle::feasible(p, 0.0919));
+  EXPECT_FALSE(oracle::feasible(p, 2.6146));
+  EXPECT_FALSE(oracle::confirms_min_duration(p, 2.61465130501, 1e-9));
+}
+
 // A random motion within the limits (piecewise constant jerk, the acceleration held where it would
 // pass a bound), or nothing when its velocity leaves the limits. Returns its end state and duration.
 struct Motion {
