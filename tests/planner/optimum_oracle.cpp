@@ -289,15 +289,23 @@ Below scan_below(const std::vector<Problem>& problems, double x) {
     const double unresolved = std::min(ins.back().mono_hi, x) - ins.back().mono_lo;
     if (unresolved > 0.0) grid = std::min(grid, unresolved / kGrid);
   }
+  std::vector<char> near_first(problems.size(), 0);
   double b = x;
   for (long n = 0; n < kMaxSteps; ++n) {
     double step = 0.0;
     bool all = true;
     for (std::size_t i = 0; i < problems.size(); ++i) {
-      const Reach r = reach(problems[i], b);
-      if (holds(r, problems[i].pf - problems[i].p0)) continue;
+      const Problem& p = problems[i];
+      const double target = p.pf - p.p0;
+      // One side short of the target decides alone: the side that did last time is tried first.
+      Reach r{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+      if (near_first[i]) r.near = -farthest(mirrored(p), b);
+      if (!(r.near > target)) r.far = farthest(p, b);
+      if (!(r.far < target) && !near_first[i]) r.near = -farthest(mirrored(p), b);
+      near_first[i] = r.near > target;
+      if (holds(r, target)) continue;
       all = false;
-      step = std::max(step, proven_step(problems[i], ins[i], r, b, tolerance(problems[i], b)));
+      step = std::max(step, proven_step(p, ins[i], r, b, tolerance(p, b)));
       if (step >= b) return Below::none;  // this problem alone rules out [0, b]
     }
     if (all) return Below::found;
