@@ -2,7 +2,10 @@
 // A feasible window narrower than any fixed scan's spacing, before a blocked interval, is found
 // by the search and makes a claimed optimum at the blocked interval's end fail the check; the
 // scan the oracle used before (24 evenly spread durations, 13 below a claim) is reproduced here
-// to show it missed both. The planner on the same problem finds the window.
+// to show it missed both. The planner on the same problem finds the window. Also: a window of
+// motions that never stop accelerating (the unresolved interval's grid), random motions all within
+// the oracle's reach (what the proof rests on), and random claims at a blocked interval's end, all
+// rejected (about a third passed the old check).
 
 #include <gtest/gtest.h>
 
