@@ -73,7 +73,7 @@ RealtimeReport apply_realtime(const RealtimeConfig& config) {
   return report;
 }
 
-RealtimeScope::RealtimeScope(const RealtimeConfig& config) {
+RealtimeScope::RealtimeScope(const RealtimeConfig& config) : owner_(pthread_self()) {
   // What to go back to: read before anything is changed (both calls only read the calling thread).
   (void)pthread_getschedparam(pthread_self(), &policy_, &param_);
   CPU_ZERO(&cpus_);
@@ -82,9 +82,10 @@ RealtimeScope::RealtimeScope(const RealtimeConfig& config) {
 }
 
 RealtimeScope::~RealtimeScope() {
-  if (report_.scheduler.outcome == RealtimeOutcome::obtained)
+  const bool own_thread = pthread_equal(owner_, pthread_self()) != 0;
+  if (own_thread && report_.scheduler.outcome == RealtimeOutcome::obtained)
     (void)pthread_setschedparam(pthread_self(), policy_, &param_);
-  if (report_.affinity.outcome == RealtimeOutcome::obtained)
+  if (own_thread && report_.affinity.outcome == RealtimeOutcome::obtained)
     (void)sched_setaffinity(0, sizeof(cpus_), &cpus_);
   if (report_.memory_lock.outcome == RealtimeOutcome::obtained) (void)munlockall();
 }

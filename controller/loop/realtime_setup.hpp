@@ -4,6 +4,7 @@
 // system refuses (no CAP_SYS_NICE, RLIMIT_MEMLOCK, no such CPU) the report says so and why, and the
 // caller logs it and goes on: lack of privileges never stops the controller.
 
+#include <pthread.h>
 #include <sched.h>
 
 #include <string>
@@ -42,7 +43,9 @@ struct RealtimeReport {
 // apply_realtime for as long as the scope lives; at its end the calling thread's scheduler and CPU
 // affinity are put back as they were and the memory unlocked, as far as they had been obtained. A
 // controller that stands by between jobs (`cellctl serve`) must not keep real-time priority while it
-// only waits. Must end on the thread that made it.
+// only waits. The scheduler and affinity are the thread's: a scope that ends on another thread
+// leaves them (and says nothing, being a destructor). The memory lock is the process's: its end
+// unlocks all of it, so one scope at a time (one run at a time, as serve runs jobs).
 class RealtimeScope {
  public:
   explicit RealtimeScope(const RealtimeConfig& config);
@@ -53,6 +56,7 @@ class RealtimeScope {
   [[nodiscard]] const RealtimeReport& report() const noexcept { return report_; }
 
  private:
+  pthread_t owner_;
   int policy_ = 0;
   sched_param param_{};
   cpu_set_t cpus_{};
