@@ -299,8 +299,7 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
       // The SCU would not take a new RE while the axis still ran down from the RS before it (the
       // manual does not say it must): the RS has stopped the axis mid-move.
       reason_ = journal::Text::format(
-          "the SCU refused axis {}'s corrected target while it moved ({}): set correct_in_motion: false "
-          "for it in the cell config",
+          "the SCU refused axis {}'s corrected target while it moved ({}); set its correct_in_motion: false",
           cell_.axes[i].name, s.scu_refusal.empty() ? "no reason given" : s.scu_refusal);
       return MoveStatus::failed;
     }

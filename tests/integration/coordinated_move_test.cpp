@@ -148,7 +148,8 @@ steps:
   EXPECT_NE(result.failure.find("the SCU refused axis x's corrected target while it moved (not permitted"),
             std::string::npos)
       << result.failure;
-  EXPECT_NE(result.failure.find("set correct_in_motion: false"), std::string::npos) << result.failure;
+  EXPECT_NE(result.failure.find("); set its correct_in_motion: false"), std::string::npos) << result.failure;
+  EXPECT_EQ(result.failure.back(), 'e') << "the whole text, not cut at the journal's 160 octets";
 }
 
 TEST_F(CoordinatedMove, ScaleErrorCorrectedOnlyAtRestDelaysTheMeasuredAxisByTheCorrection) {
