@@ -239,6 +239,32 @@ AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double ta
   if (g0 < 0.0) {
     set.from_reach = true;
     while (first <= kSamples && gs[static_cast<std::size_t>(first)] < 0.0) ++first;
+    // Short at every sample before `first`, the target may still be reached between two of them: g
+    // can rise above zero and fall short again there (seed 12 problem 313190 of the accelerating
+    // targets: 2.6e-4 m above it for 0.025 s, between samples). The highest sample above both its
+    // neighbours is refined (golden section, unimodal there); a bump that reaches zero ends the set
+    // at its first root, and the short stretch after it, to the first root bracketed, is a dip.
+    int peak = -1;
+    for (int k = 1; k < first && k < kSamples; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      if (gs[i] >= gs[i - 1] && gs[i] >= gs[i + 1] &&
+          (peak < 0 || gs[i] > gs[static_cast<std::size_t>(peak)]))
+        peak = k;
+    }
+    if (peak >= 0) {
+      const auto i = static_cast<std::size_t>(peak);
+      const double top = golden_minimum([&](double T) { return -g(T); }, at[i - 1], at[i + 1], 0.0);
+      if (set.gap) return set;
+      if (g(top) >= 0.0) {
+        set.end = find_root(g, at[i - 1], top, false);
+        set.dip = true;
+        set.dip_lo = find_root(g, top, at[i + 1], true);
+        set.dip_hi = first > kSamples ? linear_root(f, target, slope, tc, gs[kSamples])
+                                      : find_root(g, at[static_cast<std::size_t>(first) - 1],
+                                                  at[static_cast<std::size_t>(first)], false);
+        return set;
+      }
+    }
     if (first > kSamples) {
       set.end = linear_root(f, target, slope, tc, gs[kSamples]);
       return set;

@@ -189,6 +189,24 @@ TEST(BlockedInterval, ADipBetweenTwoSamplesIsFound) {
   plan_checked(start, target, l, "problem 507850 of seed 3");
 }
 
+// Short of the target at the reach time and again until 1.218 s, yet reaching it between two
+// samples: the mirrored extreme rises 2.6e-4 m above the target from 0.7097 to 0.7357 s. Missed
+// (1.218 s planned) until the short stretch's samples were searched for such a bump; found by the
+// oracle's proof in the ten-million run of 2026-11-25 (seed 12, problem 313190 of the accelerating
+// targets).
+TEST(BlockedInterval, AWindowBetweenTwoShortSamplesIsFound) {
+  const AxisLimits l = AxisLimits::symmetric(3.8543741776013403, 12.482543864684997, 22.460483730451166);
+  const MotionState start{-1.8213377427201238, 3.0883407950814958, -0.48165527033596334};
+  const MotionState target{-0.89966655989991029, -1.1142406374151199, -7.0706394638378303};
+  const oracle::Problem p = problem(start, target, l);
+  AxisProfile axis;
+  ASSERT_EQ(axis.plan(start, target, l), AxisStatus::ok);
+  EXPECT_NEAR(axis.min_duration(), 0.709669445345, 1e-9);
+  const Interval b = expect_one_oracle_blocked_interval(axis, p, target);
+  EXPECT_TRUE(b.contains(1.0)) << b.lo << ".." << b.hi;
+  plan_checked(start, target, l, "problem 313190 of seed 12");
+}
+
 // Accelerating at 1 towards a target accelerating at 1, 0.02 faster: held at 1 the acceleration
 // makes it in 0.02 s; from about 0.0211 s to 0.3789 s even the deepest dip of the acceleration
 // gains more than 0.02 (velocity_gap), so no profile exists; later one does again. A target
