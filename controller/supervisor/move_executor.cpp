@@ -202,8 +202,9 @@ void MoveExecutor::correct_in_motion(const cell::CellState& s, double t, std::ui
   for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
     auto& a = axes_[i];
     const auto& st = s.axes[i];
-    if (!a.in_move || !a.commanded || !a.anchored || a.retargeted || !cell_.axes[i].correct_in_motion ||
-        !st.measured || !st.moving || a.corrections >= settings_.max_corrections)
+    if (!a.in_move || !a.commanded || !a.anchored || a.in_motion_move_id != 0 ||
+        !cell_.axes[i].correct_in_motion || !st.measured || !st.moving ||
+        a.corrections >= settings_.max_corrections)
       continue;
     // Only samples at a steady speed towards the target (no ramp: the SCU's reply delay then
     // shifts each offset by its speed's share, which OffsetSlope takes out).
@@ -231,7 +232,6 @@ void MoveExecutor::correct_in_motion(const cell::CellState& s, double t, std::ui
       continue;
     // The SCU's offset at the start, where both stood still, plus the drift over the travel.
     retarget(i, a.start_scu_mm + travel + change, t, move_id);
-    a.retargeted = true;
     a.in_motion_move_id = a.move_id;
     note_ = journal::Text::format(
         "axis {} corrected while moving: its SCU reads {:+.2f} % along the travel, so its SCU target "
@@ -388,8 +388,7 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
                                       a.tolerance_mm);
       return MoveStatus::failed;
     }
-    // From the SCU's target, which it reached (its reading is 0.1 mm edges); from its reading when
-    // it stopped short of a target it refused.
+    // From the SCU's target, which it reached: more exact than its reading, in 0.1 mm edges.
     retarget(i, a.scu_target_mm + error, t, move_id);
     a.correcting_at_rest = true;
     seen_moving_[i] = false;

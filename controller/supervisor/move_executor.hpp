@@ -83,17 +83,17 @@ class MoveExecutor {
     double scu_target_mm = 0.0;  // what the SCU is told (target + corrections)
     double nominal_speed = 0.0;  // its share of the move speed, so that all arrive together
     double tolerance_mm = 0.0;
-    int corrections = 0;                  // SCU targets corrected, at rest or in motion
-    bool retargeted = false;              // corrected in motion (at most once per move)
-    std::uint32_t in_motion_move_id = 0;  // the command that did it
-    bool correcting_at_rest = false;      // a correction at rest is under way (no speed modulation)
-    bool anchored = false;                // the plan began at rest: start_scu_mm and start_mm are one instant
-    double start_scu_mm = 0.0;            // the SCU's reading then
-    double sampled_mm_s = 0.0;            // the encoder's speed at the last drift sample
-    OffsetSlope drift;                    // SCU − encoder along the travel, while moving steadily
-    bool commanded = false;               // told to move (an axis already inside its tolerance is left alone)
-    double commanded_at = 0.0;            // when the last command to it went out
-    std::uint32_t move_id = 0;            // bumped for every command to this axis (start, correction)
+    int corrections = 0;  // SCU targets corrected, at rest or in motion
+    // The command that corrected it in motion, 0 before (at most one per move).
+    std::uint32_t in_motion_move_id = 0;
+    bool correcting_at_rest = false;  // a correction at rest is under way (no speed modulation)
+    bool anchored = false;            // the plan began at rest: start_scu_mm and start_mm are one instant
+    double start_scu_mm = 0.0;        // the SCU's reading then
+    double sampled_mm_s = 0.0;        // the encoder's speed at the last drift sample
+    OffsetSlope drift;                // SCU − encoder along the travel, while moving steadily
+    bool commanded = false;           // told to move (an axis already inside its tolerance is left alone)
+    double commanded_at = 0.0;        // when the last command to it went out
+    std::uint32_t move_id = 0;        // bumped for every command to this axis (start, correction)
   };
 
   // Where an axis stands and how it moves when a plan begins.

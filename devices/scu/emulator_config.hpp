@@ -26,7 +26,7 @@ struct EmulatorConfig {
   std::array<bool, kActuatorCount> initialised{};
   // The manual does not say whether an RE is taken while an actuator still ramps down from the RS
   // before it; this emulator takes it (and the actuator on from its speed) unless this is set, when
-  // it answers PE, as a stricter SCU might (tests of the controller's fallback).
+  // it answers PE, as a stricter SCU might (tests of how the controller reports that).
   bool refuses_execute_while_moving = false;
   std::string firmware = "SCU V2B3 cellctl emulator";
   std::string configuration = "SCP11 cellctl emulator";
