@@ -3,10 +3,12 @@
 #include <fmt/chrono.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <memory>
 
+#include "cli/exit_codes.hpp"
 #include "cli/home_job.hpp"
 #include "cli/run_record_info.hpp"
 #include "cli/teach_in_job.hpp"
@@ -52,11 +54,44 @@ TeachInAsk ask_of(const plant_link::StartTeachIn& t) {
 }  // namespace
 
 CellStandby::CellStandby(config::CellConfig cell, StandbyOptions options)
-    : cell_(std::move(cell)), options_(std::move(options)) {}
+    : cell_(std::move(cell)),
+      options_(std::move(options)),
+      arbiter_(options_.max_command_age, arbiter_tell()) {
+  arbiter_.attach({[this] { return job_state(); },
+                   [this](supervisor::Command c, const command::CommandSource& source) {
+                     return request(c, source);
+                   }});
+}
+
+command::Tell CellStandby::arbiter_tell() {
+  command::Tell tell;
+  tell.command = [this](supervisor::Command c, const command::CommandSource& source) {
+    tell_line({{"event", "command"}, {"t", 0.0}, {"command", supervisor::to_string(c)}, {"source", source.words()}});
+  };
+  tell.state = [this](supervisor::State from, supervisor::State to, const std::string& reason) {
+    tell_line({{"event", "state"},
+               {"t", 0.0},
+               {"from", supervisor::to_string(from)},
+               {"to", supervisor::to_string(to)},
+               {"reason", reason}});
+  };
+  tell.note = [this](const std::string& words) {
+    // During a recipe's or homing's run the note goes into its journal (one writer at a time).
+    std::lock_guard lock(mutex_);
+    if (busy_ == Busy::run) {
+      run_->note_from_operator(words);
+    } else if (busy_ == Busy::none) {
+      tell_line({{"event", "note"}, {"t", 0.0}, {"text", words}});
+    } else {
+      spdlog::warn("{}", words);  // a Teach-In's journal, or a job between its states: the log only
+    }
+  };
+  return tell;
+}
 
 plant_link::RunAccess CellStandby::access() {
   plant_link::RunAccess a;
-  a.request = [this](supervisor::Command c) { return request(c); };
+  a.arbiter = &arbiter_;
   a.status = [this] { return status(); };
   a.mode = to_string(options_.mode);
   a.start = [this](const plant_link::StartRequest& r) { return start(r); };
@@ -73,12 +108,28 @@ struct CellStandby::JobSlot {
   }
 };
 
-Taken CellStandby::request(supervisor::Command c) {
+supervisor::State CellStandby::job_state() {
+  std::lock_guard lock(mutex_);
+  switch (busy_) {
+    case Busy::run:
+      return run_->status().read().state;
+    case Busy::teach_in:
+      return supervisor::State::execute;
+    case Busy::ending:
+      return supervisor::State::completing;
+    case Busy::none:
+    case Busy::starting:
+      break;
+  }
+  return supervisor::State::starting;
+}
+
+Taken CellStandby::request(supervisor::Command c, const command::CommandSource& source) {
   const auto word = supervisor::to_string(c);
   std::lock_guard lock(mutex_);
   switch (busy_) {
     case Busy::run:
-      run_->request(c);
+      run_->request(c, source.words());
       return {Taken::How::by_run, {}};
     case Busy::teach_in:
       if (is_stop(c)) {
@@ -91,14 +142,15 @@ Taken CellStandby::request(supervisor::Command c) {
       }
       return {Taken::How::refused,
               fmt::format("{} is not possible during the {}: stop or abort ends it", word, job_)};
+    case Busy::none:
     case Busy::starting:
       if (!is_stop(c))
         return {Taken::How::refused, fmt::format("{} is not possible while the {} starts", word, job_)};
-      if (pending_) {  // not taken by the serving thread yet: it never starts
-        pending_.reset();
-        busy_ = Busy::none;
-        return {Taken::How::done, fmt::format("{}: the {} was cancelled before it started; nothing moved",
-                                              word, std::exchange(job_, {}))};
+      if (pending_) {  // not taken by the serving thread yet: it never starts; that thread tells the end
+        cancelled_ = c;
+        started_.notify_all();
+        return {Taken::How::done, fmt::format("{}: the {} is cancelled before it started; nothing moved",
+                                              word, job_)};
       }
       early_stop_ = c;  // being set up: stopped as soon as its run exists, before any motion
       return {
@@ -108,12 +160,8 @@ Taken CellStandby::request(supervisor::Command c) {
                       word, job_)};
     case Busy::ending:
       return {Taken::How::refused, fmt::format("{} is not possible while the {} ends", word, job_)};
-    case Busy::none:
-      break;
   }
-  return {
-      Taken::How::refused,
-      fmt::format("no job is in progress: there is nothing to {}; start a recipe, home or teach-in", word)};
+  return {Taken::How::refused, fmt::format("{} is not possible now", word)};
 }
 
 std::optional<plant_link::LiveRun> CellStandby::status() {
@@ -125,11 +173,8 @@ std::optional<plant_link::LiveRun> CellStandby::status() {
 Taken CellStandby::start(const plant_link::StartRequest& r) {
   std::lock_guard lock(mutex_);
   if (!blocked_.empty()) return {Taken::How::refused, blocked_};
-  if (busy_ != Busy::none)
-    return {
-        Taken::How::refused,
-        fmt::format("the {} is in progress: a start is taken only between jobs (stop it or wait for its end)",
-                    job_)};
+  if (busy_ != Busy::none)  // the arbiter allows a start only in Idle: a job still ending is not Idle
+    return {Taken::How::refused, fmt::format("the {} is still in progress", job_)};
   // Checked here, so that the plant hears why at once; the job itself runs on the serving thread.
   if (const auto* home = std::get_if<plant_link::StartHoming>(&r)) {
     const auto axes = homing_axes(cell_, options_.config_file, home->axes);
@@ -141,39 +186,40 @@ Taken CellStandby::start(const plant_link::StartRequest& r) {
   busy_ = Busy::starting;
   job_ = describe(r);
   early_stop_.reset();
+  cancelled_.reset();
   pending_ = r;
   started_.notify_all();
   return {Taken::How::done, "started: " + job_};
 }
 
-void CellStandby::tell(nlohmann::json line) const {
+void CellStandby::tell_line(nlohmann::json line) const {
   if (listener_) listener_(line);
 }
 
-std::string CellStandby::not_started(const plant_link::StartRequest& r, const std::string& why) const {
-  tell({{"event", "run_started"},
-        {"t", 0.0},
-        {"recipe", short_name(r)},
-        {"mode", to_string(options_.mode)},
-        {"steps", 0}});
-  tell({{"event", "state"},
-        {"t", 0.0},
-        {"from", "Idle"},
-        {"to", "Aborted"},
-        {"reason", "not started: " + why}});
-  return "Aborted: not started: " + why;
+CellStandby::JobEnd CellStandby::not_started(const plant_link::StartRequest& r, const std::string& why,
+                                             supervisor::State end) const {
+  const auto to = supervisor::to_string(end);
+  tell_line({{"event", "run_started"},
+             {"t", 0.0},
+             {"recipe", short_name(r)},
+             {"mode", to_string(options_.mode)},
+             {"steps", 0}});
+  tell_line({{"event", "state"}, {"t", 0.0}, {"from", "Starting"}, {"to", to}, {"reason", "not started: " + why}});
+  return {fmt::format("{}: not started: {}", to, why), end};
 }
 
 int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminate,
                        const std::function<void(const std::string&)>& say) {
   for (;;) {
     std::optional<plant_link::StartRequest> job;
+    std::optional<supervisor::Command> cancelled;
     std::string what;
     const bool ending = [&] {
       std::unique_lock lock(mutex_);
       started_.wait_for(lock, 20ms, [&] { return pending_.has_value(); });
       if (terminate.load() || interrupt.load()) return true;  // a job not taken yet never starts
       job.swap(pending_);
+      cancelled.swap(cancelled_);
       what = job_;
       return false;
     }();
@@ -184,15 +230,26 @@ int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminat
         dropped.swap(pending_);
         busy_ = Busy::ending;
       }
-      if (dropped)
-        say(fmt::format("job {}: {}", jobs_done_.load() + 1,
-                        not_started(*dropped, "cellctl serve was ended before it started")));
+      if (dropped) {
+        const auto end = not_started(*dropped, "cellctl serve was ended before it started");
+        arbiter_.job_ended(end.state);
+        say(fmt::format("job {}: {}", jobs_done_.load() + 1, end.words));
+      }
       break;
     }
     if (!job) continue;
     say(fmt::format("job {}: {} started", jobs_done_.load() + 1, what));
-    const auto outcome = run_job(*job, interrupt, terminate);
-    say(fmt::format("job {}: {}", ++jobs_done_, outcome));
+    const auto end =
+        cancelled ? not_started(*job,
+                                fmt::format("cancelled by a {} before it started; nothing moved",
+                                            supervisor::to_string(*cancelled)),
+                                *cancelled == supervisor::Command::abort ? supervisor::State::aborted
+                                                                         : supervisor::State::stopped)
+                  : run_job(*job, interrupt, terminate);
+    // Told to the arbiter before the standby is free again: from here on the cell is in the job's end
+    // state, and only a reset (a clear and a reset after Aborted) brings it back to Idle.
+    arbiter_.job_ended(end.state);
+    say(fmt::format("job {}: {}", ++jobs_done_, end.words));
     {
       std::lock_guard lock(mutex_);
       busy_ = Busy::none;
@@ -200,8 +257,8 @@ int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminat
     }
     interrupt.store(false);  // a Ctrl-C during the job was the job's
   }
-  if (!blocked_.empty()) return 5;
-  return terminate.load() ? 0 : 130;
+  if (!blocked_.empty()) return kExitSafeStateUnknown;
+  return terminate.load() ? kExitOk : kExitInterrupted;
 }
 
 std::filesystem::path CellStandby::job_dir(const std::string& stem) const {
@@ -211,8 +268,8 @@ std::filesystem::path CellStandby::job_dir(const std::string& stem) const {
          fmt::format("{}-{:%Y%m%d-%H%M%S}-job{}", stem, fmt::localtime(now), jobs_done_.load() + 1);
 }
 
-std::string CellStandby::run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt,
-                                 std::atomic<bool>& terminate) {
+CellStandby::JobEnd CellStandby::run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt,
+                                         std::atomic<bool>& terminate) {
   try {
     if (const auto* t = std::get_if<plant_link::StartTeachIn>(&r))
       return run_teach_in(*t, interrupt, terminate);
@@ -233,8 +290,8 @@ std::string CellStandby::run_job(const plant_link::StartRequest& r, std::atomic<
   }
 }
 
-std::string CellStandby::run_recipe(const recipe::Recipe& recipe, const std::filesystem::path& run_dir,
-                                    std::atomic<bool>& interrupt, std::atomic<bool>& terminate) {
+CellStandby::JobEnd CellStandby::run_recipe(const recipe::Recipe& recipe, const std::filesystem::path& run_dir,
+                                            std::atomic<bool>& interrupt, std::atomic<bool>& terminate) {
   runtime::RunOptions o;
   o.mode = options_.mode;
   o.journal_dir = run_dir;
@@ -251,7 +308,7 @@ std::string CellStandby::run_recipe(const recipe::Recipe& recipe, const std::fil
       std::lock_guard lock(mutex_);
       run_ = &run;
       busy_ = Busy::run;
-      if (early_stop_) run.request(*early_stop_);  // asked while the job was set up: taken in Starting
+      if (early_stop_) run.request(*early_stop_, "a stop while the job was set up");  // taken in Starting
     }
     result = run.run(interrupt, &terminate);
   }
@@ -269,11 +326,11 @@ std::string CellStandby::run_recipe(const recipe::Recipe& recipe, const std::fil
       words += "; WARNING: " + blocked_;
     }
   if (!result.home_record.empty()) words += "; " + result.home_record;
-  return words;
+  return {words, result.final_state};
 }
 
-std::string CellStandby::run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt,
-                                      const std::atomic<bool>& terminate) {
+CellStandby::JobEnd CellStandby::run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt,
+                                              const std::atomic<bool>& terminate) {
   const plant_link::StartRequest asked{t};
   const auto request =
       std::get<routines::TeachInRequest>(teach_in_request(cell_, ask_of(t)));  // start() checked
@@ -288,15 +345,16 @@ std::string CellStandby::run_teach_in(const plant_link::StartTeachIn& t, std::at
   const auto seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   };
-  tell({{"event", "run_started"},
-        {"t", 0.0},
-        {"recipe", short_name(asked)},
-        {"mode", to_string(o.mode)},
-        {"steps", 1}});
-  tell({{"event", "state"}, {"t", 0.0}, {"from", "Idle"}, {"to", "Execute"}, {"reason", describe(asked)}});
-  const auto end = [&](const char* state, const std::string& words) {
-    tell({{"event", "state"}, {"t", seconds()}, {"from", "Execute"}, {"to", state}, {"reason", words}});
-    return fmt::format("{} {}: {}", state, o.journal_dir.string(), words);
+  tell_line({{"event", "run_started"},
+             {"t", 0.0},
+             {"recipe", short_name(asked)},
+             {"mode", to_string(o.mode)},
+             {"steps", 1}});
+  tell_line({{"event", "state"}, {"t", 0.0}, {"from", "Starting"}, {"to", "Execute"}, {"reason", describe(asked)}});
+  const auto end = [&](supervisor::State state, const std::string& words) {
+    const auto to = supervisor::to_string(state);
+    tell_line({{"event", "state"}, {"t", seconds()}, {"from", "Execute"}, {"to", to}, {"reason", words}});
+    return JobEnd{fmt::format("{} {}: {}", to, o.journal_dir.string(), words), state};
   };
   run.on_journal_line(listener_);
   runtime::TeachInOutcome outcome;
@@ -323,7 +381,7 @@ std::string CellStandby::run_teach_in(const plant_link::StartTeachIn& t, std::at
         "Teach-In; check with `cellctl encoder diag`, then start cellctl again";
   }
   if (!outcome.done)
-    return end(outcome.interrupted ? "Stopped" : "Aborted",
+    return end(outcome.interrupted ? supervisor::State::stopped : supervisor::State::aborted,
                fmt::format("{}; {}; the config is not changed{}", outcome.failure,
                            outcome.restored ? "the encoder's configured parameters are restored" : blocked_,
                            devices));
@@ -331,7 +389,7 @@ std::string CellStandby::run_teach_in(const plant_link::StartTeachIn& t, std::at
   try {
     change = write_teach_in_result(options_.config_file, cell_, outcome);
   } catch (const std::exception& e) {
-    return end("Aborted", fmt::format("Teach-In verified, but {} was not changed: {}",
+    return end(supervisor::State::aborted, fmt::format("Teach-In verified, but {} was not changed: {}",
                                       options_.config_file.string(), e.what()));
   }
   const auto written = fmt::format(
@@ -347,9 +405,9 @@ std::string CellStandby::run_teach_in(const plant_link::StartTeachIn& t, std::at
     std::lock_guard lock(mutex_);
     blocked_ = fmt::format("no start is taken: {} was written by the Teach-In but does not load again: {}",
                            options_.config_file.string(), e.what());
-    return end("Complete", written + "; " + blocked_);
+    return end(supervisor::State::complete, written + "; " + blocked_);
   }
-  return end("Complete", written + devices);
+  return end(supervisor::State::complete, written + devices);
 }
 
 }  // namespace cellctl::cli

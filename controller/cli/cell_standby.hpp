@@ -5,17 +5,21 @@
 // Teach-In whose verified result is written into the cell config (as `cellctl teach-in` writes it,
 // after which the config is read again). Each job gets its own run record under the runs folder.
 //
-// A start is taken only when no job is in progress, and never after a job left a device's safe
-// state unknown (a spindle that may still turn) or the encoder's parameters unconfirmed: someone must
-// look at the cell and start cellctl again. Commands go to the job in progress: a recipe's or
-// homing's run takes them as the terminal's (its journaled outcome is the answer); a Teach-In takes
-// stop and abort (it aborts and restores the encoder's parameters) and refuses the others. A stop or
-// abort while a job starts is never refused: a job not yet taken is cancelled, one being set up is
-// stopped before any motion.
+// Whether a command or a start is taken is the arbiter's to decide (command/arbiter.hpp: age, PackML
+// interlocks — a start only in Idle, so after a job's Complete or Stopped a Reset, after Aborted a
+// Clear and a Reset); the standby is the arbiter's JobPort for the job in progress. A start is never
+// taken after a job left a device's safe state unknown (a spindle that may still turn) or the
+// encoder's parameters unconfirmed: someone must look at the cell and start cellctl again. Commands go
+// to the job in progress: a recipe's or homing's run takes them as the terminal's (its journaled
+// outcome is the answer); a Teach-In takes stop and abort (it aborts and restores the encoder's
+// parameters) and refuses the others. A stop or abort while a job starts is never refused: a job not
+// yet taken is cancelled (told as Stopped or Aborted, nothing moved), one being set up is stopped
+// before any motion.
 //
-// Between jobs the standby itself tells the link and the page what it did (a Teach-In's start and
-// end, a job that could not start) as journal lines: the jobs' journal threads and the standby never
-// write at the same time (a job's journal joins its writer before its run returns), so the listener
+// Between jobs the standby itself tells the link and the page what it and the arbiter did (a
+// Teach-In's start and end, a job that could not start, a reset) as journal lines: the jobs' journal
+// threads and the standby never write at the same time (a job's journal joins its writer before its
+// run returns, and what the arbiter says during a job goes into that job's journal), so the listener
 // keeps one writer at a time.
 
 #include <atomic>
@@ -27,6 +31,7 @@
 #include <optional>
 #include <string>
 
+#include "command/arbiter.hpp"
 #include "config/cell_config.hpp"
 #include "plant_link/run_access.hpp"
 #include "runtime/cell_links.hpp"
@@ -40,14 +45,18 @@ struct StandbyOptions {
   std::filesystem::path runs_dir = "runs";  // each job's record: <runs>/<job>-<time>
   std::filesystem::path state_dir;          // the home record's folder; empty: the config's
   bool trace = false;
+  std::chrono::milliseconds max_command_age = command::kDefaultMaxCommandAge;
 };
 
 class CellStandby {
  public:
   CellStandby(config::CellConfig cell, StandbyOptions options);
+  CellStandby(const CellStandby&) = delete;
+  CellStandby& operator=(const CellStandby&) = delete;
 
   // For the plant link and the operator page; valid as long as the standby.
   [[nodiscard]] plant_link::RunAccess access();
+  [[nodiscard]] command::Arbiter& arbiter() noexcept { return arbiter_; }
   // Every journal line of every job, and the standby's own lines; set before serve().
   void on_journal_line(std::function<void(const nlohmann::json&)> listener) {
     listener_ = std::move(listener);
@@ -56,8 +65,9 @@ class CellStandby {
   // Runs the jobs as they are started, saying each one's start and end through `say`, until
   // `terminate` (a job in progress gets its controlled stop first) or an `interrupt` while no job is
   // in progress; an interrupt during a job is that job's Ctrl-C. A job started but not yet taken then
-  // never starts (told as not started). Returns the exit status: 0 ended by SIGTERM, 130 by Ctrl-C,
-  // 5 when a job left a device's safe state unknown or the encoder's parameters unconfirmed.
+  // never starts (told as not started). Returns the exit status (cli/exit_codes.hpp): ended by
+  // SIGTERM, by Ctrl-C, or a job left a device's safe state unknown or the encoder's parameters
+  // unconfirmed.
   int serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminate,
             const std::function<void(const std::string&)>& say);
 
@@ -69,22 +79,34 @@ class CellStandby {
   // Clears the job's run pointers when its run returns or throws.
   struct JobSlot;
 
-  [[nodiscard]] plant_link::Taken request(supervisor::Command c);
+  // What a job came to: its words for `say`, and the state the cell is left in.
+  struct JobEnd {
+    std::string words;
+    supervisor::State state = supervisor::State::aborted;
+  };
+
+  // The arbiter's port to the job in progress.
+  [[nodiscard]] supervisor::State job_state();
+  [[nodiscard]] plant_link::Taken request(supervisor::Command c, const command::CommandSource& source);
   [[nodiscard]] std::optional<plant_link::LiveRun> status();
+  // Registers a start the arbiter allowed.
   [[nodiscard]] plant_link::Taken start(const plant_link::StartRequest& r);
-  // The job, on the serving thread; its words for `say`.
-  std::string run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt,
-                      std::atomic<bool>& terminate);
-  std::string run_recipe(const recipe::Recipe& recipe, const std::filesystem::path& run_dir,
-                         std::atomic<bool>& interrupt, std::atomic<bool>& terminate);
-  std::string run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt,
-                           const std::atomic<bool>& terminate);
+  // The job, on the serving thread.
+  JobEnd run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt, std::atomic<bool>& terminate);
+  JobEnd run_recipe(const recipe::Recipe& recipe, const std::filesystem::path& run_dir,
+                    std::atomic<bool>& interrupt, std::atomic<bool>& terminate);
+  JobEnd run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt,
+                      const std::atomic<bool>& terminate);
   // <runs>/<stem>-<local time>-job<N>: the next job's record.
   [[nodiscard]] std::filesystem::path job_dir(const std::string& stem) const;
   // A line of the standby's own (between jobs: the jobs' journal threads are not writing).
-  void tell(nlohmann::json line) const;
-  // A job that could not start, told as a run of its own that ends Aborted with the reason.
-  std::string not_started(const plant_link::StartRequest& r, const std::string& why) const;
+  void tell_line(nlohmann::json line) const;
+  // A job that could not start, told as a run of its own that ends in `end` (Aborted: it failed;
+  // Stopped or Aborted: a stop or an abort cancelled it) with the reason.
+  JobEnd not_started(const plant_link::StartRequest& r, const std::string& why,
+                     supervisor::State end = supervisor::State::aborted) const;
+  // The arbiter's own words (between jobs), as journal lines.
+  [[nodiscard]] command::Tell arbiter_tell();
 
   config::CellConfig cell_;
   StandbyOptions options_;
@@ -98,8 +120,10 @@ class CellStandby {
   runtime::CellRun* run_ = nullptr;                  // the recipe's or homing's run in progress
   std::atomic<bool>* teach_abort_ = nullptr;         // the Teach-In's abort, while one runs
   std::optional<supervisor::Command> early_stop_;    // a stop or abort while the job was set up
+  std::optional<supervisor::Command> cancelled_;     // a stop or abort before the job was taken
   std::string blocked_;                              // why no start is taken any more
   std::atomic<int> jobs_done_{0};
+  command::Arbiter arbiter_;  // last: its Tell reaches the members above
 };
 
 }  // namespace cellctl::cli

@@ -12,7 +12,7 @@ namespace cellctl::cli {
 namespace {
 
 constexpr std::string_view kWhatToType =
-    "type hold, unhold, stop, abort or reset (or h, u, s, a, r) and Enter";
+    "type hold, unhold, stop, abort, reset or clear (or h, u, s, a, r, c) and Enter";
 
 std::string trimmed_lower(std::string_view word) {
   while (!word.empty() && std::isspace(static_cast<unsigned char>(word.front()))) word.remove_prefix(1);
@@ -32,10 +32,12 @@ std::optional<supervisor::Command> OperatorConsole::parse(std::string_view word)
   if (w == "stop" || w == "s") return Command::stop;
   if (w == "abort" || w == "a") return Command::abort;
   if (w == "reset" || w == "r") return Command::reset;
+  if (w == "clear" || w == "c") return Command::clear;
   return std::nullopt;
 }
 
-OperatorConsole::OperatorConsole(runtime::CellRun& run, TerminalScreen& screen) : run_(run), screen_(screen) {
+OperatorConsole::OperatorConsole(runtime::CellRun& run, command::Arbiter& arbiter, TerminalScreen& screen)
+    : run_(run), arbiter_(arbiter), screen_(screen) {
   if (!isatty(STDIN_FILENO)) return;
   if (screen_.tty()) {
     termios t{};
@@ -69,7 +71,10 @@ void OperatorConsole::handle(const std::string& line) {
     screen_.message(fmt::format("> {}: taken as '{}'", line, name));
   else
     screen_.message(fmt::format("> {}", name));
-  run_.request(*cmd);  // its answer comes from the journal (RunNarrator)
+  // Judged by the arbiter, as the page's and the plant's; a run's answer comes from the journal (RunNarrator).
+  const auto taken = arbiter_.command(
+      *cmd, {{command::CommandSource::Origin::terminal, {}, {}}, std::chrono::steady_clock::now(), {}});
+  if (taken.how != command::Taken::How::by_run) screen_.message(fmt::format("  {}", taken.text));
 }
 
 void OperatorConsole::read_commands() {

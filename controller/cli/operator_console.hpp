@@ -1,8 +1,9 @@
 #pragma once
-// Operator commands typed during a run (hold, unhold, stop, abort, reset; h/u/s/a/r; any case),
-// read on their own thread and handed to the run. Every line typed gets an answer on the screen:
-// a command is passed on (the run's answer — done, or refused and why — follows from the journal,
-// see RunNarrator); anything else is answered with what can be typed, and journaled.
+// Operator commands typed during a run (hold, unhold, stop, abort, reset, clear; h/u/s/a/r/c; any
+// case), read on their own thread and judged by the arbiter, as the page's and the plant's are. Every
+// line typed gets an answer on the screen: a command the arbiter refuses, with its reason; one it
+// passes on, with the run's answer (done, or refused and why) from the journal, see RunNarrator;
+// anything else with what can be typed, and journaled.
 // On a TTY (stdin and stdout) the terminal's echo is off and the console shows the typing after the
 // status line itself, so typed text never glues onto it; Ctrl-C still reaches the run.
 
@@ -14,13 +15,14 @@
 #include <thread>
 
 #include "cli/terminal_screen.hpp"
+#include "command/arbiter.hpp"
 #include "runtime/cell_run.hpp"
 
 namespace cellctl::cli {
 
 class OperatorConsole {
  public:
-  OperatorConsole(runtime::CellRun& run, TerminalScreen& screen);
+  OperatorConsole(runtime::CellRun& run, command::Arbiter& arbiter, TerminalScreen& screen);
   ~OperatorConsole();  // restores the terminal
   OperatorConsole(const OperatorConsole&) = delete;
   OperatorConsole& operator=(const OperatorConsole&) = delete;
@@ -35,6 +37,7 @@ class OperatorConsole {
   void handle(const std::string& line);
 
   runtime::CellRun& run_;
+  command::Arbiter& arbiter_;
   TerminalScreen& screen_;
   std::optional<termios> saved_;  // the terminal's settings before, when the console changed them
   std::atomic<bool> stop_{false};

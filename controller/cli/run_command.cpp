@@ -117,9 +117,15 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
   {
     TerminalScreen screen;
     RunNarrator narrator(screen);
-    // The plant link and the web page command through the operator's path, as the console does.
-    const auto access = plant_link::fixed_run([&run](supervisor::Command c) { run.request(c); }, run.status(),
-                                              to_string(options.mode));
+    // The terminal, the plant link and the web page command through one arbiter. This cellctl drives
+    // one run: its start is the terminal's, and the run is the arbiter's job until the process ends.
+    command::Tell tell;
+    tell.note = [&run](const std::string& words) { run.note_from_operator(words); };
+    command::Arbiter arbiter(std::chrono::milliseconds(cell.max_command_age_ms), std::move(tell));
+    arbiter.attach(run.port());
+    (void)arbiter.start({{command::CommandSource::Origin::terminal, {}, {}}, std::chrono::steady_clock::now(), {}},
+                        [] { return command::Taken{command::Taken::How::done, "started by cellctl run"}; });
+    const auto access = plant_link::fixed_run(arbiter, run.status(), to_string(options.mode));
     auto facing = open_plant_facing(cell, plant_link, args.http, args.http_token_file,
                                     plant_link ? plant_link->recipes : std::filesystem::path("recipes"),
                                     access, [&screen](const std::string& line) { screen.message(line); });
@@ -131,9 +137,9 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
     std::vector<std::optional<double>> planned;
     for (const auto& st : info.steps) planned.push_back(st.planned_s);
     StatusPrinter printer(run.status(), cell, screen, std::move(planned));
-    OperatorConsole console(run, screen);
+    OperatorConsole console(run, arbiter, screen);
     if (console.active())
-      screen.message("  type hold, unhold, stop, abort or reset (h, u, s, a, r) and Enter");
+      screen.message("  type hold, unhold, stop, abort, reset or clear (h, u, s, a, r, c) and Enter");
     result = run.run(g_interrupted, &g_terminated);
     run.on_journal_line({});
     facing.close();  // the link's last tags out (the run's end), then a clean goodbye

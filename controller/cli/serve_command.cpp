@@ -53,6 +53,7 @@ int serve(const GlobalOptions& global, const ServeArgs& args) {
   options.runs_dir = args.runs_dir;
   options.state_dir = args.state_dir;
   options.trace = global.trace;
+  options.max_command_age = std::chrono::milliseconds(cell.max_command_age_ms);
   CellStandby standby(cell, options);
 
   const auto say = [](const std::string& line) {

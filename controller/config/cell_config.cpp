@@ -12,7 +12,7 @@ CellConfig parse_cell_config(const YamlNode& root, const std::filesystem::path& 
   // `plant` is the emulated cell's coupling: read with the emulators' set-up, allowed here;
   // `plant_link` (the MQTT link to the plant) is read by controller/plant_link where the link is built.
   root.only_keys({"cell", "axes", "limits", "stops", "loop", "plant", "plant_link", "scu", "spindle",
-                  "encoder", "state_dir"});
+                  "encoder", "state_dir", "max_command_age_ms"});
   CellConfig cell;
   static_cast<CellCore&>(cell) = parse_cell_core(root, source);
   cell.state_dir = root.string_or("state_dir", cell.state_dir.string());

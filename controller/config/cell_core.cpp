@@ -16,6 +16,7 @@ CellCore parse_cell_core(const YamlNode& root, const std::filesystem::path& sour
   if (auto n = root.maybe("limits")) cell.limits = parse_cell_limits(*n);
   if (auto n = root.maybe("stops")) cell.stops = parse_stop_reactions(*n);
   if (auto n = root.maybe("loop")) cell.loop = parse_loop(*n);
+  cell.max_command_age_ms = root.int_in_or<int>("max_command_age_ms", 100, 60000, cell.max_command_age_ms);
   return cell;
 }
 

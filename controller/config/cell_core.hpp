@@ -22,12 +22,15 @@ struct CellCore {
   CellLimits limits;
   StopReactions stops;
   LoopConfig loop;
+  // How long a command may wait anywhere (a web worker's queue, the link's, the arbiter) and still
+  // be obeyed; older ones are answered "expired" (command/order.hpp).
+  int max_command_age_ms = 2000;
 
   // The axis with this name, or nullptr.
   [[nodiscard]] const AxisConfig* axis(std::string_view axis_name) const noexcept;
 };
 
-// The core keys of a cell config (cell, axes, limits, stops, loop); the caller checks unknown keys,
+// The core keys of a cell config (cell, axes, limits, stops, loop, max_command_age_ms); the caller checks unknown keys,
 // since the file holds the device sections too. Throws ConfigError (file:line:column: field: rule).
 [[nodiscard]] CellCore parse_cell_core(const YamlNode& root, const std::filesystem::path& source);
 

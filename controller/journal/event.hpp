@@ -51,8 +51,8 @@ struct StepEnded {
   Text detail;
 };
 struct Command {
-  std::string_view name;    // start, hold, unhold, stop, abort, reset, emergency-stop
-  std::string_view source;  // operator, signal, monitor
+  std::string_view name;  // start, hold, unhold, stop, abort, reset, clear
+  Text source;            // who commanded: "terminal", "web 10.0.0.7:51234 (token …)", "plant …"
 };
 struct Fault {
   std::string_view rule;

@@ -53,7 +53,7 @@ struct Fill {
   void operator()(const Command& e) const {
     j["event"] = "command";
     j["command"] = str(e.name);
-    j["source"] = str(e.source);
+    j["source"] = str(e.source.view());
   }
   void operator()(const Fault& e) const {
     j["event"] = "fault";

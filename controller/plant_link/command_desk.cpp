@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "command/bounded_json.hpp"
 #include "recipe/program.hpp"
 #include "recipe/recipe_loader.hpp"
 
@@ -73,30 +74,42 @@ CommandDesk::CommandDesk(const config::CellCore& cell, std::filesystem::path rec
                          std::chrono::milliseconds answer_timeout)
     : cell_(cell), recipes_(std::move(recipes)), access_(std::move(access)), timeout_(answer_timeout) {}
 
-std::optional<nlohmann::json> CommandDesk::submit(std::string_view word, std::string_view payload,
-                                                  std::string_view source, std::string_view state,
-                                                  SteadyTime now) {
-  nlohmann::json body = nlohmann::json::object();
-  if (!payload.empty()) {
-    body = nlohmann::json::parse(payload, nullptr, false);
-    if (body.is_discarded() || !body.is_object())
-      return answer(word, nullptr, false, "the payload is no JSON object (expected {\"id\":…} or nothing)");
+std::optional<nlohmann::json> CommandDesk::submit(const Incoming& in, std::string_view state) {
+  const auto word = command::capped(in.word, 24);  // echoed in every answer: never whole
+  auto parsed = command::parse_bounded_object(in.payload);
+  if (auto* why = std::get_if<std::string>(&parsed))
+    return answer(word, in.id ? nlohmann::json(*in.id) : nlohmann::json(), false,
+                  *why + " (expected {\"id\":…} or nothing)");
+  auto& body = std::get<nlohmann::json>(parsed);
+  const nlohmann::json id = in.id ? nlohmann::json(*in.id) : body.contains("id") ? body["id"] : nlohmann::json();
+  command::Order order{in.source, in.received, std::nullopt};
+  if (const auto by = body.find("by"); by != body.end() && by->is_string())
+    order.source.who = command::capped(by->get_ref<const std::string&>());
+  if (const auto at = body.find("issued_at"); at != body.end()) {
+    order.issued_at = at->is_string() ? command::parse_utc(at->get_ref<const std::string&>()) : std::nullopt;
+    if (!order.issued_at)
+      return answer(word, id, false, "'issued_at' must be a UTC time: \"2026-11-27T19:50:00.125Z\"");
   }
-  const nlohmann::json id = body.contains("id") ? body["id"] : nlohmann::json();
-  if (word == "start" || word == "home" || word == "teach-in") return start(word, id, body, state);
+  auto with_source = [&](nlohmann::json a) {
+    a["source"] = order.source.words();
+    return a;
+  };
+  if (word == "start" || word == "home" || word == "teach-in")
+    return with_source(start(word, id, body, order, state));
   using supervisor::Command;
   std::optional<Command> cmd;
-  for (const auto c : {Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset})
+  for (const auto c : {Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset, Command::clear})
     if (supervisor::to_string(c) == word) cmd = c;
   if (!cmd)
-    return answer(
+    return with_source(answer(
         word, id, false,
-        fmt::format("'{}' is not a command: hold, unhold, stop, abort, reset, start, home or teach-in",
-                    word));
-  if (!access_.request) return answer(word, id, false, "no run is in progress: there is nothing to command");
-  const auto taken = access_.request(*cmd);
-  if (taken.how != Taken::How::by_run) return answer(word, id, taken.how == Taken::How::done, taken.text);
-  pending_.push_back({*cmd, id, std::string(source), now + timeout_});
+        fmt::format("'{}' is not a command: hold, unhold, stop, abort, reset, clear, start, home or teach-in",
+                    word)));
+  const auto taken = access_.arbiter->command(*cmd, order);
+  if (taken.how != Taken::How::by_run)
+    return with_source(answer(word, id, taken.how == Taken::How::done, taken.text));
+  const std::lock_guard lock(mutex_);
+  pending_.push_back({*cmd, id, order.source.words(), std::chrono::steady_clock::now() + timeout_});
   return std::nullopt;
 }
 
@@ -130,7 +143,9 @@ std::variant<StartRequest, nlohmann::json> CommandDesk::recipe_start(const nlohm
 }
 
 nlohmann::json CommandDesk::start(std::string_view word, const nlohmann::json& id, const nlohmann::json& body,
-                                  std::string_view state) const {
+                                  const command::Order& order, std::string_view state) const {
+  // Asked first, so that a start the state refuses costs nothing more (a flood of them included).
+  if (auto why = access_.arbiter->start_refusal(order); !why.empty()) return answer(word, id, false, std::move(why));
   StartRequest request;
   if (word == "start") {
     auto r = recipe_start(id, body);
@@ -155,7 +170,7 @@ nlohmann::json CommandDesk::start(std::string_view word, const nlohmann::json& i
     if (recipe) a["valid"] = true;
     return a;
   }
-  const auto taken = access_.start(request);
+  const auto taken = access_.arbiter->start(order, [&] { return access_.start(request); });
   auto a = answer(word, id, taken.how != Taken::How::refused, taken.text);
   if (std::holds_alternative<StartRecipe>(request)) a["valid"] = true;
   return a;
@@ -163,6 +178,7 @@ nlohmann::json CommandDesk::start(std::string_view word, const nlohmann::json& i
 
 std::vector<nlohmann::json> CommandDesk::on_event(const RunEvent& e) {
   std::vector<nlohmann::json> out;
+  const std::lock_guard lock(mutex_);
   using Kind = RunEvent::Kind;
   using supervisor::Command;
   if (e.kind == Kind::run_ended) {
@@ -189,12 +205,12 @@ std::vector<nlohmann::json> CommandDesk::on_event(const RunEvent& e) {
         a = answer(name, it->id, true, "unholding: the interrupted step resumes");
       else if (e.kind == Kind::note && contains(text, "unhold refused"))
         a = answer(name, it->id, false, std::string(text));
-    } else if (it->command == Command::reset) {
-      if (e.kind == Kind::note && contains(text, "reset refused"))
+    } else if (it->command == Command::reset || it->command == Command::clear) {
+      if (e.kind == Kind::note && contains(text, fmt::format("{} refused", name)))
         a = answer(name, it->id, false, std::string(text));
       else if ((e.kind == Kind::note && contains(text, "faults reset")) ||
                (e.kind == Kind::command && e.name.view() == name))
-        a = answer(name, it->id, true, "faults reset");
+        a = answer(name, it->id, true, it->command == Command::reset ? "faults reset" : "cleared");
     } else if (e.kind == Kind::command && e.name.view() == name) {
       a = answer(name, it->id, true, fmt::format("accepted at t = {:.3f} s", e.t));
     }
@@ -212,12 +228,14 @@ std::vector<nlohmann::json> CommandDesk::on_event(const RunEvent& e) {
 
 std::vector<nlohmann::json> CommandDesk::expire(SteadyTime now) {
   std::vector<nlohmann::json> out;
+  const std::lock_guard lock(mutex_);
   while (!pending_.empty() && pending_.front().deadline <= now) {
     const auto& p = pending_.front();
-    out.push_back(answer(supervisor::to_string(p.command), p.id, false,
-                         fmt::format("the run gave no answer within {} ms: the outcome is unknown; see the "
-                                     "state tag",
-                                     timeout_.count())));
+    auto a = answer(supervisor::to_string(p.command), p.id, false,
+                    fmt::format("the run gave no answer within {} ms: the outcome is unknown; see the state tag",
+                                timeout_.count()));
+    a["source"] = p.source;
+    out.push_back(std::move(a));
     pending_.pop_front();
   }
   return out;

@@ -1,18 +1,24 @@
 #pragma once
-// Commands from outside the terminal (the plant over MQTT, the web page), put through the operator's
-// one command path (runtime::CellRun::request, as the terminal's) and answered with the outcome the
-// run gives: accepted, or refused and why (the supervisor's and the monitor's own reasons, read from
-// the run's events, as the terminal's narrator reads them). A command the current state does not
-// allow is refused by the run at once, never queued.
+// Commands from outside the terminal (the plant over MQTT, the web page): bounded and parsed here,
+// then judged by the one arbiter (command/arbiter.hpp: age, PackML interlocks) and answered with the
+// outcome: accepted, or refused and why (the arbiter's, the supervisor's and the monitor's own
+// reasons, read from the run's events, as the terminal's narrator reads them). A command the current
+// state does not allow is refused at once, never queued.
+// A payload is empty or a JSON object of at most 64 KiB and 32 levels, checked before it is parsed
+// (command/bounded_json.hpp); its optional fields: "id" (echoed), "issued_at" (UTC, RFC 3339: the
+// command is judged by its age from then), "by" (who, recorded with the source).
 // Starts: `start` names a recipe in the recipe folder, validated first (every problem
-// file:line:column, as `cellctl check` and exit 3 give them); `home` ({"axes":[…]}, or every axis with
-// homing) and `teach-in` ({"axis","distance_mm", optional "from_mm", "speed_mm_s"}) start the cell's
-// routines. A standing controller (cellctl serve, RunAccess::start) starts them when no job is in
-// progress; `cellctl run` drives one run, so it refuses them with the reason.
-// Used on one thread (the link's or the web server's).
+// file:line:column, as `cellctl check` and exit 3 give them) — but only once the arbiter has said a
+// start would be taken now, so a flood of starts costs a comparison each; `home` ({"axes":[…]}, or
+// every axis with homing) and `teach-in` ({"axis","distance_mm", optional "from_mm", "speed_mm_s"})
+// start the cell's routines. A standing controller (cellctl serve, RunAccess::start) starts them in
+// Idle; `cellctl run` drives one run, so it refuses them with the reason.
+// Thread-safe: the page's workers and the link's thread may call it at once, and no call waits
+// behind another's recipe validation.
 
 #include <chrono>
 #include <deque>
+#include <mutex>
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -22,6 +28,7 @@
 #include <variant>
 #include <vector>
 
+#include "command/order.hpp"
 #include "config/cell_core.hpp"
 #include "plant_link/run_access.hpp"
 #include "plant_link/run_event.hpp"
@@ -29,27 +36,34 @@
 
 namespace cellctl::plant_link {
 
-using SteadyTime = std::chrono::steady_clock::time_point;
+using command::SteadyTime;
+
+// A command as it arrived: its word, its payload as received (unparsed), who sent it and when.
+struct Incoming {
+  std::string_view word;  // hold, unhold, stop, abort, reset, clear, start, home, teach-in
+  std::string_view payload;
+  command::CommandSource source;
+  SteadyTime received{};
+  std::optional<std::uint64_t> id;  // the caller's own id for the answer (the page's), not the payload's
+};
 
 class CommandDesk {
  public:
-  // `access`: the operator command path and the starts (run_access.hpp); its request may be empty
-  // when there is no run to command.
+  // `access`: the arbiter and the starts (run_access.hpp).
   CommandDesk(const config::CellCore& cell, std::filesystem::path recipes, RunAccess access,
               std::chrono::milliseconds answer_timeout);
 
-  // `word` is the command (hold, unhold, stop, abort, reset, start, home, teach-in); `payload` empty
-  // or a JSON object ({"id":…} and the start's fields); `source` says who sent it (for the answer).
   // Returns the answer when it is known at once (a refusal, a start), nullopt when the run will
-  // answer (on_event).
-  [[nodiscard]] std::optional<nlohmann::json> submit(std::string_view word, std::string_view payload,
-                                                     std::string_view source, std::string_view state,
-                                                     SteadyTime now);
+  // answer (on_event). `state`: the cell's state as the caller shows it, for the answer's words.
+  [[nodiscard]] std::optional<nlohmann::json> submit(const Incoming& in, std::string_view state);
   // The answers this run event completes.
   [[nodiscard]] std::vector<nlohmann::json> on_event(const RunEvent& e);
   // Answers for commands the run has not answered within the time-out.
   [[nodiscard]] std::vector<nlohmann::json> expire(SteadyTime now);
-  [[nodiscard]] bool waiting() const noexcept { return !pending_.empty(); }
+  [[nodiscard]] bool waiting() {
+    const std::lock_guard lock(mutex_);
+    return !pending_.empty();
+  }
 
  private:
   struct Pending {
@@ -58,9 +72,10 @@ class CommandDesk {
     std::string source;
     SteadyTime deadline;
   };
-  // The start of a recipe, homing or a Teach-In: its shape checked, then started (or refused).
-  [[nodiscard]] nlohmann::json start(std::string_view word, const nlohmann::json& id,
-                                     const nlohmann::json& body, std::string_view state) const;
+  // The start of a recipe, homing or a Teach-In: the arbiter asked first, its shape checked, then
+  // started (or refused).
+  [[nodiscard]] nlohmann::json start(std::string_view word, const nlohmann::json& id, const nlohmann::json& body,
+                                     const command::Order& order, std::string_view state) const;
   // A recipe's StartRequest, or the answer that refuses it (not a name, not valid for the cell).
   [[nodiscard]] std::variant<StartRequest, nlohmann::json> recipe_start(const nlohmann::json& id,
                                                                         const nlohmann::json& body) const;
@@ -69,6 +84,7 @@ class CommandDesk {
   std::filesystem::path recipes_;
   RunAccess access_;
   std::chrono::milliseconds timeout_;
+  std::mutex mutex_;  // pending_
   std::deque<Pending> pending_;
 };
 

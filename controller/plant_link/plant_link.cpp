@@ -110,7 +110,19 @@ void PlantLink::run_thread() {
     if (m.topic.rfind(cmd_prefix, 0) != 0) return;
     commands_.fetch_add(1);
     const auto word = std::string_view(m.topic).substr(cmd_prefix.size());
-    if (auto a = desk.submit(word, m.payload, "plant", mirror.state(), Clock::now())) respond(*a);
+    const command::CommandSource source{command::CommandSource::Origin::plant, command::capped(m.topic, 128), {}};
+    if (m.retain) {
+      // Stored by the broker from some earlier time: never a command meant now.
+      const auto why = fmt::format("a retained {} from the broker was ignored ({}): commands are never "
+                                   "published with the retain flag",
+                                   command::capped(word, 24), source.words());
+      run_.arbiter->ignore(why);
+      auto a = answer(command::capped(word, 24), nullptr, false, why);
+      a["source"] = source.words();
+      respond(a);
+      return;
+    }
+    if (auto a = desk.submit({word, m.payload, source, Clock::now(), std::nullopt}, mirror.state())) respond(*a);
   };
 
   const auto take_events = [&] {

@@ -9,13 +9,9 @@ LiveRun live_run(const runtime::StatusBoard& board) {
   return live;
 }
 
-RunAccess fixed_run(std::function<void(supervisor::Command)> request, const runtime::StatusBoard& board,
-                    std::string mode) {
+RunAccess fixed_run(command::Arbiter& arbiter, const runtime::StatusBoard& board, std::string mode) {
   RunAccess a;
-  a.request = [request = std::move(request)](supervisor::Command c) {
-    request(c);
-    return Taken{Taken::How::by_run, {}};
-  };
+  a.arbiter = &arbiter;
   a.status = [&board]() -> std::optional<LiveRun> { return live_run(board); };
   a.mode = std::move(mode);
   return a;

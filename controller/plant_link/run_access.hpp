@@ -1,7 +1,7 @@
 #pragma once
-// What the plant link and the operator page may reach of the controller: the operator's one command
-// path, the live status of the run in progress, and — for a standing controller (`cellctl serve`) —
-// the start of a recipe, of homing or of a Teach-In. `cellctl run` drives the one run it was started
+// What the plant link and the operator page may reach of the controller: the one command path (the
+// arbiter), the live status of the run in progress, and — for a standing controller (`cellctl serve`)
+// — the start of a recipe, of homing or of a Teach-In. `cellctl run` drives the one run it was started
 // with: fixed_run() gives its access, with no start.
 //
 // The functions are called on the link's and the page's threads, never on the control loop's.
@@ -13,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include "command/arbiter.hpp"
 #include "runtime/status_view.hpp"
 #include "supervisor/packml.hpp"
 
@@ -25,16 +26,7 @@ struct LiveRun {
   std::string label;
 };
 
-// How the controller took a command or a start.
-struct Taken {
-  enum class How {
-    by_run,   // handed to the run: its journaled outcome is the answer
-    done,     // done at once: `text` is the outcome
-    refused,  // refused at once: `text` is the reason
-  };
-  How how = How::refused;
-  std::string text;
-};
+using Taken = command::Taken;
 
 // What a start asks for; the command desk has checked its shape (and a recipe's validity).
 struct StartRecipe {
@@ -54,16 +46,16 @@ struct StartTeachIn {
 using StartRequest = std::variant<StartRecipe, StartHoming, StartTeachIn>;
 
 struct RunAccess {
-  std::function<Taken(supervisor::Command)> request;  // the operator command path
-  std::function<std::optional<LiveRun>()> status;     // nullopt: no run in progress
+  command::Arbiter* arbiter = nullptr;              // the one command path; never null in use
+  std::function<std::optional<LiveRun>()> status;  // nullopt: no run in progress
   std::string mode;  // "hardware", "emulated", "virtual-time"; "" without a run
-  // Starts a job; empty when this cellctl drives one run and can start no other.
+  // Registers a job the arbiter allowed (command::Arbiter::start's `begin`); empty when this cellctl
+  // drives one run and can start no other.
   std::function<Taken(const StartRequest&)> start;
 };
 
-// The access to one run that exists as long as the access is used: its command path and its board.
-[[nodiscard]] RunAccess fixed_run(std::function<void(supervisor::Command)> request,
-                                  const runtime::StatusBoard& board, std::string mode);
+// The access to one run that exists as long as the access is used: its arbiter and its board.
+[[nodiscard]] RunAccess fixed_run(command::Arbiter& arbiter, const runtime::StatusBoard& board, std::string mode);
 
 // The board's view, its label copied.
 [[nodiscard]] LiveRun live_run(const runtime::StatusBoard& board);

@@ -99,6 +99,14 @@ void CellRun::run_emulator_thread() {
   serve_emulators(emulators_stop_, real_clock_, parts_.rehearsal.get(), *parts_.emulated);
 }
 
+void CellRun::request(supervisor::Command c, std::string_view source) noexcept {
+  {
+    const std::lock_guard lock(request_mutex_);
+    (void)request_sources_.push({c, journal::Text::format("{}", source)});  // full: the bit still goes
+  }
+  requested_.fetch_or(bit(c));  // after the source: the loop that sees the bit finds its source
+}
+
 void CellRun::take_commands(double t, std::atomic<bool>& interrupt) {
   if (interrupt.exchange(false)) {
     interrupted_ = true;
@@ -109,27 +117,38 @@ void CellRun::take_commands(double t, std::atomic<bool>& interrupt) {
   if (terminate_ && !terminated_ && terminate_->load()) {
     terminated_ = true;
     interrupted_ = true;
-    request(supervisor::Command::stop);  // SIGTERM: a controlled stop, whatever stops.operator says
+    request(supervisor::Command::stop, "signal SIGTERM");  // a controlled stop, whatever stops.operator says
   }
   while (const auto note = operator_notes_.pop()) journal_.post(t, *note);
   const unsigned pending = requested_.exchange(0);
+  if (pending == 0) return;
+  for (auto& s : sources_) s = journal::Text::format("unrecorded");
+  while (const auto r = request_sources_.pop()) sources_[static_cast<std::size_t>(r->command)] = r->source;
   // Strongest first, so that a stop typed right after a hold is never lost behind it.
   using supervisor::Command;
-  for (const auto cmd :
-       {Command::abort, Command::stop, Command::hold, Command::reset, Command::unhold, Command::start}) {
+  for (const auto cmd : {Command::abort, Command::stop, Command::hold, Command::clear, Command::reset,
+                         Command::unhold, Command::start}) {
     if ((pending & bit(cmd)) == 0) continue;
-    if (cmd == Command::reset) {
-      // The devices are told to clear their own latched faults (the converter's CMD System Reset) and
-      // the monitor judges its latches now: a converter fault is gone by the operator's next reset.
-      supervisor_->reset_devices();
-      judge_reset(t);
+    const auto& source = sources_[static_cast<std::size_t>(cmd)];
+    if (cmd == Command::reset || cmd == Command::clear) {
+      judge_reset(t, cmd, source);
       continue;
     }
-    if (!supervisor_->command(cmd, "operator", t)) journal_.post(t, journal::Note{supervisor_->refusal()});
+    if (!supervisor_->command(cmd, source.view(), t)) journal_.post(t, journal::Note{supervisor_->refusal()});
   }
 }
 
-void CellRun::judge_reset(double t) {
+void CellRun::judge_reset(double t, supervisor::Command c, const journal::Text& source) {
+  // Judged by the interlocks first: a reset in Aborted is refused before it clears anything.
+  if (const auto why = supervisor::refusal(supervisor_->state(), c); !why.empty()) {
+    journal_.post(t, journal::Note{journal::Text::format("{} is not possible in state {}: {}",
+                                                         supervisor::to_string(c),
+                                                         supervisor::to_string(supervisor_->state()), why)});
+    return;
+  }
+  // The devices are told to clear their own latched faults (the converter's CMD System Reset) and
+  // the monitor judges its latches now: a converter fault is gone by the operator's next reset.
+  supervisor_->reset_devices();
   const bool had_stop = operator_stop_ || emergency_stop_;
   operator_stop_ = emergency_stop_ = false;
   std::bitset<monitor::kRuleCount> latched;
@@ -144,20 +163,19 @@ void CellRun::judge_reset(double t) {
     for (std::size_t r = 0; r < monitor::kRuleCount && still == "?"; ++r)
       if (monitor_.latch(static_cast<monitor::Rule>(r)).active)
         still = monitor::to_string(static_cast<monitor::Rule>(r));
-    journal_.post(
-        t, journal::Note{journal::Text::format("reset refused: the cause of {} is still present", still)});
+    journal_.post(t, journal::Note{journal::Text::format("{} refused: the cause of {} is still present",
+                                                         supervisor::to_string(c), still)});
     if (had_stop) operator_stop_ = true;
     return;
   }
   // Held by a category-2 stop, the run goes on: a reset clears the latches, unhold resumes. Only a
-  // run that has ended goes back to Idle.
+  // run that has ended changes state.
   if (!supervisor::is_final(supervisor_->state())) {
     journal_.post(
         t, journal::Note{journal::Text::format("faults reset in state {}", to_string(supervisor_->state()))});
     return;
   }
-  if (!supervisor_->command(supervisor::Command::reset, "operator", t))
-    journal_.post(t, journal::Note{supervisor_->refusal()});
+  if (!supervisor_->command(c, source.view(), t)) journal_.post(t, journal::Note{supervisor_->refusal()});
 }
 
 void CellRun::report_devices(double t, RunResult& r) {

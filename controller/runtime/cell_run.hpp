@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "cell/cell_state.hpp"
+#include "command/arbiter.hpp"
 #include "config/cell_config.hpp"
 #include "journal/event_sink.hpp"
 #include "journal/journal.hpp"
@@ -97,13 +99,26 @@ class CellRun {
   // the config) and an emergency stop the second; `terminate` (SIGTERM) is a controlled stop.
   RunResult run(std::atomic<bool>& interrupt, std::atomic<bool>* terminate = nullptr);
 
-  // An operator command from any thread; carried out at the next cycle.
-  void request(supervisor::Command c) noexcept { requested_.fetch_or(bit(c)); }
+  // An operator command from any thread (the loop's too); carried out at the next cycle and journaled
+  // with its source (command::CommandSource::words()). Never waits on the loop: the command is a bit,
+  // its source a queued text (should that queue be full, the command still goes, told as "unrecorded").
+  void request(supervisor::Command c, std::string_view source = "terminal") noexcept;
 
-  // Text the operator typed that is no command: journaled at the next cycle, whole (in parts of a
-  // journal::Note; this thread waits while the loop has not taken the earlier ones). One thread may
-  // call it.
+  // The port through which the command arbiter reaches this run: its state (from its board, as the
+  // last cycle published it) and request().
+  [[nodiscard]] command::JobPort port() {
+    return {[this] { return board_.read().state; },
+            [this](supervisor::Command c, const command::CommandSource& source) {
+              request(c, source.words());
+              return command::Taken{command::Taken::How::by_run, {}};
+            }};
+  }
+
+  // Text the operator typed that is no command, or a command that was never judged (a retained
+  // message): journaled at the next cycle, whole (in parts of a journal::Note; the caller waits while
+  // the loop has not taken the earlier ones). Any thread, one at a time.
   void note_from_operator(std::string_view text) noexcept {
+    const std::lock_guard lock(note_mutex_);
     NoteQueueWriter w{operator_notes_, loop_stop_};
     journal::NoteWriter notes(w, 0.0);
     for (const char c : text) notes.put(c);
@@ -130,7 +145,9 @@ class CellRun {
  private:
   void cycle(link::TimePoint now, std::atomic<bool>& interrupt);
   void take_commands(double t, std::atomic<bool>& interrupt);
-  void judge_reset(double t);
+  // Reset and clear: the devices clear their own faults, the monitor judges its latches, then the
+  // supervisor takes the command (where the run has ended) or the latches alone are cleared.
+  void judge_reset(double t, supervisor::Command c, const journal::Text& source);
   void report_devices(double t, RunResult& r);
   // The summary's "devices" and "ended_by" (journal/README: the summary line).
   void report_safety(RunResult& r, nlohmann::json& extra) const;
@@ -162,6 +179,14 @@ class CellRun {
   cell::CellState state_;
   StatusBoard board_;
   std::atomic<unsigned> requested_{0};  // one bit per supervisor::Command
+  struct Requested {
+    supervisor::Command command;
+    journal::Text source;
+  };
+  std::mutex request_mutex_;                         // the writers of request_sources_ (one at a time)
+  wire::SpscQueue<Requested, 16> request_sources_;  // the loop reads it without the lock
+  std::array<journal::Text, supervisor::kCommands> sources_{};  // the loop's: each command's last source
+  std::mutex note_mutex_;  // the writers of operator_notes_
   wire::SpscQueue<journal::Note, 64> operator_notes_;
   // Feeds a note's parts into operator_notes_, waiting for room (not once the loop has ended).
   struct NoteQueueWriter final : journal::EventSink {

@@ -51,35 +51,13 @@ bool Supervisor::move_started() const noexcept {
 }
 
 bool Supervisor::command(Command c, std::string_view source, double t) {
-  bool allowed = false;
-  switch (c) {
-    case Command::start:
-      allowed = state_ == State::idle;
-      break;
-    case Command::hold:
-      allowed = state_ == State::execute || state_ == State::unholding;
-      break;
-    case Command::unhold:
-      // Also while still holding: a move goes on from the moving state the brake has reached.
-      allowed = state_ == State::held || state_ == State::holding;
-      break;
-    case Command::stop:
-      allowed = !is_final(state_) && state_ != State::stopping && state_ != State::aborting;
-      break;
-    case Command::abort:
-      allowed = state_ != State::aborted && state_ != State::aborting;
-      break;
-    case Command::reset:
-      allowed = state_ == State::stopped || state_ == State::aborted || state_ == State::complete;
-      break;
-  }
-  if (!allowed) {
-    refusal_ = Text::format("{} is not possible in state {}", to_string(c), to_string(state_));
+  if (const auto why = supervisor::refusal(state_, c); !why.empty()) {
+    refusal_ = Text::format("{} is not possible in state {}: {}", to_string(c), to_string(state_), why);
     return false;
   }
-  events_.post(t, journal::Command{to_string(c), source});
+  pending_source_ = Text::format("{}", source);
+  events_.post(t, journal::Command{to_string(c), pending_source_});
   pending_ = c;
-  pending_source_ = source;
   return true;
 }
 
@@ -266,7 +244,7 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
   if (pending_) {
     const Command c = *pending_;
     pending_.reset();
-    const auto why = Text::format("{} by {}", to_string(c), pending_source_);
+    const auto why = Text::format("{} by {}", to_string(c), pending_source_.view());
     switch (c) {
       case Command::start:
         pc_ = 0;
@@ -295,6 +273,9 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
         break;
       case Command::reset:
         enter(State::resetting, t, why);
+        break;
+      case Command::clear:
+        enter(State::clearing, t, why);
         break;
     }
   }
@@ -413,6 +394,13 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
       }
       break;
     }
+
+    case State::clearing:
+      // The abort acknowledged: everything is at rest already (Aborting ended only then).
+      clear_motion();
+      intents_.spindle.run = false;
+      enter(State::stopped, t, Text::format("cleared: reset to reach Idle"));
+      break;
 
     case State::resetting:
       clear_motion();

@@ -88,7 +88,7 @@ class Supervisor {
   State state_ = State::idle;
   double state_since_ = 0.0;
   std::optional<Command> pending_;
-  std::string_view pending_source_;
+  journal::Text pending_source_;
   cell::Intents intents_;
   std::uint32_t move_counter_ = 0;
   std::size_t pc_ = 0;

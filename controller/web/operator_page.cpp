@@ -111,7 +111,9 @@ OperatorPage::OperatorPage(PageOptions options, const config::CellCore& cell, pl
           "application/json");
       return;
     }
-    res.set_content(command(word, req.body).dump(), "application/json");
+    const command::CommandSource source{command::CommandSource::Origin::web,
+                                        fmt::format("{}:{}", req.remote_addr, req.remote_port), "token"};
+    res.set_content(command(word, req.body, source).dump(), "application/json");
   });
   s.Get("/metrics", [this](const httplib::Request&, httplib::Response& res) {
     res.set_content(metrics_text(), "text/plain; version=0.0.4");
@@ -157,19 +159,20 @@ void OperatorPage::pump() {
   }
 }
 
-nlohmann::json OperatorPage::command(const std::string& word, const std::string& body) {
-  std::unique_lock lock(mutex_);
-  ++commands_;
-  const auto id = next_id_++;
-  // The body's fields (a start's recipe, axes, distance), with the page's own id for the answer.
-  auto payload = body.empty() ? nlohmann::json::object() : nlohmann::json::parse(body, nullptr, false);
-  if (payload.is_discarded() || !payload.is_object()) {
-    ++refused_;
-    return plant_link::answer(word, id, false, "the request body is no JSON object");
+nlohmann::json OperatorPage::command(const std::string& word, const std::string& body,
+                                     const command::CommandSource& source) {
+  const auto received = std::chrono::steady_clock::now();
+  // The desk bounds the body before it parses it; the page's own id is the one its answer is found by.
+  std::uint64_t id = 0;
+  std::string state;
+  {
+    const std::lock_guard lock(mutex_);
+    ++commands_;
+    id = next_id_++;
+    state = std::string(mirror_.state());
   }
-  payload["id"] = id;
-  auto immediate =
-      desk_.submit(word, payload.dump(), "web page", mirror_.state(), std::chrono::steady_clock::now());
+  auto immediate = desk_.submit({word, body, source, received, id}, state);
+  std::unique_lock lock(mutex_);
   if (!immediate) {
     // The desk times out unanswered commands itself; the wait's own bound is a little longer.
     const nlohmann::json mine = id;

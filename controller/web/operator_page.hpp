@@ -60,7 +60,8 @@ class OperatorPage {
   [[nodiscard]] nlohmann::json status_json();
   [[nodiscard]] nlohmann::json admin_json();
   [[nodiscard]] std::string metrics_text();
-  [[nodiscard]] nlohmann::json command(const std::string& word, const std::string& body);
+  [[nodiscard]] nlohmann::json command(const std::string& word, const std::string& body,
+                                       const command::CommandSource& source);
 
   PageOptions options_;
   const config::CellCore& cell_;

@@ -59,7 +59,7 @@ RunRecord two_axis_run() {
   }
   r.add(to_json({0.6, Fault{"overspeed", 1, Text::format("x at 30 mm/s")}}));
   r.add({{"t", 0.7}, {"event", "fault_injected"}, {"device", "scu"}, {"what", "reply lost"}});
-  r.add(to_json({0.8, Command{"hold", "operator"}}));
+  r.add(to_json({0.8, Command{"hold", Text::format("terminal")}}));
   r.add(to_json({1.1, StepEnded{0, "go <in> (line 3)", true, {}}}));
   r.add(to_json({1.2, RunEnded{"complete"}}));
   r.finish();

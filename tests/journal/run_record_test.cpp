@@ -22,7 +22,7 @@ TEST(RunRecord, AStepHeldKeepsItsTimeBeforeTheHoldAndAStopIncludesTheInterrupted
   add(s, 6.0, StepStarted{0, "go (line 3)"});  // the supervisor starts the step again after the hold
   add(s, 7.0, StepEnded{0, "go (line 3)", true, {}});
   add(s, 7.0, StepStarted{1, "drill (line 5)"});
-  add(s, 8.5, Command{"stop", "operator"});
+  add(s, 8.5, Command{"stop", Text::format("terminal")});
   add(s, 8.5, StateChanged{"Execute", "Stopping", {}});  // the step ends here, not when the cell is at rest
   add(s, 20.0, RunEnded{"stopped"});
   const auto& steps = s.record().steps();
@@ -41,7 +41,7 @@ TEST(RunRecord, AFaultIsNotTheOperatorsStop) {
   RunSummary s;
   add(s, 0.0, RunStarted{"r", "c", "emulated", 1});
   add(s, 1.0, Fault{"operator_stop", 2, Text::format("Ctrl-C")});
-  add(s, 2.0, Command{"stop", "operator"});
+  add(s, 2.0, Command{"stop", Text::format("terminal")});
   add(s, 3.0, RunEnded{"stopped"});
   EXPECT_TRUE(s.record().ended_by_operator());
   add(s, 3.0, Fault{"overspeed", 1, Text::format("x")});
