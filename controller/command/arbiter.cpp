@@ -8,7 +8,8 @@ Arbiter::Arbiter(std::chrono::milliseconds max_age, Tell tell, State initial)
     : max_age_(max_age), tell_(std::move(tell)), state_(initial) {}
 
 State Arbiter::state_locked() const {
-  return job_ && port_.state ? port_.state() : state_;
+  if (!job_) return state_;
+  return port_.state ? port_.state() : State::starting;  // a job begun but not reachable yet: starting
 }
 
 std::string Arbiter::stale(const Order& o) const {

@@ -10,14 +10,33 @@
 namespace cellctl::plant_link {
 namespace {
 
+// As `cellctl run` has it: one arbiter, whose job is the run (in state job_state_), and no start.
 class CommandDeskTest : public ::testing::Test {
  protected:
+  CommandDeskTest() {
+    arbiter_.attach({[this] { return job_state_; },
+                     [](command::Command, const command::CommandSource&) {
+                       return Taken{Taken::How::by_run, {}};
+                     }});
+    (void)arbiter_.start(order(), [] { return Taken{Taken::How::done, "started"}; });
+  }
+  static command::Order order() {
+    return {{command::CommandSource::Origin::plant, "t/cmd", {}}, std::chrono::steady_clock::now(), {}};
+  }
+  static RunAccess access_of(command::Arbiter& arbiter) {
+    RunAccess a;
+    a.arbiter = &arbiter;
+    return a;
+  }
   config::CellConfig cell_ =
       config::load_cell_config(std::filesystem::path(CELLCTL_SOURCE_DIR) / "config/cell.yaml");
+  command::State job_state_ = command::State::idle;  // the run's board before its first cycle
+  command::Arbiter arbiter_{std::chrono::seconds(2), {}};
   CommandDesk desk_{
-      cell_, std::filesystem::path(CELLCTL_SOURCE_DIR) / "tests/cli", {}, std::chrono::seconds(1)};
+      cell_, std::filesystem::path(CELLCTL_SOURCE_DIR) / "tests/cli", access_of(arbiter_), std::chrono::seconds(1)};
   nlohmann::json submit(std::string_view word, std::string_view payload) {
-    auto a = desk_.submit(word, payload, "test", "Execute", std::chrono::steady_clock::now());
+    auto a = desk_.submit({word, payload, order().source, std::chrono::steady_clock::now(), std::nullopt},
+                          "Execute");
     EXPECT_TRUE(a.has_value());
     return a.value_or(nlohmann::json());
   }
@@ -52,8 +71,25 @@ TEST_F(CommandDeskTest, NamesWordsAndPayloadsThatAreNotCommandsAreRefused) {
   EXPECT_NE(submit("jump", "")["reason"].get<std::string>().find("is not a command"), std::string::npos);
   EXPECT_NE(submit("hold", "not json")["reason"].get<std::string>().find("no JSON object"),
             std::string::npos);
-  // No run to command (the desk was given no request path).
-  EXPECT_EQ(submit("hold", "")["reason"], "no run is in progress: there is nothing to command");
+  // The interlocks: no hold before the run executes.
+  EXPECT_EQ(submit("hold", "")["reason"], "hold is not possible in state Idle: hold is taken only in Execute");
+  // Bounded before parsed: too deep, too large; neither echoed.
+  const std::string deep = "{\"a\":" + std::string(100000, '[') + std::string(100000, ']') + "}";
+  EXPECT_NE(submit("hold", deep)["reason"].get<std::string>().find("nests deeper than 32 levels"),
+            std::string::npos);
+  const std::string big = "{\"by\":\"" + std::string(100000, 'x') + "\"}";
+  const auto a = submit("stop", big);
+  EXPECT_NE(a["reason"].get<std::string>().find("more than the 65536"), std::string::npos);
+  EXPECT_LT(a.dump().size(), 400u) << "the payload was echoed";
+}
+
+TEST_F(CommandDeskTest, AStartTheStateRefusesCostsNoValidation) {
+  job_state_ = command::State::execute;
+  const auto a = submit("start", R"({"recipe":"bad-recipe"})");
+  EXPECT_EQ(a["ok"], false);
+  EXPECT_FALSE(a.contains("errors")) << "validated although the state refuses any start: " << a.dump();
+  EXPECT_EQ(a["reason"], "start is not possible in state Execute: a job is in progress: Start is taken only in Idle");
+  EXPECT_NE(a["source"].get<std::string>().find("plant t/cmd"), std::string::npos) << a.dump();
 }
 
 TEST_F(CommandDeskTest, RoutineStartsAreCheckedForShapeAndRefusedByAOneRunCellctl) {
@@ -74,19 +110,25 @@ TEST_F(CommandDeskTest, RoutineStartsAreCheckedForShapeAndRefusedByAOneRunCellct
 
 TEST_F(CommandDeskTest, AStandingControllerIsHandedTheCheckedStart) {
   std::vector<StartRequest> started;
-  RunAccess access;
+  command::Arbiter standby(std::chrono::seconds(2), {});  // no job yet: the cell is Idle
+  RunAccess access = access_of(standby);
   access.start = [&](const StartRequest& r) {
     started.push_back(r);
     return Taken{Taken::How::done, "started"};
   };
   CommandDesk desk(cell_, std::filesystem::path(CELLCTL_SOURCE_DIR) / "tests/cli", access,
                    std::chrono::seconds(1));
-  const auto now = std::chrono::steady_clock::now();
-  EXPECT_EQ(desk.submit("start", R"({"recipe":"short"})", "test", "Idle", now).value()["ok"], true);
-  EXPECT_EQ(desk.submit("start", R"({"recipe":"bad-recipe"})", "test", "Idle", now).value()["exit"], 3);
-  EXPECT_EQ(desk.submit("teach-in", R"({"axis":"x","distance_mm":50,"from_mm":5})", "test", "Idle", now)
-                .value()["ok"],
-            true);
+  const auto submit_to = [&](std::string_view word, std::string_view payload) {
+    return desk.submit({word, payload, order().source, std::chrono::steady_clock::now(), std::nullopt}, "Idle")
+        .value();
+  };
+  EXPECT_EQ(submit_to("start", R"({"recipe":"short"})")["ok"], true);
+  EXPECT_EQ(submit_to("start", R"({"recipe":"short"})")["ok"], false);  // the job is starting
+  standby.job_ended(command::State::complete);
+  EXPECT_EQ(submit_to("start", R"({"recipe":"short"})")["ok"], false);  // Complete: reset first
+  EXPECT_EQ(submit_to("reset", "")["ok"], true);
+  EXPECT_EQ(submit_to("start", R"({"recipe":"bad-recipe"})")["exit"], 3);
+  EXPECT_EQ(submit_to("teach-in", R"({"axis":"x","distance_mm":50,"from_mm":5})")["ok"], true);
   ASSERT_EQ(started.size(), 2u) << "an invalid recipe reached the controller";
   const auto& recipe = std::get<StartRecipe>(started[0]);
   EXPECT_EQ(recipe.name, "short");

@@ -43,10 +43,13 @@ class PlantLinkTest : public RunFixture {
   // The run with the link fed by its journal; the link connected before the run starts.
   void attach_link() {
     auto& run = make_run();
-    link_ = std::make_unique<plant_link::PlantLink>(
-        link_config_, cell_,
-        plant_link::fixed_run([&run](supervisor::Command c) { run.request(c); }, run.status(),
-                              "virtual-time"));
+    // As `cellctl run` has it: one arbiter, the run its job from the start.
+    arbiter_ = std::make_unique<command::Arbiter>(2000ms, command::Tell{});
+    arbiter_->attach(run.port());
+    (void)arbiter_->start({{}, std::chrono::steady_clock::now(), {}},
+                          [] { return command::Taken{command::Taken::How::done, "started"}; });
+    link_ = std::make_unique<plant_link::PlantLink>(link_config_, cell_,
+                                                    plant_link::fixed_run(*arbiter_, run.status(), "virtual-time"));
     run.on_journal_line([this](const nlohmann::json& j) { link_->on_journal_line(j); });
     ASSERT_TRUE(wait_until([&] { return link_->counters().connected; }, 10s)) << "the link never connected";
   }
@@ -76,6 +79,7 @@ class PlantLinkTest : public RunFixture {
 
   std::unique_ptr<MqttBroker> broker_;
   plant_link::LinkConfig link_config_;
+  std::unique_ptr<command::Arbiter> arbiter_;  // before the link: the link reaches it until it is gone
   std::unique_ptr<plant_link::PlantLink> link_;
   std::atomic<bool> pace_{false};
 };

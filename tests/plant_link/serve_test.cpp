@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -133,6 +134,13 @@ steps:
       if (m.topic == topic("admin")) a = MqttProbe::body(m);
     return a;
   }
+  // A reset the cell takes: answered ok, the state tag at Idle.
+  void reset(const std::string& id) {
+    const auto from = plant_->count();
+    const auto a = command("reset", {}, id);
+    EXPECT_EQ(a["ok"], true) << a.dump();
+    EXPECT_TRUE(state_after(from, "Idle", 10s)) << "no Idle after reset " << id << ":\n" << output();
+  }
   static bool has(const nlohmann::json& j, const char* key, const std::string& part) {
     return j.contains(key) && j[key].is_string() && j[key].get<std::string>().find(part) != std::string::npos;
   }
@@ -151,7 +159,7 @@ TEST_F(ServeTest, ThePlantStartsHomingRecipesAndATeachInOneAtATime) {
   // Nothing runs: a command has nothing to act on, and says so.
   auto a = command("hold", {}, "h0");
   EXPECT_EQ(a["ok"], false);
-  EXPECT_TRUE(has(a, "reason", "no job is in progress")) << a.dump();
+  EXPECT_TRUE(has(a, "reason", "hold is not possible in state Idle")) << a.dump();
 
   // Homing: started at once, run to Complete, the home record written.
   auto from = plant_->count();
@@ -161,17 +169,26 @@ TEST_F(ServeTest, ThePlantStartsHomingRecipesAndATeachInOneAtATime) {
   ASSERT_TRUE(state_after(from, "Complete")) << output();
   EXPECT_TRUE(std::filesystem::exists(dir_ / "state/home.virtual-time.json")) << output();
 
+  // PackML: Complete takes no start; a reset brings the cell to Idle.
+  a = command("start", {{"recipe", "long"}}, "early");
+  EXPECT_EQ(a["ok"], false) << a.dump();
+  EXPECT_TRUE(has(a, "reason", "start is not possible in state Complete: reset first")) << a.dump();
+  reset("r1");
+
   // A long recipe: while it runs, a second start is refused with the reason; a stop ends it.
   from = plant_->count();
   a = command("start", {{"recipe", "long"}}, "long1");
   ASSERT_EQ(a["ok"], true) << a.dump();
   a = command("start", {{"recipe", "short"}}, "busy");
   EXPECT_EQ(a["ok"], false);
-  EXPECT_TRUE(has(a, "reason", "is in progress: a start is taken only between jobs")) << a.dump();
+  EXPECT_TRUE(has(a, "reason", "a job is in progress: Start is taken only in Idle")) << a.dump();
   ASSERT_TRUE(state_after(from, "Execute")) << output();
   a = command("stop", {}, "stop1");
   EXPECT_EQ(a["ok"], true) << a.dump();
   ASSERT_TRUE(state_after(from, "Stopped")) << output();
+  a = command("start", {{"recipe", "short"}}, "stopped");
+  EXPECT_TRUE(has(a, "reason", "start is not possible in state Stopped: reset first")) << a.dump();
+  reset("r2");
 
   // A recipe that is not valid for the cell: its problems with their positions, nothing started.
   a = command("start", {{"recipe", "bad-recipe"}}, "bad1");
@@ -194,6 +211,7 @@ TEST_F(ServeTest, ThePlantStartsHomingRecipesAndATeachInOneAtATime) {
   EXPECT_TRUE(std::filesystem::exists(config_.string() + ".bak"));
 
   // Then a recipe on the taught encoder, to Complete.
+  reset("r3");
   from = plant_->count();
   a = command("start", {{"recipe", "short"}}, "short1");
   ASSERT_EQ(a["ok"], true) << a.dump();
@@ -250,7 +268,8 @@ TEST_F(ServeTest, AStopRightAfterAStartIsNeverRefusedAndNothingIsTaught) {
     ASSERT_TRUE(ended) << output();
     EXPECT_TRUE(has(*ended, "reason", "the config is not changed")) << ended->dump();
   }
-  // The next start is taken: the standby is free again.
+  // The next start is taken after a reset: the standby is free again.
+  reset("r1");
   ASSERT_EQ(command("start", {{"recipe", "short"}}, "after")["ok"], true);
   ASSERT_TRUE(state_after(from, "Complete")) << output();
   std::ifstream after_file(config_);
@@ -268,6 +287,40 @@ TEST_F(ServeTest, AJobThatCannotStartIsPublishedAsAbortedWithItsReason) {
   ASSERT_TRUE(aborted) << output();
   EXPECT_TRUE(has(*aborted, "reason", "not started: ")) << aborted->dump();
   EXPECT_TRUE(has(*aborted, "reason", "cellctl-no-such-folder")) << aborted->dump();
+
+  // PackML: Aborted takes neither a start nor a reset; clear (to Stopped), then reset (to Idle).
+  auto a = command("start", {{"recipe", "short"}}, "r2");
+  EXPECT_TRUE(has(a, "reason", "start is not possible in state Aborted: clear, then reset")) << a.dump();
+  a = command("reset", {}, "reset-too-early");
+  EXPECT_EQ(a["ok"], false) << a.dump();
+  EXPECT_TRUE(has(a, "reason", "clear first")) << a.dump();
+  const auto cleared_from = plant_->count();
+  a = command("clear", {}, "c1");
+  EXPECT_EQ(a["ok"], true) << a.dump();
+  EXPECT_TRUE(state_after(cleared_from, "Stopped", 10s)) << output();
+  reset("r3");
+  EXPECT_EQ(command("start", {{"recipe", "short"}}, "r4")["ok"], true);
+}
+
+TEST_F(ServeTest, EveryCommandSaysWhoSentItAndAnOldOneIsNotObeyed) {
+  launch();
+  ASSERT_TRUE(state_after(0, "Idle", 10s));
+  // Issued three seconds ago by the MES: older than max_command_age_ms (2000), so never started.
+  const auto three_s_ago = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now()) - 3;
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&three_s_ago));
+  auto a = command("start", {{"recipe", "short"}, {"issued_at", stamp}, {"by", "MES-7"}}, "old");
+  EXPECT_EQ(a["ok"], false) << a.dump();
+  EXPECT_TRUE(has(a, "reason", "expired: issued")) << a.dump();
+  EXPECT_TRUE(has(a, "source", "plant " + topic("cmd/start") + " (by MES-7)")) << a.dump();
+  // The same, fresh, is taken, and the job's journal names its source.
+  const auto from = plant_->count();
+  a = command("start", {{"recipe", "short"}, {"by", "MES-7"}}, "fresh");
+  ASSERT_EQ(a["ok"], true) << a.dump();
+  ASSERT_TRUE(state_after(from, "Complete")) << output();
+  a = command("reset", {{"by", "operator Anna"}}, "reset");
+  EXPECT_EQ(a["ok"], true) << a.dump();
+  EXPECT_TRUE(has(a, "source", "(by operator Anna)")) << a.dump();
 }
 
 }  // namespace
