@@ -162,7 +162,7 @@ TEST_F(PlantLinkTest, HoldAndStopByMqttActWithinOneStatusPeriod) {
     const auto again = op.wait_for([](const Message& m) { return MqttProbe::on(m, "/response"); }, from);
     ASSERT_TRUE(again);
     EXPECT_EQ(MqttProbe::body(*again)["ok"], false);
-    EXPECT_EQ(MqttProbe::body(*again)["reason"], "hold is not possible in state Held") << again->payload;
+    EXPECT_EQ(MqttProbe::body(*again)["reason"], "hold is not possible in state Held: hold is taken only in Execute") << again->payload;
 
     from = op.count();
     op.publish(topic("cmd/stop"), R"({"id":"s1"})");
