@@ -24,6 +24,7 @@
 #include "cli/teach_in_command.hpp"
 #include "config/yaml_node.hpp"
 #include "journal/version.hpp"
+#include "link/crash_stop.hpp"
 #include "link/link_error.hpp"
 
 namespace cellctl::cli {
@@ -42,6 +43,8 @@ extern "C" void on_terminate(int) {
 
 int main(int argc, char** argv) {
   using namespace cellctl::cli;
+  // Before any port opens: a crash writes each open port's stop telegram, then dies (link/crash_stop.hpp).
+  cellctl::link::crash_stop::install_handlers();
   CLI::App app{
       "cellctl — controller for a motion cell (Ewellix SCU actuators, SycoTec spindle, Scancon encoder)"};
   app.require_subcommand(1);

@@ -49,6 +49,9 @@ class FaultInjectingLink final : public Link {
   IoResult read(std::span<std::uint8_t> buffer) override;
   IoResult write(std::span<const std::uint8_t> bytes) override;
   [[nodiscard]] std::string describe() const override { return inner_.describe(); }
+  void arm_crash_stop(std::span<const std::uint8_t> telegram) noexcept override {
+    inner_.arm_crash_stop(telegram);
+  }
   // While a disconnect window is open the port stays gone (closed); otherwise the wrapped link's.
   IoResult reopen() override;
 

@@ -36,6 +36,10 @@ class Link {
   // with nothing to open (an in-memory line) is always ok. May make system calls and allocate: for the
   // safe-stop after a fault, never for the cycle of a healthy run.
   virtual IoResult reopen() { return {}; }
+  // A stop telegram to write to this port should the process die of a fatal signal (crash_stop.hpp).
+  // Only a link to a real port (a serial line, a pseudo-terminal) arms it: an in-memory line dies with
+  // the process and the emulator behind it.
+  virtual void arm_crash_stop(std::span<const std::uint8_t> telegram) noexcept { (void)telegram; }
 };
 
 }  // namespace cellctl::link

@@ -1,5 +1,7 @@
 #include "link/serial_link.hpp"
 
+#include "link/crash_stop.hpp"
+
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/file.h>
@@ -120,17 +122,25 @@ std::unique_ptr<SerialLink> SerialLink::open(const std::string& path, LineFormat
 }
 
 SerialLink::~SerialLink() {
+  crash_stop::disarm(crash_slot_);  // before the descriptor can be reused by anything else
   if (fd_ >= 0) ::close(fd_);
+}
+
+void SerialLink::arm_crash_stop(std::span<const std::uint8_t> telegram) noexcept {
+  crash_stop::disarm(crash_slot_);
+  crash_slot_ = crash_stop::arm(fd_, telegram);
 }
 
 IoResult SerialLink::reopen() {
   // The old descriptor goes first: its lock would refuse the new one.
+  crash_stop::rearm(crash_slot_, -1);
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
   try {
     auto fresh = open(path_, format_);
     std::swap(fd_, fresh->fd_);
     modem_lines_held_ = fresh->modem_lines_held_;
+    crash_stop::rearm(crash_slot_, fd_);
     return {};
   } catch (const LinkError& e) {
     return {0, IoStatus::closed, e.cause()};

@@ -25,6 +25,7 @@ class SerialLink final : public Link {
   // Closes the port and opens its path again with the same line format (exclusively, DTR/RTS held).
   // Until it succeeds, reads and writes answer IoStatus::closed.
   IoResult reopen() override;
+  void arm_crash_stop(std::span<const std::uint8_t> telegram) noexcept override;
 
   // False on a pseudo-terminal, which has no modem lines to hold.
   [[nodiscard]] bool modem_lines_held() const noexcept { return modem_lines_held_; }
@@ -37,6 +38,7 @@ class SerialLink final : public Link {
   std::string path_;
   LineFormat format_;
   bool modem_lines_held_;
+  int crash_slot_ = -1;  // crash_stop.hpp: this port's stop telegram, once armed
 };
 
 }  // namespace cellctl::link

@@ -88,6 +88,9 @@ class TracingLink final : public Link {
   IoResult read(std::span<std::uint8_t> buffer) override;
   IoResult write(std::span<const std::uint8_t> bytes) override;
   [[nodiscard]] std::string describe() const override { return inner_.describe(); }
+  void arm_crash_stop(std::span<const std::uint8_t> telegram) noexcept override {
+    inner_.arm_crash_stop(telegram);
+  }
   IoResult reopen() override { return inner_.reopen(); }
 
  private:

@@ -56,6 +56,11 @@ Session::Session(link::Link& link, const SessionConfig& config)
   const CyclicRequest rc{0, {}};
   (void)encode_request(rc, keepalive_.bytes);
   keepalive_.shape = reply_shape(rc);
+  // Should the process die of a fatal signal, the port gets an F20: every actuator stops at once
+  // (link/crash_stop.hpp). The SCU's own communication time-out would stop them too, 0.5 s later.
+  RequestBytes f20;
+  if (encode_request(ExecuteRequest{kEmergencyStopFnc, kUnusedParam, kUnusedParam}, f20))
+    link_.arm_crash_stop(f20.view());
 }
 
 bool Session::defined(int function) const noexcept {

@@ -45,6 +45,9 @@ constexpr bool representable_hz(double hz) noexcept {
 Session::Session(link::Link& link, const SessionConfig& config)
     : link_(link), config_(config), link_name_(link.describe()) {
   snapshot_.start_refused_reason.reserve(link::kFaultReasonCapacity);
+  // The converter has no communication watchdog: should the process die of a fatal signal, the port
+  // gets CMD System Stopp (link/crash_stop.hpp), or a crashed controller would leave the spindle turning.
+  link_.arm_crash_stop(make(Command{MsgId::cmd_stop}).frame.view());
 }
 
 Session::Outgoing Session::make(const Message& m) {
