@@ -56,7 +56,7 @@ std::string read_password(const config::YamlNode& section, const std::filesystem
 LinkConfig parse_link_config(const config::YamlNode& s, const config::CellCore& cell) {
   s.only_keys({"host", "port", "client_id", "username", "password_file", "password_env", "tls",
                "topic_prefix", "status_ms", "keepalive_s", "reconnect_min_ms", "reconnect_max_ms", "recipes",
-               "answer_timeout_ms"});
+               "answer_timeout_ms", "mqtt_version"});
   LinkConfig c;
   c.cell = cell.name;
   c.host = s.string_or("host", c.host);
@@ -83,6 +83,11 @@ LinkConfig parse_link_config(const config::YamlNode& s, const config::CellCore& 
     if (const auto n = t->maybe("cert_file")) tls.cert_file = existing_file(*n, cell.source);
     if (const auto n = t->maybe("key_file")) tls.key_file = existing_file(*n, cell.source);
     c.tls = tls;
+  }
+  if (const auto v = s.maybe("mqtt_version")) {
+    const auto text = v->as_string();
+    if (text != "5" && text != "3.1.1") v->fail(fmt::format("'{}' must be 5 or \"3.1.1\"", text));
+    c.version = text == "5" ? MqttVersion::v5 : MqttVersion::v311;
   }
   if (const auto p = s.maybe("topic_prefix")) {
     c.topic_prefix = p->as_string();

@@ -13,6 +13,7 @@
 
 #include "config/cell_core.hpp"
 #include "config/yaml_node.hpp"
+#include "plant_link/mqtt_client.hpp"
 
 namespace cellctl::plant_link {
 
@@ -29,6 +30,8 @@ struct LinkConfig {
   std::string username;   // empty: connect without credentials
   std::string password;   // read from password_file or the variable password_env names, never the file
   std::optional<TlsConfig> tls;
+  // 5 (the default; 3.1.1 from the next attempt when the broker refuses 5), or 3.1.1 pinned.
+  MqttVersion version = MqttVersion::v5;
   std::string topic_prefix = "cellctl";
   std::string cell;  // the cell's name: topics are <topic_prefix>/<cell>/…
   std::chrono::milliseconds status_period{100};

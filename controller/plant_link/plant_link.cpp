@@ -14,6 +14,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// How long the broker may hold an answer for a subscriber that is away (a persistent session): an MES
+// back after a minute learns nothing true from an answer about the cell as it was.
+constexpr std::chrono::seconds kAnswerExpiry{60};
+
+bool on_loopback(const std::string& host) {
+  return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
+}
+
 MqttOptions options_of(const LinkConfig& c) {
   MqttOptions o;
   o.host = c.host;
@@ -27,6 +35,7 @@ MqttOptions options_of(const LinkConfig& c) {
     o.tls_key_file = c.tls->key_file;
   }
   o.keepalive_s = c.keepalive_s;
+  o.version = c.version;
   o.will_topic = c.topic("online");
   o.will_payload = nlohmann::json{{"online", false},
                                   {"client_id", c.client_id},
@@ -40,6 +49,11 @@ MqttOptions options_of(const LinkConfig& c) {
 PlantLink::PlantLink(LinkConfig config, const config::CellCore& cell, RunAccess run)
     : config_(std::move(config)), cell_(cell), run_(std::move(run)) {
   (void)MqttClient(options_of(config_));  // options the library refuses fail here, on the caller's thread
+  if (!config_.tls && !on_loopback(config_.host))
+    spdlog::warn(
+        "plant link: no TLS to {}: its password and every command cross the network in clear "
+        "(plant_link.tls, config/examples/mosquitto/)",
+        config_.host);
   thread_ = std::thread([this] { run_thread(); });
 }
 
@@ -53,8 +67,9 @@ void PlantLink::on_journal_line(const nlohmann::json& line) noexcept {
 }
 
 LinkCounters PlantLink::counters() const noexcept {
-  return {connected_.load(), connects_.load(),       losses_.load(),   refused_connects_.load(),
-          events_.dropped(), dropped_status_.load(), commands_.load(), refused_commands_.load()};
+  return {connected_.load(),        connects_.load(),         losses_.load(),
+          refused_connects_.load(), events_.dropped(),        dropped_status_.load(),
+          commands_.load(),         refused_commands_.load(), ignored_retained_.load()};
 }
 
 void PlantLink::run_thread() {
@@ -67,19 +82,23 @@ void PlantLink::run_thread() {
   auto next_status = Clock::now();
   const std::string cmd_prefix = config_.topic("cmd/");
 
-  const auto publish_json = [&](std::string_view tag, const nlohmann::json& j, int qos, bool retain) {
-    if (connected_.load()) (void)client.publish(config_.topic(tag), j.dump(), qos, retain);
+  const auto publish_json = [&](std::string_view tag, const nlohmann::json& j, int qos, bool retain,
+                                std::optional<std::chrono::milliseconds> expiry = std::nullopt) {
+    if (connected_.load()) (void)client.publish(config_.topic(tag), j.dump(), qos, retain, expiry);
+  };
+  // The PackML tags a dashboard must see the moment it subscribes, however late: retained.
+  const auto publish_tag = [&](std::string_view tag, const nlohmann::json& j) {
+    publish_json(tag, j, 1, true);
   };
   const auto publish_retained = [&] {
-    publish_json("online", {{"online", true}, {"client_id", config_.client_id}, {"cell", cell_.name}}, 1,
-                 true);
-    publish_json("state", mirror.state_tag(), 1, true);
-    publish_json("mode", mirror.mode_tag(), 1, true);
-    publish_json("admin", mirror.admin_tag(), 1, true);
+    publish_tag("online", {{"online", true}, {"client_id", config_.client_id}, {"cell", cell_.name}});
+    publish_tag("state", mirror.state_tag());
+    publish_tag("mode", mirror.mode_tag());
+    publish_tag("admin", mirror.admin_tag());
   };
   const auto respond = [&](const nlohmann::json& a) {
     if (!a.value("ok", false)) refused_commands_.fetch_add(1);
-    publish_json("response", a, 1, false);
+    publish_json("response", a, 1, false, kAnswerExpiry);
   };
   const auto lost = [&](Clock::time_point now) {
     socket = false;
@@ -90,17 +109,21 @@ void PlantLink::run_thread() {
     backoff = std::min(backoff * 2, config_.reconnect_max);
   };
 
+  auto spoken = client.version();
   client.on_connect = [&](int rc) {
     if (rc != 0) {
       refused_connects_.fetch_add(1);
-      spdlog::warn("plant link: the broker {}:{} refused the connection: {}", config_.host, config_.port,
-                   MqttClient::connack_text(rc));
+      spdlog::warn(
+          "plant link: the broker {}:{} refused the connection: {}{}", config_.host, config_.port,
+          client.reason_text(rc),
+          client.version() != spoken ? "; it does not speak MQTT 5: the next attempt speaks 3.1.1" : "");
+      spoken = client.version();
       return;  // the library closes the socket; loop() reports it and the back-off applies
     }
     connected_.store(true);
     connects_.fetch_add(1);
     backoff = config_.reconnect_min;
-    (void)client.subscribe(config_.topic("cmd/+"), 1);
+    (void)client.subscribe_live(config_.topic("cmd/+"), 1);
     publish_retained();
   };
   client.on_disconnect = [&](int) {
@@ -110,27 +133,38 @@ void PlantLink::run_thread() {
     if (m.topic.rfind(cmd_prefix, 0) != 0) return;
     commands_.fetch_add(1);
     const auto word = std::string_view(m.topic).substr(cmd_prefix.size());
-    const command::CommandSource source{command::CommandSource::Origin::plant, command::capped(m.topic, 128), {}};
+    const command::CommandSource source{
+        command::CommandSource::Origin::plant, command::capped(m.topic, 128), {}};
     if (m.retain) {
-      // Stored by the broker from some earlier time: never a command meant now.
-      const auto why = fmt::format("a retained {} from the broker was ignored ({}): commands are never "
-                                   "published with the retain flag",
-                                   command::capped(word, 24), source.words());
+      // An empty retained message is how a stored one is deleted: no command, nothing to answer.
+      if (m.payload.empty()) return;
+      // Stored by the broker from some earlier time, or stored for whoever subscribes later: never a
+      // command meant now. The link may not clear it (its account cannot write cmd/#): whoever
+      // published it must.
+      ignored_retained_.fetch_add(1);
+      const auto why = fmt::format(
+          "a retained {} from the broker was ignored ({}): commands are never "
+          "published with the retain flag (delete it: an empty retained message)",
+          command::capped(word, 24), source.words());
       run_.arbiter->ignore(why);
       auto a = answer(command::capped(word, 24), nullptr, false, why);
       a["source"] = source.words();
       respond(a);
       return;
     }
-    if (auto a = desk.submit({word, m.payload, source, Clock::now(), std::nullopt}, mirror.state())) respond(*a);
+    if (auto a = desk.submit({word, m.payload, source, Clock::now(), std::nullopt}, mirror.state())) {
+      if (!a->contains("source"))
+        (*a)["source"] = source.words();  // a payload refused before its "by" was read
+      respond(*a);
+    }
   };
 
   const auto take_events = [&] {
     while (const auto e = events_.pop()) {
       const auto changed = mirror.apply(*e);
-      if (changed.state) publish_json("state", mirror.state_tag(), 1, true);
-      if (changed.mode) publish_json("mode", mirror.mode_tag(), 1, true);
-      if (changed.admin) publish_json("admin", mirror.admin_tag(), 1, true);
+      if (changed.state) publish_tag("state", mirror.state_tag());
+      if (changed.mode) publish_tag("mode", mirror.mode_tag());
+      if (changed.admin) publish_tag("admin", mirror.admin_tag());
       for (const auto& a : desk.on_event(*e)) respond(a);
     }
   };
@@ -141,9 +175,13 @@ void PlantLink::run_thread() {
     auto j = mirror.status_tag(live);
     j["link"] = {{"reconnects", connects_.load() > 0 ? connects_.load() - 1 : 0},
                  {"dropped_status", dropped_status_.load()},
-                 {"dropped_events", events_.dropped()}};
+                 {"dropped_events", events_.dropped()},
+                 {"ignored_retained", ignored_retained_.load()},
+                 {"mqtt", to_string(client.version())}};
     return j;
   };
+  // A status is stale after its period: the broker never hands an old one on.
+  const auto publish_status = [&] { publish_json("status", status(), 0, false, config_.status_period); };
 
   while (!stop_.load()) {
     const auto now = Clock::now();
@@ -161,7 +199,7 @@ void PlantLink::run_thread() {
     if (now >= next_status) {
       next_status = std::max(next_status + config_.status_period, now);
       if (connected_.load())
-        publish_json("status", status(), 0, false);
+        publish_status();
       else
         dropped_status_.fetch_add(1);
     }
@@ -175,9 +213,8 @@ void PlantLink::run_thread() {
   take_events();
   for (const auto& a : desk.expire(Clock::time_point::max())) respond(a);
   if (connected_.load()) {
-    publish_json("status", status(), 0, false);
-    publish_json("online", {{"online", false}, {"client_id", config_.client_id}, {"reason", "cellctl ended"}},
-                 1, true);
+    publish_status();
+    publish_tag("online", {{"online", false}, {"client_id", config_.client_id}, {"reason", "cellctl ended"}});
     const auto until = Clock::now() + std::chrono::milliseconds(500);
     while (client.want_write() && Clock::now() < until && client.loop(5) == 0) {
     }

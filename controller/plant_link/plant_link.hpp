@@ -8,6 +8,13 @@
 // changes nothing in the run: the link reconnects (back-off doubling from reconnect_min_ms to
 // reconnect_max_ms), publishes the retained tags again (current, not as they were), and counts the
 // status messages and events it could not deliver.
+//
+// Only a command meant now is obeyed. The link connects with a clean session (nothing queued while it
+// was away is delivered) and, in MQTT 5, subscribes to its commands so that the broker sends no
+// retained message and shows the retain flag as published; every message with the retain flag — a
+// 3.1.1 broker's stored one, or one published retained while the link listens — is answered, journaled
+// and counted, never obeyed. Answers and status expire at the broker (MQTT 5), so nobody is handed a
+// stale one later.
 
 #include <atomic>
 #include <chrono>
@@ -34,6 +41,7 @@ struct LinkCounters {
   std::uint64_t dropped_status = 0;     // status messages not sent while disconnected
   std::uint64_t commands = 0;           // commands received
   std::uint64_t refused_commands = 0;   // answered ok:false
+  std::uint64_t ignored_retained = 0;   // commands with the retain flag: answered, journaled, never obeyed
 };
 
 class PlantLink {
@@ -62,7 +70,7 @@ class PlantLink {
   std::atomic<bool> stop_{false};
   std::atomic<bool> connected_{false};
   std::atomic<std::uint64_t> connects_{0}, losses_{0}, refused_connects_{0}, dropped_status_{0}, commands_{0},
-      refused_commands_{0};
+      refused_commands_{0}, ignored_retained_{0};
   std::thread thread_;
 };
 
