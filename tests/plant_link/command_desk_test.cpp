@@ -69,12 +69,12 @@ TEST_F(CommandDeskTest, NamesWordsAndPayloadsThatAreNotCommandsAreRefused) {
   EXPECT_NE(submit("start", R"({})")["reason"].get<std::string>().find("needs the recipe's name"),
             std::string::npos);
   EXPECT_NE(submit("jump", "")["reason"].get<std::string>().find("is not a command"), std::string::npos);
-  EXPECT_NE(submit("hold", "not json")["reason"].get<std::string>().find("no JSON object"),
+  EXPECT_NE(submit("hold", "not json")["reason"].get<std::string>().find("is no JSON"),
             std::string::npos);
   // The interlocks: no hold before the run executes.
   EXPECT_EQ(submit("hold", "")["reason"], "hold is not possible in state Idle: hold is taken only in Execute");
   // Bounded before parsed: too deep, too large; neither echoed.
-  const std::string deep = "{\"a\":" + std::string(100000, '[') + std::string(100000, ']') + "}";
+  const std::string deep = "{\"a\":" + std::string(20000, '[') + std::string(20000, ']') + "}";
   EXPECT_NE(submit("hold", deep)["reason"].get<std::string>().find("nests deeper than 32 levels"),
             std::string::npos);
   const std::string big = "{\"by\":\"" + std::string(100000, 'x') + "\"}";
