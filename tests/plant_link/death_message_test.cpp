@@ -37,7 +37,7 @@ steps:
   - dwell: 60
 )";
 
-  MqttProbe plant(broker.port(), "viewer", "view-secret",
+  MqttProbe plant(broker.port(), "dashboard", MqttBroker::kDashboardPassword,
                   std::string(MqttBroker::kPrefix) + "/demo-cell/online");
   ASSERT_EQ(plant.wait_connack(), 0);
   const pid_t pid = ::fork();

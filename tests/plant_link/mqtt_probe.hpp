@@ -1,6 +1,7 @@
 #pragma once
 // A test's MQTT client (plant_link::MqttClient on a thread of its own): records every message it receives
-// and waits on conditions over them with a time-out; publishes on request.
+// and waits on conditions over them with a time-out; publishes on request. MQTT 3.1.1 unless told
+// otherwise (as most plant clients still are); its subscription takes retained messages.
 
 #include <gtest/gtest.h>
 
@@ -19,22 +20,35 @@
 
 namespace cellctl::testing {
 
+struct ProbeOptions {
+  std::string client_id;  // empty: probe-<user>-<n>
+  plant_link::MqttVersion version = plant_link::MqttVersion::v311;
+};
+
 class MqttProbe {
  public:
   using Message = plant_link::MqttMessage;
 
-  MqttProbe(int port, std::string user, std::string password, std::string subscription)
+  MqttProbe(int port, std::string user, std::string password, std::string subscription,
+            const ProbeOptions& options = {})
       : subscription_(std::move(subscription)) {
     plant_link::MqttOptions o;
     o.port = port;
-    o.client_id = "probe-" + user + "-" + std::to_string(++serial());
+    o.client_id =
+        options.client_id.empty() ? "probe-" + user + "-" + std::to_string(++serial()) : options.client_id;
     o.username = std::move(user);
     o.password = std::move(password);
+    o.version = options.version;
     client_ = std::make_unique<plant_link::MqttClient>(o);
     client_->on_connect = [this](int rc) {
       std::lock_guard lock(mutex_);
       connack_ = rc;
       if (rc == 0 && !subscription_.empty()) (void)client_->subscribe(subscription_, 1);
+      changed_.notify_all();
+    };
+    client_->on_disconnect = [this](int) {
+      std::lock_guard lock(mutex_);
+      disconnected_ = true;
       changed_.notify_all();
     };
     client_->on_message = [this](const Message& m) {
@@ -71,9 +85,14 @@ class MqttProbe {
     return connack_;
   }
 
-  void publish(const std::string& topic, const std::string& payload) {
+  void publish(const std::string& topic, const std::string& payload, bool retain = false) {
     std::lock_guard lock(mutex_);
-    jobs_.push_back([this, topic, payload] { (void)client_->publish(topic, payload, 1, false); });
+    jobs_.push_back([this, topic, payload, retain] { (void)client_->publish(topic, payload, 1, retain); });
+  }
+  // The broker closed the connection after it was accepted (taken over, refused a publish).
+  bool disconnected() {
+    std::lock_guard lock(mutex_);
+    return disconnected_;
   }
 
   // The first message from index `from` on for which pred holds, waiting up to timeout.
@@ -117,6 +136,7 @@ class MqttProbe {
   std::vector<Message> messages_;
   std::vector<std::function<void()>> jobs_;
   std::optional<int> connack_;
+  bool disconnected_ = false;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };

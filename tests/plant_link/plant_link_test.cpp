@@ -1,92 +1,17 @@
-// The plant link against Debian's mosquitto on a free loopback port, with users and an ACL
-// (mqtt_broker.hpp), around whole virtual-time runs of the default cell. Runs that the test talks to
-// while they go on are paced to real time (a cycle hook holds virtual time back to the wall clock), so
-// that "within one status period" means what it says; every wait is on a condition with a time-out.
+// The plant link around whole virtual-time runs (plant_link_fixture.hpp): the tags a run publishes,
+// commands acting within one status period, who may command, a broker lost and back mid-run.
 
-#include "plant_link/plant_link.hpp"
-
-#include <gtest/gtest.h>
-
-#include <chrono>
-#include <thread>
-
-#include "../integration/run_fixture.hpp"
-#include "plant_link/link_config.hpp"
-#include "plant_test_support.hpp"
+#include "plant_link_fixture.hpp"
 
 namespace cellctl::testing {
 namespace {
 
-using namespace std::chrono_literals;
 using Message = MqttProbe::Message;
-
-class PlantLinkTest : public RunFixture {
- protected:
-  void SetUp() override {
-    RunFixture::SetUp();
-    broker_ = std::make_unique<MqttBroker>(dir_ / "broker");
-    broker_->start();
-    link_config_.port = broker_->port();
-    link_config_.cell = cell_.name;
-    link_config_.client_id = "cellctl-under-test";
-    link_config_.username = "cellctl";
-    link_config_.password = "cell-secret";
-    link_config_.topic_prefix = MqttBroker::kPrefix;
-    link_config_.status_period = 100ms;
-    link_config_.reconnect_min = 20ms;
-    link_config_.reconnect_max = 200ms;
-    link_config_.recipes = source_dir() / "recipes";
-  }
-
-  std::string topic(const std::string& tag) const { return link_config_.topic(tag); }
-
-  // The run with the link fed by its journal; the link connected before the run starts.
-  void attach_link() {
-    auto& run = make_run();
-    // As `cellctl run` has it: one arbiter, the run its job from the start.
-    arbiter_ = std::make_unique<command::Arbiter>(2000ms, command::Tell{});
-    arbiter_->attach(run.port());
-    (void)arbiter_->start({{}, std::chrono::steady_clock::now(), {}},
-                          [] { return command::Taken{command::Taken::How::done, "started"}; });
-    link_ = std::make_unique<plant_link::PlantLink>(link_config_, cell_,
-                                                    plant_link::fixed_run(*arbiter_, run.status(), "virtual-time"));
-    run.on_journal_line([this](const nlohmann::json& j) { link_->on_journal_line(j); });
-    ASSERT_TRUE(wait_until([&] { return link_->counters().connected; }, 10s)) << "the link never connected";
-  }
-
-  // Virtual time never runs ahead of the wall clock from here on (until pace_ is cleared).
-  void pace() {
-    pace_.store(true);
-    run_->on_cycle([this, start = std::chrono::steady_clock::now()](double t, runtime::CellRun&) {
-      if (pace_.load()) std::this_thread::sleep_until(start + std::chrono::duration<double>(t));
-    });
-  }
-
-  runtime::RunResult go_in_background_and_wait(std::function<void()> during) {
-    runtime::RunResult result;
-    std::thread runner([&] { result = go(); });
-    during();
-    pace_.store(false);
-    runner.join();
-    return result;
-  }
-
-  static bool is(const Message& m, const std::string& tag, const char* key, const std::string& value) {
-    if (!MqttProbe::on(m, "/" + tag)) return false;
-    const auto j = MqttProbe::body(m);
-    return j.is_object() && j.contains(key) && j[key].is_string() && j[key] == value;
-  }
-
-  std::unique_ptr<MqttBroker> broker_;
-  plant_link::LinkConfig link_config_;
-  std::unique_ptr<command::Arbiter> arbiter_;  // before the link: the link reaches it until it is gone
-  std::unique_ptr<plant_link::PlantLink> link_;
-  std::atomic<bool> pace_{false};
-};
 
 TEST_F(PlantLinkTest, AVirtualTimeRunPublishesStateStatusAndAdmin) {
   load_recipe(source_dir() / "tests/cli/short.yaml");
-  MqttProbe plant(broker_->port(), "viewer", "view-secret", std::string(MqttBroker::kPrefix) + "/#");
+  MqttProbe plant(broker_->port(), "dashboard", MqttBroker::kDashboardPassword,
+                  std::string(MqttBroker::kPrefix) + "/#");
   ASSERT_EQ(plant.wait_connack(), 0);
   attach_link();
   ASSERT_TRUE(plant.wait_for([](const Message& m) { return MqttProbe::on(m, "/online"); }));
@@ -130,7 +55,7 @@ TEST_F(PlantLinkTest, AVirtualTimeRunPublishesStateStatusAndAdmin) {
 
 TEST_F(PlantLinkTest, HoldAndStopByMqttActWithinOneStatusPeriod) {
   load_recipe(source_dir() / "tests/cli/short.yaml");
-  MqttProbe op(broker_->port(), "operator", "op-secret", std::string(MqttBroker::kPrefix) + "/#");
+  MqttProbe op(broker_->port(), "mes", MqttBroker::kMesPassword, std::string(MqttBroker::kPrefix) + "/#");
   ASSERT_EQ(op.wait_connack(), 0);
   attach_link();
   pace();
@@ -162,7 +87,9 @@ TEST_F(PlantLinkTest, HoldAndStopByMqttActWithinOneStatusPeriod) {
     const auto again = op.wait_for([](const Message& m) { return MqttProbe::on(m, "/response"); }, from);
     ASSERT_TRUE(again);
     EXPECT_EQ(MqttProbe::body(*again)["ok"], false);
-    EXPECT_EQ(MqttProbe::body(*again)["reason"], "hold is not possible in state Held: hold is taken only in Execute") << again->payload;
+    EXPECT_EQ(MqttProbe::body(*again)["reason"],
+              "hold is not possible in state Held: hold is taken only in Execute")
+        << again->payload;
 
     from = op.count();
     op.publish(topic("cmd/stop"), R"({"id":"s1"})");
@@ -193,13 +120,14 @@ TEST_F(PlantLinkTest, CommandsFromUnauthenticatedOrUnauthorisedClientsAreRefused
   // Without credentials: the broker refuses the connection (CONNACK 5, not authorised).
   MqttProbe anonymous(broker_->port(), "", "", "");
   EXPECT_EQ(anonymous.wait_connack(), 5);
-  MqttProbe wrong(broker_->port(), "operator", "guess", "");
+  MqttProbe wrong(broker_->port(), "mes", "guess", "");
   EXPECT_EQ(wrong.wait_connack(), 5);
   // A viewer is authenticated but may not command: the ACL drops its hold. The operator's hold sent
   // after it arrives and is answered, so the viewer's was not merely late: the link saw one command.
-  MqttProbe viewer(broker_->port(), "viewer", "view-secret", std::string(MqttBroker::kPrefix) + "/#");
+  MqttProbe viewer(broker_->port(), "dashboard", MqttBroker::kDashboardPassword,
+                   std::string(MqttBroker::kPrefix) + "/#");
   ASSERT_EQ(viewer.wait_connack(), 0);
-  MqttProbe op(broker_->port(), "operator", "op-secret", topic("response"));
+  MqttProbe op(broker_->port(), "mes", MqttBroker::kMesPassword, topic("response"));
   ASSERT_EQ(op.wait_connack(), 0);
   attach_link();
   pace();
@@ -239,7 +167,8 @@ steps:
     dwell: 6
   - move: {to: {x: 2}, speed_mm_s: 10}
 )");
-  MqttProbe watcher(broker_->port(), "viewer", "view-secret", std::string(MqttBroker::kPrefix) + "/#");
+  MqttProbe watcher(broker_->port(), "dashboard", MqttBroker::kDashboardPassword,
+                    std::string(MqttBroker::kPrefix) + "/#");
   ASSERT_EQ(watcher.wait_connack(), 0);
   attach_link();
   pace();
@@ -256,7 +185,7 @@ steps:
     ASSERT_TRUE(wait_until([&] { return link_->counters().connects >= 2; }, 10s)) << "no reconnect";
     dropped = link_->counters().dropped_status;
     // A client new to the restarted broker (which kept nothing) gets the current state, retained.
-    MqttProbe fresh(broker_->port(), "viewer", "view-secret", topic("state"));
+    MqttProbe fresh(broker_->port(), "mes", MqttBroker::kMesPassword, topic("state"));
     ASSERT_EQ(fresh.wait_connack(), 0);
     const auto state = fresh.wait_for([](const Message& m) { return m.retain; });
     ASSERT_TRUE(state);

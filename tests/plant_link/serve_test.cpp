@@ -32,7 +32,7 @@ class ServeTest : public ::testing::Test {
     dir_ = std::filesystem::temp_directory_path() / ("cellctl-serve-" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_ / "recipes");
-    broker_ = std::make_unique<MqttBroker>(dir_ / "broker");
+    broker_ = std::make_unique<MqttBroker>(dir_ / "broker", broker_options_);
     broker_->start();
     config_ = write_cell_with_plant_link(dir_, *broker_, "cellctl-serving", dir_ / "recipes");
     std::filesystem::copy_file(std::filesystem::path(CELLCTL_SOURCE_DIR) / "tests/cli/short.yaml",
@@ -47,7 +47,7 @@ steps:
   - name: an hour
     dwell: 3600
 )";
-    plant_ = std::make_unique<MqttProbe>(broker_->port(), "operator", "op-secret",
+    plant_ = std::make_unique<MqttProbe>(broker_->port(), "mes", MqttBroker::kMesPassword,
                                          std::string(MqttBroker::kPrefix) + "/demo-cell/#");
     ASSERT_EQ(plant_->wait_connack(), 0);
   }
@@ -147,6 +147,7 @@ steps:
 
   std::filesystem::path dir_;
   std::filesystem::path config_;
+  BrokerOptions broker_options_;  // set before SetUp (in the test's constructor)
   std::unique_ptr<MqttBroker> broker_;
   std::unique_ptr<MqttProbe> plant_;
   pid_t pid_ = -1;
@@ -167,7 +168,10 @@ TEST_F(ServeTest, ThePlantStartsHomingRecipesAndATeachInOneAtATime) {
   ASSERT_EQ(a["ok"], true) << a.dump();
   EXPECT_TRUE(has(a, "outcome", "started: homing")) << a.dump();
   ASSERT_TRUE(state_after(from, "Complete")) << output();
-  EXPECT_TRUE(std::filesystem::exists(dir_ / "state/home.virtual-time.json")) << output();
+  // The record is written once the run's loop has ended, after its Complete is published (issue 22,
+  // "Complete comes before the work is saved", is still open): a bounded wait on the file.
+  EXPECT_TRUE(wait_until([&] { return std::filesystem::exists(dir_ / "state/home.virtual-time.json"); }, 10s))
+      << output();
 
   // PackML: Complete takes no start; a reset brings the cell to Idle.
   a = command("start", {{"recipe", "long"}}, "early");
@@ -321,6 +325,83 @@ TEST_F(ServeTest, EveryCommandSaysWhoSentItAndAnOldOneIsNotObeyed) {
   a = command("reset", {{"by", "operator Anna"}}, "reset");
   EXPECT_EQ(a["ok"], true) << a.dump();
   EXPECT_TRUE(has(a, "source", "(by operator Anna)")) << a.dump();
+}
+
+// A broker that keeps its retained messages across a restart, as Debian's does.
+class ServeRetainedTest : public ServeTest {
+ protected:
+  ServeRetainedTest() { broker_options_.persistent = true; }
+
+  // A command sent until cellctl serve answers it (a publish before its link has subscribed again
+  // reaches no one): anything the broker sent the link on its subscription came before it.
+  nlohmann::json answered(const std::string& word, const std::string& id) {
+    for (int attempt = 0; attempt < 20; ++attempt) {
+      const auto tagged = id + "-" + std::to_string(attempt);
+      const auto from = plant_->count();
+      plant_->publish(topic("cmd/" + word), nlohmann::json{{"id", tagged}}.dump());
+      if (const auto a = plant_->wait_for(
+              [&](const Message& m) {
+                return m.topic == topic("response") && MqttProbe::body(m)["id"] == tagged;
+              },
+              from, 1s))
+        return MqttProbe::body(*a);
+    }
+    ADD_FAILURE() << "cellctl serve never answered " << word << ":\n" << output();
+    return {};
+  }
+  // No job was started: no state tag left Idle, no answer said ok.
+  void expect_no_job() {
+    for (const auto& m : plant_->messages()) {
+      if (m.topic == topic("state")) {
+        EXPECT_EQ(MqttProbe::body(m)["state"], "Idle") << m.payload;
+      }
+      if (m.topic == topic("response")) {
+        EXPECT_EQ(MqttProbe::body(m)["ok"], false) << m.payload;
+      }
+    }
+  }
+};
+
+TEST_F(ServeRetainedTest, ARetainedStartIsNeverObeyedAtTheBirthNorAfterABrokerRestart) {
+  // Stored before cellctl serve connects (the MES sees its own message: the broker has it).
+  plant_->publish(topic("cmd/start"), R"({"recipe":"short","id":"stale","by":"MES-7"})", true);
+  ASSERT_TRUE(plant_->wait_for([](const Message& m) { return m.topic == topic("cmd/start"); }));
+  launch();
+  ASSERT_TRUE(state_after(0, "Idle", 10s));
+  EXPECT_EQ(answered("hold", "birth")["ok"], false);
+  expect_no_job();
+
+  // A restart for maintenance: the start is still stored; cellctl serve connects again.
+  broker_->stop();
+  broker_->start();
+  plant_ = std::make_unique<MqttProbe>(broker_->port(), "mes", MqttBroker::kMesPassword,
+                                       std::string(MqttBroker::kPrefix) + "/demo-cell/#");
+  ASSERT_EQ(plant_->wait_connack(), 0);
+  EXPECT_EQ(answered("hold", "restarted")["ok"], false);
+
+  // Published retained while cellctl serve listens: refused, and the answer says where it came from.
+  const auto from = plant_->count();
+  plant_->publish(topic("cmd/start"), R"({"recipe":"short"})", true);
+  const auto a = plant_->wait_for(
+      [](const Message& m) {
+        return m.topic == topic("response") && MqttProbe::body(m)["command"] == "start";
+      },
+      from, 10s);
+  ASSERT_TRUE(a) << output();
+  EXPECT_NE(
+      MqttProbe::body(*a)["reason"].get<std::string>().find("a retained start from the broker was ignored"),
+      std::string::npos)
+      << a->payload;
+  EXPECT_EQ(MqttProbe::body(*a)["source"], "plant " + topic("cmd/start"));
+  // The status counts what it ignored.
+  const auto status = plant_->wait_for(
+      [](const Message& m) {
+        return m.topic == topic("status") && MqttProbe::body(m)["link"]["ignored_retained"] == 1;
+      },
+      from, 10s);
+  EXPECT_TRUE(status) << "the status does not count the ignored retained start";
+  expect_no_job();
+  EXPECT_EQ(last_admin()["runs"], 0) << last_admin().dump();
 }
 
 }  // namespace
