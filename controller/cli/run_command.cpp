@@ -28,16 +28,6 @@
 
 namespace cellctl::cli {
 
-CLI::Validator listen_validator(std::optional<web::PageOptions>& out) {
-  return CLI::Validator(
-      [&out](std::string& text) -> std::string {
-        std::string why;
-        out = web::parse_listen_address(text, why);
-        return out ? std::string() : "'" + text + "': " + why;
-      },
-      "ADDR:PORT");
-}
-
 namespace {
 
 // What Ctrl-C will do, as the cell's config has it.
@@ -101,6 +91,13 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
   options.faults = args.faults;
   // The plant link's section is read (and so checked) before anything opens: a bad one is exit 3.
   const auto plant_link = plant_link::load_link_config(cell);
+  // The page's options and token likewise: plain HTTP off loopback, a short token: exit 2.
+  std::string page_problem;
+  const auto page = page_setup(args.page, page_problem);
+  if (!page_problem.empty()) {
+    spdlog::error("{}", page_problem);
+    return kExitUsage;
+  }
   const auto info = record_info(cell, global.config, recipe, recipe::unroll(recipe), options.mode);
   options.record_header = journal::record_header(info);
 
@@ -126,7 +123,7 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
     (void)arbiter.start({{command::CommandSource::Origin::terminal, {}, {}}, std::chrono::steady_clock::now(), {}},
                         [] { return command::Taken{command::Taken::How::done, "started by cellctl run"}; });
     const auto access = plant_link::fixed_run(arbiter, run.status(), to_string(options.mode));
-    auto facing = open_plant_facing(cell, plant_link, args.http, args.http_token_file,
+    auto facing = open_plant_facing(cell, plant_link, page,
                                     plant_link ? plant_link->recipes : std::filesystem::path("recipes"),
                                     access, [&screen](const std::string& line) { screen.message(line); });
     run.on_journal_line([&narrator, &facing](const nlohmann::json& line) {
@@ -203,13 +200,7 @@ void add_run_options(CLI::App* sub, RunArgs& args) {
                   "MS ms late), error (the device's own fault: SCU actuator faults, spindle over-\n"
                   "temperature 31, encoder position alarm). The journal records each fault's start and end.")
       ->check(fault_spec_validator(args.faults));
-  sub->add_option("--http", args.http_text,
-                  "Serve the operator page (live state, hold/unhold/stop/reset, /metrics) on ADDR:PORT,\n"
-                  "or on 127.0.0.1:PORT given a port alone; commands need the token (--http-token-file,\n"
-                  "else CELLCTL_HTTP_TOKEN, else a random one printed at the start)")
-      ->check(listen_validator(args.http));
-  sub->add_option("--http-token-file", args.http_token_file,
-                  "File whose first line is the operator page's token");
+  add_page_options(sub, args.page);
 }
 
 void add_run_command(CLI::App& app, Commands& commands) {

@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/plant_facing.hpp"
 #include "config/cell_config.hpp"
 #include "recipe/recipe.hpp"
 #include "runtime/fault_spec.hpp"
-#include "web/operator_page.hpp"
 
 namespace cellctl::cli {
 
@@ -24,12 +24,10 @@ struct RunArgs {
   std::string state_dir;
   std::vector<std::string> faults_text;
   std::vector<runtime::FaultSpec> faults;  // parsed (and so checked) by the option's validator
-  std::string http_text;
-  std::optional<web::PageOptions> http;  // --http, parsed by its validator
-  std::string http_token_file;
+  PageArgs page;                           // --http and its options
 };
 
-// --emulate, --virtual-time, --journal, --state-dir, --fault, --http and --http-token-file on `sub`.
+// --emulate, --virtual-time, --journal, --state-dir, --fault and the page's options on `sub`.
 void add_run_options(CLI::App* sub, RunArgs& args);
 
 // Runs a loaded recipe: banner, live status, operator console, the summary; its exit status.
@@ -42,8 +40,6 @@ void add_run_options(CLI::App* sub, RunArgs& args);
 [[nodiscard]] std::string run_args_problem(const RunArgs& args, const config::CellConfig& cell);
 
 void add_run_command(CLI::App& app, Commands& commands);
-// --http's validator (run and serve): ADDR:PORT, or PORT alone for loopback, into `out`.
-[[nodiscard]] CLI::Validator listen_validator(std::optional<web::PageOptions>& out);
 // --fault's validator (run and teach-in): the text becomes a FaultSpec in `out`, or the reason is
 // CLI11's error (exit 2).
 [[nodiscard]] CLI::Validator fault_spec_validator(std::vector<runtime::FaultSpec>& out);

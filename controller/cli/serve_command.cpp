@@ -24,15 +24,19 @@ struct ServeArgs {
   std::string runs_dir = "runs";
   std::string state_dir;
   std::string recipes;
-  std::string http_text;
-  std::optional<web::PageOptions> http;
-  std::string http_token_file;
+  PageArgs page;  // --http and its options
 };
 
 int serve(const GlobalOptions& global, const ServeArgs& args) {
   const auto cell = config::load_cell_config(global.config);
   auto link_config = plant_link::load_link_config(cell);  // a bad section: exit 3, before anything opens
-  if (!link_config && !args.http) {
+  std::string page_problem;  // plain HTTP off loopback, a short token: refused before anything opens
+  const auto page = page_setup(args.page, page_problem);
+  if (!page_problem.empty()) {
+    spdlog::error("serve: {}", page_problem);
+    return kExitUsage;
+  }
+  if (!link_config && !page) {
     spdlog::error(
         "serve: nothing could start a job: give --http ADDR:PORT for the operator page, or a plant_link: "
         "section "
@@ -62,8 +66,7 @@ int serve(const GlobalOptions& global, const ServeArgs& args) {
   };
   say(fmt::format("cellctl serve: cell '{}' — {}; standing by for the plant and the operator page", cell.name,
                   mode_label(cell, options.mode)));
-  auto facing =
-      open_plant_facing(cell, link_config, args.http, args.http_token_file, recipes, standby.access(), say);
+  auto facing = open_plant_facing(cell, link_config, page, recipes, standby.access(), say);
   standby.on_journal_line([&facing](const nlohmann::json& line) { facing.on_journal_line(line); });
   say(fmt::format("  jobs: start (a recipe in {}), home, teach-in; run records under {}/", recipes.string(),
                   args.runs_dir));
@@ -111,12 +114,7 @@ void add_serve_command(CLI::App& app, Commands& commands) {
       "state_dir, 'state')");
   sub->add_option("--recipes", args->recipes,
                   "Folder of the recipes a start names (default: the plant_link section's, else ./recipes)");
-  sub->add_option("--http", args->http_text,
-                  "Serve the operator page on ADDR:PORT, or on 127.0.0.1:PORT given a port alone; commands\n"
-                  "need the token (--http-token-file, else CELLCTL_HTTP_TOKEN, else a random one printed)")
-      ->check(listen_validator(args->http));
-  sub->add_option("--http-token-file", args->http_token_file,
-                  "File whose first line is the operator page's token");
+  add_page_options(sub, args->page);
   commands.on(sub, [&commands, args] { return serve(commands.global, *args); });
 }
 

@@ -4,79 +4,148 @@
 #include <httplib.h>
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
+#include <stdexcept>
+#include <variant>
 
 #include "web/fault_remedy.hpp"
 #include "web/page_html.hpp"
+#include "web/page_server.hpp"
 
 namespace cellctl::web {
 namespace {
 
 using namespace std::chrono_literals;
 
-// Compares without stopping at the first difference, so the time taken tells nothing of the token.
-bool same_token(std::string_view given, std::string_view token) {
-  unsigned diff = given.size() == token.size() ? 0u : 1u;
-  for (std::size_t i = 0; i < token.size(); ++i)
-    diff |= static_cast<unsigned>(static_cast<unsigned char>(i < given.size() ? given[i] : 0) ^
-                                  static_cast<unsigned char>(token[i]));
-  return diff == 0 && !token.empty();
-}
-
-std::string given_token(const httplib::Request& req) {
-  if (req.has_header("X-Cellctl-Token")) return req.get_header_value("X-Cellctl-Token");
-  const auto auth = req.get_header_value("Authorization");
-  if (auth.rfind("Bearer ", 0) == 0) return auth.substr(7);
-  return {};
-}
-
 std::string sse(std::string_view event, const nlohmann::json& data) {
   return fmt::format("event: {}\ndata: {}\n\n", event, data.dump());
 }
 
-}  // namespace
-
-std::optional<PageOptions> parse_listen_address(std::string_view text, std::string& why) {
-  PageOptions o;
-  auto port_text = text;
-  if (const auto colon = text.rfind(':'); colon != std::string_view::npos) {
-    o.address = std::string(text.substr(0, colon));
-    port_text = text.substr(colon + 1);
-    if (o.address.empty()) {
-      why = "the address before ':' is empty (127.0.0.1:8080, or 8080 for loopback)";
-      return std::nullopt;
-    }
-  }
-  int port = 0;
-  const auto r = std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
-  if (r.ec != std::errc() || r.ptr != port_text.data() + port_text.size() || port < 1 || port > 65535) {
-    why = fmt::format("'{}' is no port (1 to 65535)", port_text);
-    return std::nullopt;
-  }
-  o.port = port;
-  return o;
+void refuse(httplib::Response& res, const Verdict& v) {
+  res.status = v.status;
+  if (v.retry_after_s > 0) res.set_header("Retry-After", std::to_string(v.retry_after_s));
+  res.set_content(nlohmann::json{{"ok", false}, {"reason", v.reason}}.dump(), "application/json");
 }
+
+// The request's body into `body`, at most kMaxBody of it (a chunked body has no length to judge
+// before): false, with the answer set, when it is longer (the rest is never read) or breaks off.
+bool read_body(const httplib::ContentReader& read, std::string& body, httplib::Response& res) {
+  bool too_long = false;
+  const bool whole = read([&](const char* data, std::size_t n) {
+    too_long = body.size() + n > kMaxBody;
+    if (!too_long) body.append(data, n);
+    return !too_long;
+  });
+  if (too_long)
+    refuse(res, {413, fmt::format("a body may have at most {} bytes", kMaxBody)});
+  else if (!whole)
+    refuse(res, {400, "the body broke off"});
+  return whole && !too_long;
+}
+
+// The commands that bring the cell to rest: obeyed even when their client has gone, as it meant
+// them when it sent them and nothing moves by them.
+bool brings_to_rest(std::string_view word) {
+  return word == "stop" || word == "abort" || word == "hold";
+}
+
+}  // namespace
 
 OperatorPage::OperatorPage(PageOptions options, const config::CellCore& cell, plant_link::RunAccess run)
     : options_(std::move(options)),
       cell_(cell),
       run_(std::move(run)),
+      guard_(options_),
       mirror_(cell, run_.mode),
-      desk_(cell, options_.recipes, run_, std::chrono::milliseconds(2000)),
-      server_(std::make_unique<httplib::Server>()) {
-  if (options_.token.empty()) throw std::invalid_argument("the operator page needs a token for commands");
+      desk_(cell, options_.recipes, run_, std::chrono::milliseconds(2000)) {
+  // The command line refuses a token shorter than kMinTokenBytes (page_token.hpp).
+  if (options_.token.empty()) throw std::invalid_argument("the operator page needs a token");
+  if (const auto problem = listen_problem(options_); !problem.empty()) throw std::runtime_error(problem);
+  server_ = make_page_server(options_);
+  route();
   auto& s = *server_;
+  if (options_.port == 0) {
+    port_ = s.bind_to_any_port(options_.address);
+  } else {
+    port_ = s.bind_to_port(options_.address, options_.port) ? options_.port : -1;
+  }
+  if (port_ <= 0)
+    throw std::runtime_error(
+        fmt::format("the operator page cannot listen on {}:{}", options_.address, options_.port));
+  server_thread_ = std::thread([this] { server_->listen_after_bind(); });
+  pump_thread_ = std::thread([this] { pump(); });
+}
+
+OperatorPage::~OperatorPage() {
+  stop_.store(true);
+  server_->stop();
+  if (server_thread_.joinable()) server_thread_.join();
+  if (pump_thread_.joinable()) pump_thread_.join();
+}
+
+void OperatorPage::route() {
+  auto& s = *server_;
+  // Before the body is read: the pre-routing handler, and the answer to "Expect: 100-continue" (so a
+  // client that waits for it is refused before it sends its body at all).
+  const auto admitted = [this](const httplib::Request& req, httplib::Response& res) {
+    const auto verdict = guard_.admit(req);
+    if (verdict.status == 0) return true;
+    if (verdict.status == 401 && req.path.rfind("/cmd/", 0) == 0) ++commands_unauthorised_;
+    refuse(res, verdict);
+    return false;
+  };
+  s.set_pre_routing_handler([admitted](const httplib::Request& req, httplib::Response& res) {
+    return admitted(req, res) ? httplib::Server::HandlerResponse::Unhandled
+                              : httplib::Server::HandlerResponse::Handled;
+  });
+  s.set_expect_100_continue_handler([admitted](const httplib::Request& req, httplib::Response& res) {
+    return admitted(req, res) ? 100 : res.status;
+  });
   s.Get("/", [](const httplib::Request&, httplib::Response& res) {
     res.set_content(std::string(operator_page_html()), "text/html; charset=utf-8");
   });
-  s.Get("/events", [this](const httplib::Request&, httplib::Response& res) {
-    res.set_header("Cache-Control", "no-cache");
+  s.Get("/page.css", [](const httplib::Request&, httplib::Response& res) {
+    res.set_content(std::string(operator_page_style()), "text/css; charset=utf-8");
+  });
+  s.Get("/page.js", [](const httplib::Request&, httplib::Response& res) {
+    res.set_content(std::string(operator_page_script()), "text/javascript; charset=utf-8");
+  });
+  s.Post("/login",
+         [this](const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& read) {
+           std::string ignored;
+           if (!read_body(read, ignored, res)) return;
+           const auto result = guard_.login(req);
+           if (const auto* refused = std::get_if<Verdict>(&result)) return refuse(res, *refused);
+           const auto& session = std::get<SessionStore::Opened>(result);
+           res.set_header("Set-Cookie", guard_.session_cookie(session.id));
+           res.set_content(nlohmann::json{{"ok", true},
+                                          {"outcome", fmt::format("logged in (session #{})", session.number)}}
+                               .dump(),
+                           "application/json");
+         });
+  s.Post("/logout", [this](const httplib::Request& req, httplib::Response& res,
+                           const httplib::ContentReader& read) {
+    std::string ignored;
+    if (!read_body(read, ignored, res)) return;
+    guard_.logout(req);
+    res.set_header("Set-Cookie", guard_.session_cookie(""));
+    res.set_content(nlohmann::json{{"ok", true}, {"outcome", "logged out"}}.dump(), "application/json");
+  });
+  s.Get("/events", [this](const httplib::Request& req, httplib::Response& res) {
+    const auto caller = guard_.caller(req);
+    if (!caller) return refuse(res, {401, "the session has ended: log in again"});
+    if (streams_.fetch_add(1) >= options_.max_streams) {
+      streams_.fetch_sub(1);
+      ++streams_refused_;
+      return refuse(res, {503, fmt::format("all {} live views are taken", options_.max_streams), 5});
+    }
     auto last_admin = std::make_shared<std::uint64_t>(UINT64_MAX);
     auto first = std::make_shared<bool>(true);
+    const auto session = caller->session;  // the stream ends with its session
     res.set_chunked_content_provider(
-        "text/event-stream", [this, last_admin, first](std::size_t, httplib::DataSink& sink) {
-          if (stop_.load()) return false;
+        "text/event-stream",
+        [this, last_admin, first, session](std::size_t, httplib::DataSink& sink) {
+          if (stop_.load() || (session && !guard_.session_open(*session))) return false;
           std::string out;
           if (*first) {
             out += sse("cell", {{"cell", cell_.name}});
@@ -96,45 +165,31 @@ OperatorPage::OperatorPage(PageOptions options, const config::CellCore& cell, pl
             }
           }
           return sink.write(out.data(), out.size());
-        });
+        },
+        [this](bool) { streams_.fetch_sub(1); });
   });
-  s.Post(R"(/cmd/([a-z-]+))", [this](const httplib::Request& req, httplib::Response& res) {
+  s.Post(R"(/cmd/([a-z-]{1,32}))", [this](const httplib::Request& req, httplib::Response& res,
+                                          const httplib::ContentReader& read) {
+    // Called once the headers are read, before the body: the command's age counts from here.
+    const auto received = std::chrono::steady_clock::now();
     const std::string word = req.matches[1];
-    if (!same_token(given_token(req), options_.token)) {
-      {
-        std::lock_guard lock(mutex_);
-        ++unauthorised_;
-      }
-      res.status = 401;
-      res.set_content(
-          plant_link::answer(word, nullptr, false, "a valid token is required for any command").dump(),
+    std::string body;
+    if (!read_body(read, body, res)) return;
+    const auto caller = guard_.caller(req);
+    if (!caller) return refuse(res, {401, "the session has ended: log in again"});
+    if (!brings_to_rest(word) && client_gone(req)) {
+      ++commands_abandoned_;
+      return res.set_content(
+          plant_link::answer(word, nullptr, false, "not obeyed: its client has gone").dump(),
           "application/json");
-      return;
     }
     const command::CommandSource source{command::CommandSource::Origin::web,
-                                        fmt::format("{}:{}", req.remote_addr, req.remote_port), "token"};
-    res.set_content(command(word, req.body, source).dump(), "application/json");
+                                        fmt::format("{}:{}", req.remote_addr, req.remote_port), caller->who};
+    res.set_content(command(word, body, source, received).dump(), "application/json");
   });
   s.Get("/metrics", [this](const httplib::Request&, httplib::Response& res) {
     res.set_content(metrics_text(), "text/plain; version=0.0.4");
   });
-  if (options_.port == 0) {
-    port_ = s.bind_to_any_port(options_.address);
-  } else {
-    port_ = s.bind_to_port(options_.address, options_.port) ? options_.port : -1;
-  }
-  if (port_ <= 0)
-    throw std::runtime_error(
-        fmt::format("the operator page cannot listen on {}:{}", options_.address, options_.port));
-  server_thread_ = std::thread([this] { server_->listen_after_bind(); });
-  pump_thread_ = std::thread([this] { pump(); });
-}
-
-OperatorPage::~OperatorPage() {
-  stop_.store(true);
-  server_->stop();
-  if (server_thread_.joinable()) server_thread_.join();
-  if (pump_thread_.joinable()) pump_thread_.join();
 }
 
 void OperatorPage::on_journal_line(const nlohmann::json& line) noexcept {
@@ -160,8 +215,7 @@ void OperatorPage::pump() {
 }
 
 nlohmann::json OperatorPage::command(const std::string& word, const std::string& body,
-                                     const command::CommandSource& source) {
-  const auto received = std::chrono::steady_clock::now();
+                                     const command::CommandSource& source, command::SteadyTime received) {
   // The desk bounds the body before it parses it; the page's own id is the one its answer is found by.
   std::uint64_t id = 0;
   std::string state;
@@ -263,11 +317,25 @@ std::string OperatorPage::metrics_text() {
   out += fmt::format("cellctl_state{{state=\"{}\"}} {}\n", mirror_.state(),
                      mirror_.state_tag()["StateCurrent"].get<int>());
   add("cellctl_web_commands_total", "counter",
-      "Commands received by the page, refused ones, and ones without a valid token.");
+      "Commands received by the page, refused ones, ones without a valid token or session, and ones not "
+      "obeyed because their client had gone.");
   out += fmt::format(
       "cellctl_web_commands_total {}\ncellctl_web_commands_refused_total {}\n"
-      "cellctl_web_commands_unauthorised_total {}\n",
-      commands_, refused_, unauthorised_);
+      "cellctl_web_commands_unauthorised_total {}\ncellctl_web_commands_abandoned_total {}\n",
+      commands_, refused_, commands_unauthorised_.load(), commands_abandoned_.load());
+  const auto g = guard_.counters();
+  add("cellctl_web_requests_refused_total", "counter",
+      "Requests the page refused before reading their body: wrong Host or Origin (forbidden), no valid "
+      "token or session (unauthorised), a wrong token (wrong_token, also counted as unauthorised), held "
+      "back after wrong tokens (throttled), a body too large (too_large).");
+  for (const auto& [why, n] : {std::pair{"forbidden", g.forbidden}, std::pair{"unauthorised", g.unauthorised},
+                               std::pair{"wrong_token", g.wrong_tokens}, std::pair{"throttled", g.throttled},
+                               std::pair{"too_large", g.too_large}})
+    out += fmt::format("cellctl_web_requests_refused_total{{why=\"{}\"}} {}\n", why, n);
+  add("cellctl_web_streams", "gauge", "Live-event readers connected now.");
+  out += fmt::format("cellctl_web_streams {}\n", streams_.load());
+  add("cellctl_web_streams_refused_total", "counter", "Live-event readers refused: every stream was taken.");
+  out += fmt::format("cellctl_web_streams_refused_total {}\n", streams_refused_.load());
   add("cellctl_web_dropped_events_total", "counter", "Run events the page's queue had no room for.");
   out += fmt::format("cellctl_web_dropped_events_total {}\n", events_.dropped());
   return out;
