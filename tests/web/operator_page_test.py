@@ -7,9 +7,9 @@ on a loaded machine"), a recipe long enough in virtual time to be watched and co
 usage: operator_page_test.py CELLCTL CONFIG OUT_DIR
 
 Runs the recipe with the page on a free loopback port and a token
-file; checks that the page shows the live state (Execute, the step, the axes), that a command without
-the token is refused (401) and changes nothing, that the Hold button (token typed, confirmation
-accepted) holds the cell, that /metrics is Prometheus text with the loop's jitter histogram and
+file; checks that the page, logged in with the token (which it then no longer holds), shows the live
+state (Execute, the step, the axes), that a command without the token is refused (401) and changes
+nothing, that the Hold button (confirmation accepted) holds the cell by the page's session, that /metrics is Prometheus text with the loop's jitter histogram and
 every device's exchanges and errors; saves a
 screenshot (OUT_DIR/operator_page.png); then stops the run through the page (exit 130). Every wait is
 on a condition with a time-out.
@@ -19,7 +19,6 @@ import re
 import subprocess
 import sys
 import time
-import urllib.request
 
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support import expected_conditions as EC
@@ -56,6 +55,7 @@ proc = page.proc
 try:
     driver.get(base)
     wait = WebDriverWait(driver, 30)
+    page.log_in(token)
     wait.until(EC.text_to_be_present_in_element((By.ID, "state"), "Execute"))
     wait.until(EC.text_to_be_present_in_element((By.ID, "label"), "long dwell"))
     wait.until(lambda d: len(d.find_elements(By.CSS_SELECTOR, "#axes tr")) == 2)
@@ -68,15 +68,14 @@ try:
     time.sleep(0.5)  # long enough for a hold to show, were one taken (the page refreshes every 200 ms)
     assert driver.find_element(By.ID, "state").text == "Execute", driver.find_element(By.ID, "state").text
 
-    # The Hold button, token typed, confirmation accepted: the cell holds.
-    driver.find_element(By.ID, "token").send_keys(token)
+    # The Hold button, confirmation accepted: the cell holds (the page's session cookie, no token).
     driver.find_element(By.ID, "hold").click()
     wait.until(EC.alert_is_present()).accept()
     wait.until(EC.text_to_be_present_in_element((By.ID, "answer"), "hold: accepted"))
     wait.until(EC.text_to_be_present_in_element((By.ID, "state"), "Held"))
     driver.save_screenshot(os.path.join(out, "operator_page.png"))
 
-    metrics = urllib.request.urlopen(base + "metrics", timeout=5).read().decode()
+    metrics = page.metrics(token)
     for needed in ('cellctl_loop_jitter_seconds_bucket{le="+Inf"}', "# TYPE cellctl_loop_jitter_seconds histogram",
                    'cellctl_device_link_fault{device="scu"} 0', "cellctl_runs_total 1",
                    "cellctl_web_commands_unauthorised_total 2"):

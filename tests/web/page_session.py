@@ -71,6 +71,23 @@ class PageSession:
             time.sleep(0.05)
         self.fail(f"timed out waiting for {what}")
 
+    def log_in(self, token):
+        """Logs the page in: the token typed into its login form, sent once; the form then hides."""
+        from selenium.webdriver.common.by import By
+        from selenium.webdriver.support import expected_conditions as EC
+        from selenium.webdriver.support.ui import WebDriverWait
+        wait = WebDriverWait(self.driver, 30)
+        field = wait.until(EC.visibility_of_element_located((By.ID, "token")))
+        field.send_keys(token)
+        self.driver.find_element(By.ID, "log-in").click()
+        wait.until(EC.invisibility_of_element_located((By.ID, "login")))
+        assert self.driver.find_element(By.ID, "token").get_attribute("value") == "", "the page kept the token"
+
+    def metrics(self, token):
+        """/metrics, with the token as Prometheus sends it."""
+        req = urllib.request.Request(self.base + "metrics", headers={"Authorization": "Bearer " + token})
+        return urllib.request.urlopen(req, timeout=5).read().decode()
+
     def post(self, cmd, tok=None, body=None):
         data = json.dumps(body).encode() if body is not None else b""
         req = urllib.request.Request(self.base + "cmd/" + cmd, method="POST", data=data)

@@ -7,8 +7,8 @@ usage: serve_page_test.py CELLCTL CONFIG RECIPES_DIR OUT_DIR
 
 Works on a copy of CONFIG in OUT_DIR (the Teach-In writes its result into it). Checks: the page shows
 Idle with no job; a dismissed confirmation sends nothing; Home (confirmed) homes the cell to Complete;
-Teach-In over 100 mm from 5 mm (confirmed) is taught and written into the config copy; Start of a recipe
-runs it to Complete; /metrics counts the three runs; a screenshot is saved (OUT_DIR/serve_page.png);
+Reset brings it back to Idle (a start is taken only there); Teach-In over 100 mm from 5 mm (confirmed)
+is taught and written into the config copy; after another Reset, Start of a recipe runs it to Complete; /metrics counts the three runs; a screenshot is saved (OUT_DIR/serve_page.png);
 SIGTERM ends cellctl serve with 0. Every wait is on a condition with a time-out.
 """
 import os
@@ -16,7 +16,6 @@ import shutil
 import signal
 import subprocess
 import sys
-import urllib.request
 
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support import expected_conditions as EC
@@ -53,8 +52,14 @@ def confirm_and_answer(button, confirmation_part, answer_part, wait):
 
 
 def metric(name):
-    metrics = urllib.request.urlopen(page.base + "metrics", timeout=5).read().decode()
+    metrics = page.metrics(token)
     return int(next(line.split()[1] for line in metrics.splitlines() if line.startswith(name + " ")))
+
+
+def reset_to_idle(wait):
+    """Reset (confirmed) after a job: a start is taken only in Idle (PackML)."""
+    confirm_and_answer("reset", "reset the cell?", "reset: ", wait)
+    wait.until(EC.text_to_be_present_in_element((By.ID, "state"), "Idle"))
 
 
 def completed(n, what):
@@ -66,20 +71,21 @@ def completed(n, what):
 try:
     driver.get(page.base)
     wait = WebDriverWait(driver, 60)
+    page.log_in(token)
     wait.until(EC.text_to_be_present_in_element((By.ID, "state"), "Idle"))
-    driver.find_element(By.ID, "token").send_keys(token)
 
     # A dismissed confirmation sends nothing: the Hold confirmed after it is the page's first command
     # (a click's request leaves before the next click is handled).
     driver.find_element(By.ID, "home").click()
     wait.until(EC.alert_is_present()).dismiss()
-    confirm_and_answer("hold", "hold the cell?", "hold: no job is in progress", wait)
+    confirm_and_answer("hold", "hold the cell?", "hold: hold is not possible in state Idle", wait)
     assert metric("cellctl_web_commands_total") == 1 and metric("cellctl_runs_total") == 0, \
         (metric("cellctl_web_commands_total"), metric("cellctl_runs_total"))
 
     confirm_and_answer("home", "The axes MOVE", "home: started: homing", wait)
     completed(1, "homing to complete")
     wait.until(EC.text_to_be_present_in_element((By.ID, "mode"), "home"))
+    reset_to_idle(wait)
 
     driver.find_element(By.ID, "ti-from").send_keys("5")
     confirm_and_answer("teach-in", "the cell config is rewritten", "teach-in: started: Teach-In", wait)
@@ -87,6 +93,7 @@ try:
     wait.until(EC.text_to_be_present_in_element((By.ID, "mode"), "teach-in x"))
     with open(config) as f:
         assert "measuring_units: " in f.read(), "the Teach-In did not write the config"
+    reset_to_idle(wait)
 
     recipe = driver.find_element(By.ID, "recipe")
     recipe.clear()
