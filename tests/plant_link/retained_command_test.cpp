@@ -65,6 +65,15 @@ steps:
     }));
     ASSERT_EQ(answered(mes, "hold", "hold")["ok"], true);
     ASSERT_TRUE(mes.wait_for([&](const Message& m) { return is(m, "state", "state", "Held"); }));
+    {
+      // A dashboard that subscribes now is handed the state the run went to, retained (the tag as
+      // published on the change, not at a connect).
+      MqttProbe late(broker_->port(), "dashboard", MqttBroker::kDashboardPassword, topic("state"));
+      ASSERT_EQ(late.wait_connack(), 0);
+      const auto state = late.wait_for([](const Message& m) { return m.retain; });
+      ASSERT_TRUE(state) << "the state tag is not retained";
+      EXPECT_EQ(MqttProbe::body(*state)["state"], "Held");
+    }
 
     // A restart for maintenance: the broker keeps the retained unhold; the link connects again.
     broker_->stop();
@@ -89,12 +98,6 @@ steps:
           << a->payload;
       EXPECT_EQ(j["source"], "plant " + topic("cmd/unhold"));
     }
-    // A dashboard that subscribes now is handed the state the run went to, retained.
-    MqttProbe late(broker_->port(), "dashboard", MqttBroker::kDashboardPassword, topic("state"));
-    ASSERT_EQ(late.wait_connack(), 0);
-    const auto state = late.wait_for([](const Message& m) { return m.retain; });
-    ASSERT_TRUE(state) << "the state tag is not retained";
-    EXPECT_EQ(MqttProbe::body(*state)["state"], "Held");
     EXPECT_EQ(run_->status().read().state, supervisor::State::held);
     EXPECT_EQ(answered(mes2, "stop", "stop")["ok"], true);
   });
