@@ -88,6 +88,7 @@ std::unique_ptr<httplib::Server> make_page_server(const PageOptions& options) {
   const auto workers = options.max_streams + kCommandWorkers;
   server->new_task_queue = [workers] { return new httplib::ThreadPool(workers); };
   server->set_keep_alive_max_count(1);
+  server->set_keep_alive_timeout(2);  // a connection that sends no request lets its worker go
   server->set_read_timeout(2s);
   server->set_write_timeout(3s);
   server->set_payload_max_length(kMaxBody);

@@ -6,7 +6,8 @@
 //    commands need;
 //  - one request per connection: a refused request's body is never read, its connection is closed
 //    (a kept-alive connection would read the unread body as the next request);
-//  - short read and write time-outs (a client that stops sending or reading lets its worker go);
+//  - short time-outs (2 s for the request to come and to be read, 3 s per write): a client that
+//    sends nothing, stops sending or stops reading lets its worker go;
 //  - bodies bounded (kMaxBody) a second time, by httplib;
 //  - every response, errors included, with the security headers: a Content-Security-Policy that
 //    allows nothing but the page's own script, style and endpoints (no inline code), no framing, no
