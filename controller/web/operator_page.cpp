@@ -177,14 +177,16 @@ void OperatorPage::route() {
     if (!read_body(read, body, res)) return;
     const auto caller = guard_.caller(req);
     if (!caller) return refuse(res, {401, "the session has ended: log in again"});
+    const command::CommandSource source{command::CommandSource::Origin::web,
+                                        fmt::format("{}:{}", req.remote_addr, req.remote_port), caller->who};
     if (!brings_to_rest(word) && client_gone(req)) {
       ++commands_abandoned_;
+      // Journaled by the arbiter as never obeyed, so the record shows who sent it.
+      run_.arbiter->ignore(fmt::format("{} from {} not obeyed: its client had gone", word, source.words()));
       return res.set_content(
           plant_link::answer(word, nullptr, false, "not obeyed: its client has gone").dump(),
           "application/json");
     }
-    const command::CommandSource source{command::CommandSource::Origin::web,
-                                        fmt::format("{}:{}", req.remote_addr, req.remote_port), caller->who};
     res.set_content(command(word, body, source, received).dump(), "application/json");
   });
   s.Get("/metrics", [this](const httplib::Request&, httplib::Response& res) {

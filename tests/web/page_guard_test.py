@@ -434,6 +434,9 @@ until(lambda: tls_request("GET", "/")[0] == 200, "the page over HTTPS", proc=tls
 status, h, _ = tls_request("POST", "/login", token())
 cookie = h.get("Set-Cookie") or ""
 check(status == 200 and cookie.startswith("__Host-") and "Secure" in cookie, f"HTTPS login: {status} {cookie!r}")
+status, _, body = tls_request("POST", "/cmd/reset", {"Cookie": cookie.split(";")[0]})
+check(status == 200 and "client has gone" not in json.loads(body).get("reason", ""),
+      f"a command over HTTPS by its session: {status} {body!r}")
 try:
     plain = http.client.HTTPConnection("127.0.0.1", TLS_PORT, timeout=5)
     plain.request("GET", "/")
