@@ -288,16 +288,21 @@ void BM_CellVirtualTime(benchmark::State& state) {
     run.on_cycle([&window](double, runtime::CellRun& r) { window.on_cycle(r.supervisor().state()); });
     std::unique_ptr<plant_link::PlantLink> link;
     std::unique_ptr<web::OperatorPage> page;
+    command::Arbiter arbiter(std::chrono::milliseconds(2000), {});  // as `cellctl run` has it
+    arbiter.attach(run.port());
+    (void)arbiter.start({{}, std::chrono::steady_clock::now(), {}},
+                        [] { return command::Taken{command::Taken::How::done, "started"}; });
     if (plant_on) {
-      const auto access = plant_link::fixed_run([&run](supervisor::Command c) { run.request(c); },
-                                                run.status(), "virtual-time");
+      const auto access = plant_link::fixed_run(arbiter, run.status(), "virtual-time");
       plant_link::LinkConfig lc;
       lc.cell = setup.cell.name;
       lc.client_id = "cell-bench";
       lc.port = 1;  // nothing listens there
       link = std::make_unique<plant_link::PlantLink>(lc, setup.cell, access);
-      page = std::make_unique<web::OperatorPage>(web::PageOptions{"127.0.0.1", 0, "bench-token", "recipes"},
-                                                 setup.cell, access);
+      web::PageOptions po;
+      po.port = 0;
+      po.token = "bench-token-of-sixteen-bytes-or-more";
+      page = std::make_unique<web::OperatorPage>(po, setup.cell, access);
       run.on_journal_line([&](const nlohmann::json& j) {
         link->on_journal_line(j);
         page->on_journal_line(j);

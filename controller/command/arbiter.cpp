@@ -82,8 +82,12 @@ void Arbiter::job_ended(State final_state) {
 }
 
 void Arbiter::ignore(const std::string& words) {
-  const std::lock_guard lock(mutex_);
-  ++counters_.ignored;
+  {
+    const std::lock_guard lock(mutex_);
+    ++counters_.ignored;
+  }
+  // Told outside the lock: journaling may wait for the loop to take earlier notes, and a flood of
+  // ignored messages must never hold a stop back.
   if (tell_.note) tell_.note(words);
 }
 

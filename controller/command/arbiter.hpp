@@ -47,7 +47,8 @@ struct JobPort {
   std::function<Taken(Command, const CommandSource&)> request;  // a command the interlocks allowed
 };
 
-// What the arbiter says of itself, between jobs (on the caller's thread, under the arbiter's lock).
+// What the arbiter says of itself, on the caller's thread: `command` and `state` between jobs, under
+// the arbiter's lock; `note` (an ignored message) at any time, outside it.
 struct Tell {
   std::function<void(Command, const CommandSource&)> command;                 // a command it took
   std::function<void(State from, State to, const std::string& reason)> state;  // a state it entered

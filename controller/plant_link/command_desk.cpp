@@ -76,24 +76,25 @@ CommandDesk::CommandDesk(const config::CellCore& cell, std::filesystem::path rec
 
 std::optional<nlohmann::json> CommandDesk::submit(const Incoming& in, std::string_view state) {
   const auto word = command::capped(in.word, 24);  // echoed in every answer: never whole
+  command::Order order{in.source, in.received, std::nullopt};
+  // Every answer says whose command it answers, the refusals of a payload too.
+  auto with_source = [&](nlohmann::json a) {
+    a["source"] = order.source.words();
+    return a;
+  };
   auto parsed = command::parse_bounded_object(in.payload);
   if (auto* why = std::get_if<std::string>(&parsed))
-    return answer(word, in.id ? nlohmann::json(*in.id) : nlohmann::json(), false,
-                  *why + " (expected {\"id\":…} or nothing)");
+    return with_source(answer(word, in.id ? nlohmann::json(*in.id) : nlohmann::json(), false,
+                              *why + " (expected {\"id\":…} or nothing)"));
   auto& body = std::get<nlohmann::json>(parsed);
   const nlohmann::json id = in.id ? nlohmann::json(*in.id) : body.contains("id") ? body["id"] : nlohmann::json();
-  command::Order order{in.source, in.received, std::nullopt};
   if (const auto by = body.find("by"); by != body.end() && by->is_string())
     order.source.who = command::capped(by->get_ref<const std::string&>());
   if (const auto at = body.find("issued_at"); at != body.end()) {
     order.issued_at = at->is_string() ? command::parse_utc(at->get_ref<const std::string&>()) : std::nullopt;
     if (!order.issued_at)
-      return answer(word, id, false, "'issued_at' must be a UTC time: \"2026-11-27T19:50:00.125Z\"");
+      return with_source(answer(word, id, false, "'issued_at' must be a UTC time: \"2026-11-27T19:50:00.125Z\""));
   }
-  auto with_source = [&](nlohmann::json a) {
-    a["source"] = order.source.words();
-    return a;
-  };
   if (word == "start" || word == "home" || word == "teach-in")
     return with_source(start(word, id, body, order, state));
   using supervisor::Command;
