@@ -4,12 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "planner/brake_oracle.hpp"
 #include "planner/optimum_oracle.hpp"
 #include "planner/planner.hpp"
 #include "planner/random_problems.hpp"
@@ -27,8 +29,16 @@ void expect_arrives_together(const Trajectory<N>& t, const Input<N>& in, const s
     EXPECT_NEAR(p.end().position, in.target_position[i], 1e-8) << what << " axis " << i;
     EXPECT_NEAR(p.end().velocity, in.target_velocity[i], 1e-8) << what << " axis " << i;
     EXPECT_NEAR(p.end().acceleration, 0.0, 1e-8) << what << " axis " << i;
+    // Within the limits from the end of a brake on: once a state from which they can be kept.
+    const oracle::Limits l{in.max_velocity[i], -in.max_velocity[i], in.max_acceleration[i],
+                           -in.max_acceleration[i], in.max_jerk[i]};
+    bool braked = oracle::in_safe_set(p.start().velocity, p.start().acceleration, l);
     for (int k = 0; k <= 200; ++k) {
       const MotionState s = p.at(t.duration() * k / 200.0);
+      if (!braked) {
+        braked = oracle::in_safe_set(s.velocity, s.acceleration, l);
+        continue;
+      }
       EXPECT_LE(std::abs(s.velocity), in.max_velocity[i] + 1e-9) << what << " axis " << i;
       EXPECT_LE(std::abs(s.acceleration), in.max_acceleration[i] + 1e-9) << what << " axis " << i;
     }
@@ -49,7 +59,13 @@ void random_time_sync(testing::Start start, long fallback, std::uint64_t fallbac
     const std::string what =
         "case " + std::to_string(c) + " seed " + std::to_string(seed) + "\n" + to_string(in);
     ASSERT_EQ(Trajectory<N>::calculate(in, t, axis), Result::working) << what;
-    EXPECT_TRUE(oracle::confirms_min_common_duration(axes, t.duration(), 1e-9))
+    // The oracle's own brake ends where its reach first touches the safe states, tangentially as a
+    // rule: its end state is found to about the square root of rounding (1e-8), and the duration
+    // from there moves by as much. The axis tests check the brake and what follows it one by one
+    // at 1e-9 (axis_profile_test.cpp).
+    const bool braked = std::any_of(axes.begin(), axes.end(),
+                                    [](const oracle::Problem& p) { return oracle::braked(p).delay > 0.0; });
+    EXPECT_TRUE(oracle::confirms_min_common_duration(axes, t.duration(), braked ? 1e-7 : 1e-9))
         << what << "\nplanned " << t.duration() << " s, optimum "
         << oracle::min_common_duration(axes, 1.01 * t.duration() + 1e-9);
     expect_arrives_together(t, in, what);
