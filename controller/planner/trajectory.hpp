@@ -100,8 +100,6 @@ class Trajectory {
     switch (s) {
       case AxisStatus::target_outside_limits:
         return Result::target_outside_limits;
-      case AxisStatus::limits_too_narrow:
-        return Result::limits_too_narrow;
       default:
         return Result::unsupported_target;
     }
