@@ -19,7 +19,8 @@ std::string_view to_string(Result r) noexcept {
       return "unsupported target: the profile to this target state misses it by more than the planner "
              "accepts (a planner defect: please report the input)";
     case Result::outside_travel:
-      return "outside the travel: the target, or the motion to it, leaves the axis's position limits";
+      return "outside the travel: the target, or the motion to it, leaves the axis's position limits (by "
+             "Output::travel_excess)";
   }
   return "unknown result";
 }

@@ -204,9 +204,21 @@ TEST(Travel, TargetOutsideIsRefusedNamingTheAxis) {
   in.max_position = Vector<2>{10.0, 4.0};
   Trajectory<2> t;
   int axis = -1;
-  EXPECT_EQ(Trajectory<2>::calculate(in, t, axis), Result::outside_travel);
+  TravelExcess excess;
+  EXPECT_EQ(Trajectory<2>::calculate(in, t, axis, &excess), Result::outside_travel);
   EXPECT_EQ(axis, 1);
+  EXPECT_TRUE(excess.beyond_max);
+  EXPECT_NEAR(excess.by, 1.0, 1e-12);
   EXPECT_NE(to_string(Result::outside_travel).find("travel"), std::string_view::npos);
+  // Below min_position, through the planner's output.
+  in.target_position = Vector<2>{-3.0, 1.0};
+  in.min_position = Vector<2>{-2.5, -10.0};
+  Planner<2> planner(0.001);
+  Output<2> out;
+  EXPECT_EQ(planner.update(in, out), Result::outside_travel);
+  EXPECT_EQ(out.error_axis, 0);
+  EXPECT_FALSE(out.travel_excess.beyond_max);
+  EXPECT_NEAR(out.travel_excess.by, 0.5, 1e-12);
 }
 
 TEST(Travel, UnavoidableOvershootIsRefusedAndAStopInsideIsNot) {
@@ -220,8 +232,13 @@ TEST(Travel, UnavoidableOvershootIsRefusedAndAStopInsideIsNot) {
   in.max_position[0] = 10.0;
   Trajectory<1> t;
   int axis = -1;
-  EXPECT_EQ(Trajectory<1>::calculate(in, t, axis), Result::outside_travel);
+  TravelExcess excess;
+  EXPECT_EQ(Trajectory<1>::calculate(in, t, axis, &excess), Result::outside_travel);
   EXPECT_EQ(axis, 0);
+  EXPECT_TRUE(excess.beyond_max);
+  // The turn: -J to -2 (0.2 s, 0.18667 on), held until the velocity is zero (0.4 s, 0.16 on): 9.8 +
+  // 0.34667 - 10 (not the 0.35 of a stop at rest: the turn goes on reversing).
+  EXPECT_NEAR(excess.by, 0.2 - 10.0 * 0.2 * 0.2 * 0.2 / 6.0 + 0.16 - 0.2, 1e-9);
   in.max_position[0] = 10.2;  // room for the overshoot (9.8 + 0.35 = 10.15): planned, and it turns back
   ASSERT_EQ(Trajectory<1>::calculate(in, t, axis), Result::working);
   const PositionExtrema e = t.position_extrema(0);
