@@ -2,12 +2,13 @@
 // Seeded random planning problems for the planner's tests and benchmark, drawn as issue 11 says:
 // per axis max velocity U(0.5, 5), max acceleration U(1, 20), max jerk U(10, 200), positions
 // U(-5, 5); the target at rest unless asked otherwise. The limits are tight as often as these
-// draws make them: max velocity below max acceleration^2 / max jerk (one acceleration ramp changes
-// the velocity by more than the limit) in about half of them.
+// draws make them: max velocity below max acceleration^2 / max jerk (a ramp up and down of max
+// acceleration changes the velocity by more than the limit) in 28 % of them, the whole velocity
+// range narrower than one ramp (2 max velocity < max acceleration^2 / 2 max jerk) in 6 %.
 // The start (issue 23: as the cell meets it, never re-drawn):
 // - moving: velocity and acceleration anywhere within their bounds, so that the starts whose
 //   speed must overshoot a limit (bound to cross it whatever the jerk does) come in the
-//   proportion this draw gives them — what a new target while moving meets;
+//   proportion this draw gives them (8 % of the axes) — what a new target while moving meets;
 // - beyond_limits: the same from bounds twice as wide (the limits lowered while moving, a speed
 //   override or an unhold from a brake at another ramp): acceleration and velocity beyond them;
 // - within: moving and able to stay within the limits (re-drawn until it can), the start that
