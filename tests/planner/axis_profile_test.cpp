@@ -70,7 +70,11 @@ void expect_oracle_brake(const oracle::Problem& p, const JerkProfile& brake, con
   EXPECT_NEAR(brake.duration(), b.delay, 1e-9 * b.delay + 1e-12) << what << ": the brake";
   const double scale = 1.0 + p.limits.vmax + p.limits.amax;
   EXPECT_NEAR(brake.end().velocity, b.problem.v0, 1e-7 * scale) << what << ": the brake's end";
-  EXPECT_NEAR(brake.end().acceleration, b.problem.a0, 1e-7 * scale) << what << ": the brake's end";
+  // The oracle finds the end acceleration only as well as the velocity it changes: near a held
+  // bound, ending x below it costs x^2 / 2J of velocity, so x up to sqrt(2J 1e-13 scale) is lost in
+  // rounding (seed 13 problem 15522 of the starts beyond the limits: 4.8e-7 at J 161).
+  const double flat = std::sqrt(2.0 * p.limits.jerk * 1e-13 * scale);
+  EXPECT_NEAR(brake.end().acceleration, b.problem.a0, 1e-7 * scale + flat) << what << ": the brake's end";
   EXPECT_NEAR(brake.end().position, b.problem.p0, 1e-7 * (scale + std::abs(p.p0)))
       << what << ": the brake's end";
 }
