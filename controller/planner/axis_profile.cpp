@@ -46,13 +46,9 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   limits_ = limits;
   blocked_count_ = 0;
   if (!target_within(target, limits)) return AxisStatus::target_outside_limits;
+  // Every start has a brake into the safe states: none is refused (see brake.hpp).
   brake_ = brake_profile(start, limits);
   const MotionState s = brake_.end();
-  // An empty brake means brake_profile found the start safe by is_safe's own tests (all but a NaN
-  // acceleration, which is_safe refuses): only a brake's end is checked again.
-  if ((brake_.size() > 0 || std::isnan(s.acceleration)) && !is_safe(s.velocity, s.acceleration, limits)) {
-    return AxisStatus::limits_too_narrow;
-  }
   main_start_ = {s.position, std::clamp(s.velocity, limits.min_velocity, limits.max_velocity),
                  std::clamp(s.acceleration, limits.min_acceleration, limits.max_acceleration)};
   target_offset_ = target.position - s.position;

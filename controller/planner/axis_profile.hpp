@@ -42,7 +42,6 @@ struct Interval {
 enum class AxisStatus : std::uint8_t {
   ok,
   target_outside_limits,  // target velocity/acceleration beyond the limits or bound to cross them
-  limits_too_narrow,      // no state in which the velocity limits can be kept (brake cannot end)
   unsupported_target,     // the built profile misses the target: a safety net (see above)
 };
 

@@ -1,6 +1,7 @@
 #include "planner/brake.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace cellctl::planner {
@@ -18,22 +19,37 @@ bool over_max(double v, double a, const AxisLimits& l) noexcept {
   return v + rising * rising / (2.0 * l.jerk) > l.max_velocity + tolerance(l.max_velocity);
 }
 
-// Full negative jerk, the acceleration held at min_acceleration, until v is back at max_velocity.
-// `sign` +1 brakes from above max_velocity; -1 is the mirror (from below min_velocity).
-void brake_down(JerkProfile& profile, const AxisLimits& l, double sign) noexcept {
+// Brakes a state over max_velocity (the acceleration within its bounds) into the safe states; `sign`
+// -1 is the mirror (under min_velocity, `l` mirrored). Full negative jerk keeps the velocity the
+// acceleration ramps out to, c = v + a^2 / 2J, while the acceleration turns, and the velocity then
+// falls as c - a^2 / 2J. That ramp ends at the first of:
+// - the velocity back at max_velocity: a = -sqrt(2J (c - max_velocity)), a safe state;
+// - ramping out from there would end at min_velocity (v - a^2 / 2J = min_velocity):
+//   a = -sqrt(J (c - min_velocity)). The velocity, still above max_velocity, falls on along that
+//   boundary at full positive jerk (which keeps v - a^2 / 2J) until it is back at max_velocity;
+// - min_acceleration, held until the velocity is back at max_velocity or on that boundary.
+void brake_velocity(JerkProfile& profile, const AxisLimits& l, double sign) noexcept {
   const double v = sign * profile.end().velocity;
   const double a = sign * profile.end().acceleration;
   const double j = l.jerk;
-  const double to_floor = (a - l.min_acceleration) / j;
-  // v + a t - j t^2 / 2 = max_velocity, the later (falling) crossing.
-  const double t = (a + std::sqrt(std::max(0.0, a * a + 2.0 * j * (v - l.max_velocity)))) / j;
-  if (t <= to_floor) {
-    profile.append({-sign * j, t});
-    return;
+  const double c = v + a * a / (2.0 * j);
+  const double at_max = -std::sqrt(std::max(0.0, 2.0 * j * (c - l.max_velocity)));
+  const double on_boundary = -std::sqrt(std::max(0.0, j * (c - l.min_velocity)));
+  // Where the boundary (ramping out ends at min_velocity) meets max_velocity.
+  const double boundary_at_max = -std::sqrt(2.0 * j * (l.max_velocity - l.min_velocity));
+  std::array<JerkSegment, 3> segments{};
+  const double ramp_end = std::max({at_max, on_boundary, l.min_acceleration});
+  segments[0] = {-sign * j, std::max(0.0, (a - ramp_end) / j)};
+  if (ramp_end == on_boundary && on_boundary > at_max) {
+    segments[1] = {sign * j, (boundary_at_max - on_boundary) / j};
+  } else if (ramp_end == l.min_acceleration && l.min_acceleration > at_max) {
+    const double floor = l.min_acceleration;
+    const double held_from = c - floor * floor / (2.0 * j);
+    const double boundary_at_floor = l.min_velocity + floor * floor / (2.0 * j);
+    segments[1] = {0.0, std::max(0.0, (held_from - std::max(l.max_velocity, boundary_at_floor)) / -floor)};
+    if (boundary_at_floor > l.max_velocity) segments[2] = {sign * j, (boundary_at_max - floor) / j};
   }
-  profile.append({-sign * j, to_floor});
-  const double v1 = sign * profile.end().velocity;
-  profile.append({0.0, (v1 - l.max_velocity) / -l.min_acceleration});
+  profile.append(segments.data(), segments.size());
 }
 
 }  // namespace
@@ -50,10 +66,13 @@ JerkProfile brake_profile(const MotionState& start, const AxisLimits& l) noexcep
   if (a > l.max_acceleration) profile.append({-l.jerk, (a - l.max_acceleration) / l.jerk});
   if (a < l.min_acceleration) profile.append({l.jerk, (l.min_acceleration - a) / l.jerk});
   const MotionState s = profile.end();
-  if (over_max(s.velocity, s.acceleration, l)) {
-    brake_down(profile, l, 1.0);
-  } else if (over_max(-s.velocity, -s.acceleration, l.mirrored())) {
-    brake_down(profile, l.mirrored(), -1.0);
+  const bool over = over_max(s.velocity, s.acceleration, l);
+  const bool under = over_max(-s.velocity, -s.acceleration, l.mirrored());
+  // Beyond one side and bound to cross the other: the acceleration decides (it is what crosses).
+  if (over && (!under || s.acceleration > 0.0)) {
+    brake_velocity(profile, l, 1.0);
+  } else if (under) {
+    brake_velocity(profile, l.mirrored(), -1.0);
   }
   return profile;
 }

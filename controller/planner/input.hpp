@@ -115,6 +115,13 @@ template <int N>
   return os.str();
 }
 
+// With Result::outside_travel: which end of the axis's travel (min_position or max_position) the
+// motion leaves, and by how much (> 0) — what the operator needs to move the target or the limit.
+struct TravelExcess {
+  bool beyond_max = false;  // false: below min_position
+  double by = 0.0;
+};
+
 template <int N>
 struct Output {
   Vector<N> new_position = Vector<N>::Zero();
@@ -126,6 +133,7 @@ struct Output {
   bool done = false;             // the new state is the target
   bool new_calculation = false;  // this cycle planned a new trajectory
   int error_axis = -1;           // the axis named by an error Result, -1 otherwise
+  TravelExcess travel_excess;    // with Result::outside_travel (see TravelExcess)
   // Set when phase synchronisation was asked for but the states are not on one line: the
   // trajectory is time-synchronised instead (a static string, empty otherwise).
   std::string_view note;

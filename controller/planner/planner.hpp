@@ -49,8 +49,9 @@ class Planner {
   // (if any) is kept but not continued.
   [[nodiscard]] Result update(const Input<N>& in, Output<N>& out) noexcept {
     out.new_calculation = false;
+    out.travel_excess = {};
     if (!planned_ || !(in == continued_)) {
-      const Result r = Trajectory<N>::calculate(in, trajectory_, out.error_axis);
+      const Result r = Trajectory<N>::calculate(in, trajectory_, out.error_axis, &out.travel_excess);
       if (is_error(r)) {
         planned_ = false;
         return r;

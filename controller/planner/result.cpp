@@ -15,13 +15,12 @@ std::string_view to_string(Result r) noexcept {
              "acceleration finite and < 0 (or unset), min position <= max position";
     case Result::target_outside_limits:
       return "target outside the limits: its velocity or acceleration is beyond them or bound to cross them";
-    case Result::limits_too_narrow:
-      return "limits too narrow: the velocity range is smaller than one acceleration ramp changes it by";
     case Result::unsupported_target:
       return "unsupported target: the profile to this target state misses it by more than the planner "
              "accepts (a planner defect: please report the input)";
     case Result::outside_travel:
-      return "outside the travel: the target, or the motion to it, leaves the axis's position limits";
+      return "outside the travel: the target, or the motion to it, leaves the axis's position limits (by "
+             "Output::travel_excess)";
   }
   return "unknown result";
 }

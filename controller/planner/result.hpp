@@ -12,7 +12,6 @@ enum class Result {
   invalid_state,          // a current position/velocity/acceleration or target is not finite
   invalid_limits,         // a limit of an enabled axis is not finite, not of the right sign, or min > max
   target_outside_limits,  // a target velocity/acceleration is beyond the limits or bound to cross them
-  limits_too_narrow,      // the velocity range is narrower than one acceleration ramp: no safe state
   outside_travel,         // the target, or the motion to it (overshoot included), leaves the travel
   unsupported_target,     // the profile built would miss the target (a safety net; not seen in tests)
 };

@@ -83,8 +83,10 @@ class Trajectory {
     return blocked_[idx(axis)][i];
   }
 
-  // Plans `in`; on an error the trajectory is unchanged and `error_axis` names the axis.
-  [[nodiscard]] static Result calculate(const Input<N>& in, Trajectory& out, int& error_axis) noexcept;
+  // Plans `in`; on an error the trajectory is unchanged and `error_axis` names the axis; with
+  // outside_travel, `excess` (if given) says which end of its travel and by how much.
+  [[nodiscard]] static Result calculate(const Input<N>& in, Trajectory& out, int& error_axis,
+                                        TravelExcess* excess = nullptr) noexcept;
 
  private:
   static constexpr std::size_t idx(int axis) noexcept { return static_cast<std::size_t>(axis); }
@@ -100,8 +102,6 @@ class Trajectory {
     switch (s) {
       case AxisStatus::target_outside_limits:
         return Result::target_outside_limits;
-      case AxisStatus::limits_too_narrow:
-        return Result::limits_too_narrow;
       default:
         return Result::unsupported_target;
     }
@@ -212,7 +212,8 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
 }
 
 template <int N>
-Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_axis) noexcept {
+Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_axis,
+                                TravelExcess* excess) noexcept {
   error_axis = -1;
   if (const Result r = validate(in, error_axis); is_error(r)) return r;
   // Plan into a scratch copy: a refused plan leaves `out` as it was.
@@ -282,8 +283,11 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
     if (!in.enabled[idx(i)] || (in.min_position[i] == -kInf && in.max_position[i] == kInf)) continue;
     const PositionExtrema e = t.profiles_[idx(i)].extrema();
     const double slack = 1e-9 * (1.0 + std::abs(in.target_position[i]));
-    if (e.min.position < in.min_position[i] - slack || e.max.position > in.max_position[i] + slack) {
+    const double below = in.min_position[i] - e.min.position;
+    const double above = e.max.position - in.max_position[i];
+    if (below > slack || above > slack) {
       error_axis = i;
+      if (excess != nullptr) *excess = TravelExcess{above >= below, std::max(above, below)};
       return Result::outside_travel;
     }
   }

@@ -9,6 +9,7 @@
 
 #include "planner/axis_profile.hpp"
 #include "planner/brake.hpp"
+#include "planner/brake_oracle.hpp"
 #include "planner/farthest_profile.hpp"
 #include "planner/optimum_oracle.hpp"
 #include "planner/random_problems.hpp"
@@ -118,6 +119,62 @@ TEST(Brake, FromBelowMinVelocityIsTheMirror) {
   EXPECT_EQ(brake.segment(0).jerk, 10.0);
   EXPECT_NEAR(brake.end().velocity, -1.0, 1e-12);
   plan_checked(start, {-3.0, 0.0, 0.0}, kLimits, "below min velocity");
+}
+
+// The brake is the oracle's (the earliest entry into the states from which the limits can be kept,
+// found by brake_oracle.hpp without the planner's cases), then plan_checked's checks.
+void expect_brake_and_plan(const MotionState& start, const MotionState& target, const AxisLimits& l,
+                           const std::string& what) {
+  AxisProfile axis;
+  ASSERT_EQ(axis.plan(start, target, l), AxisStatus::ok) << what;
+  const oracle::Braked b = oracle::braked(problem(start, target, l));
+  EXPECT_NEAR(axis.brake().duration(), b.delay, 1e-9 * b.delay) << what;
+  EXPECT_NEAR(axis.brake().end().velocity, b.problem.v0, 1e-7) << what;
+  EXPECT_NEAR(axis.brake().end().acceleration, b.problem.a0, 1e-7) << what;
+  plan_checked(start, target, l, what);
+}
+
+// Issue 23's start: one acceleration ramp from -16.9 changes the velocity by 5.8, the velocity
+// range is 2.9 wide. Held at full jerk until the velocity was back at -vmax, the brake left
+// -16.6 to ramp out, bound to cross +vmax: refused as limits_too_narrow. The brake ends its
+// ramp early enough that the ramp after it stays within the opposite limit.
+TEST(Brake, AStartThatMustOvershootIsPlannedWithoutCrossingTheOppositeLimit) {
+  const AxisLimits l = AxisLimits::symmetric(1.457, 19.9, 24.7);
+  expect_brake_and_plan({0.0, -1.23, -16.9}, {1.0, 0.0, 0.0}, l, "issue 23");
+}
+
+// Loose acceleration against the velocity (one ramp of max acceleration changes the velocity by 20,
+// ten times the range).
+const AxisLimits kLooseAcceleration = AxisLimits::symmetric(1.0, 20.0, 10.0);
+
+// Below min velocity, accelerating (not bound to cross max velocity): the acceleration is raised
+// to regain the velocity sooner, but only so far that ramping it out stays below max velocity (the
+// old brake raised it until the velocity was back at min velocity: bound to cross the max).
+TEST(Brake, BelowMinVelocityRaisesTheAccelerationOnlyAsFarAsTheMaxAllows) {
+  expect_brake_and_plan({0.0, -5.0, 10.0}, {1.0, 0.0, 0.0}, kLooseAcceleration, "below, accelerating");
+  expect_brake_and_plan({0.0, -5.0, 25.0}, {-1.0, 0.0, 0.0}, kLooseAcceleration,
+                        "below, beyond max acceleration");
+}
+
+// Beyond one velocity limit and bound to cross the other: the acceleration that will cross it is
+// taken back first, whichever side the velocity is beyond.
+TEST(Brake, BeyondOneVelocityLimitAndBoundToCrossTheOther) {
+  expect_brake_and_plan({0.0, -3.0, 15.0}, {1.0, 0.0, 0.0}, kLooseAcceleration, "below, bound above");
+  expect_brake_and_plan({0.0, 1.5, -15.0}, {1.0, 0.0, 0.0}, kLooseAcceleration, "above, bound below");
+  expect_brake_and_plan({0.0, 3.0, -30.0}, {-1.0, 0.0, 0.0}, kLooseAcceleration,
+                        "above, beyond min acceleration");
+}
+
+// Tight limits (one ramp of max acceleration changes the velocity by 2, four times the range):
+// the brake never reaches the acceleration bound, whichever side it starts.
+TEST(Brake, TightLimitsBrakeWithoutReachingTheAccelerationBound) {
+  const AxisLimits tight = AxisLimits::symmetric(0.25, 2.0, 1.0);
+  for (const MotionState start : {MotionState{0.0, 0.2, 1.5}, MotionState{0.0, -0.2, 1.5},
+                                  MotionState{0.0, 1.0, -2.5}, MotionState{0.0, -1.0, 2.5}}) {
+    expect_brake_and_plan(
+        start, {0.5, 0.0, 0.0}, tight,
+        "tight from v " + std::to_string(start.velocity) + " a " + std::to_string(start.acceleration));
+  }
 }
 
 TEST(Brake, SafeStartHasNone) {

@@ -20,7 +20,7 @@ TEST(FarthestProfile, SlopeMatchesFiniteDifferences) {
   int checked = 0;
   for (int n = 0; n < 3000; ++n) {
     const oracle::Problem p = testing::random_problem(
-        rng, testing::Start::moving, n % 2 == 0 ? testing::Target::at_rest : testing::Target::moving);
+        rng, testing::Start::within, n % 2 == 0 ? testing::Target::at_rest : testing::Target::moving);
     const AxisLimits l{p.limits.vmax, p.limits.vmin, p.limits.amax, p.limits.amin, p.limits.jerk};
     const FarthestProfile f(p.v0, p.a0, p.vf, p.af, l);
     const double reach = planner::reach(p.v0, p.a0, p.vf, p.af, l).time;
@@ -45,7 +45,7 @@ TEST(FarthestProfile, BothExtremesAtTheReachTimeAreTheFastestProfile) {
   std::mt19937_64 rng(8);
   for (int n = 0; n < 20000; ++n) {
     const auto target = static_cast<testing::Target>(n % 3);
-    const oracle::Problem p = testing::random_problem(rng, testing::Start::moving, target);
+    const oracle::Problem p = testing::random_problem(rng, testing::Start::within, target);
     const AxisLimits l{p.limits.vmax, p.limits.vmin, p.limits.amax, p.limits.amin, p.limits.jerk};
     const Reach r = reach(p.v0, p.a0, p.vf, p.af, l);
     ASSERT_TRUE(std::isfinite(r.time)) << n;

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "planner/brake_oracle.hpp"
+
 namespace cellctl::planner::oracle {
 namespace {
 
@@ -277,16 +279,18 @@ enum class Below { none, found, undecided };
 
 // Whether any duration in [0, x] is feasible for every problem: the scan down from x, each step
 // as long as the proof at its top allows; where none does (inside an unresolved interval), a grid
-// step of 1/1024 of the unresolved interval below x (the narrowest of the problems').
-Below scan_below(const std::vector<Problem>& problems, double x) {
+// step of 1/1024 of the unresolved interval below x (the narrowest of the problems'). A problem
+// whose start needs a brake is proven on its own clock, which starts at the brake's end: durations
+// before it are infeasible for it.
+Below scan_below(const std::vector<Braked>& problems, double x) {
   constexpr double kGrid = 1024.0;
   constexpr long kMaxSteps = 200000;
   std::vector<Insertion> ins;
   ins.reserve(problems.size());
   double grid = x / kGrid;
-  for (const Problem& p : problems) {
-    ins.push_back(insertion(p));
-    const double unresolved = std::min(ins.back().mono_hi, x) - ins.back().mono_lo;
+  for (const Braked& q : problems) {
+    ins.push_back(insertion(q.problem));
+    const double unresolved = std::min(ins.back().mono_hi, x - q.delay) - ins.back().mono_lo;
     if (unresolved > 0.0) grid = std::min(grid, unresolved / kGrid);
   }
   std::vector<char> near_first(problems.size(), 0);
@@ -295,18 +299,21 @@ Below scan_below(const std::vector<Problem>& problems, double x) {
     double step = 0.0;
     bool all = true;
     for (std::size_t i = 0; i < problems.size(); ++i) {
-      const Problem& p = problems[i];
+      const Problem& p = problems[i].problem;
+      const double own = b - problems[i].delay;  // b on the problem's clock
+      if (own < 0.0) return Below::none;         // [0, b] lies within its brake
       const double target = p.pf - p.p0;
       // One side short of the target decides alone: the side that did last time is tried first.
       Reach r{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
-      if (near_first[i]) r.near = -farthest(mirrored(p), b);
-      if (!(r.near > target)) r.far = farthest(p, b);
-      if (!(r.far < target) && !near_first[i]) r.near = -farthest(mirrored(p), b);
+      if (near_first[i]) r.near = -farthest(mirrored(p), own);
+      if (!(r.near > target)) r.far = farthest(p, own);
+      if (!(r.far < target) && !near_first[i]) r.near = -farthest(mirrored(p), own);
       near_first[i] = r.near > target;
       if (holds(r, target)) continue;
       all = false;
-      step = std::max(step, proven_step(p, ins[i], r, b, tolerance(p, b)));
-      if (step >= b) return Below::none;  // this problem alone rules out [0, b]
+      const double proven = proven_step(p, ins[i], r, own, tolerance(p, own));
+      if (proven >= own) return Below::none;  // this problem alone rules out [0, b]
+      step = std::max(step, proven);
     }
     if (all) return Below::found;
     if (b <= 0.0) return Below::none;
@@ -315,20 +322,30 @@ Below scan_below(const std::vector<Problem>& problems, double x) {
   return Below::undecided;
 }
 
-bool feasible_all(const std::vector<Problem>& problems, double T) {
-  return std::all_of(problems.begin(), problems.end(), [T](const Problem& p) { return feasible(p, T); });
+bool feasible_all(const std::vector<Braked>& problems, double T) {
+  return std::all_of(problems.begin(), problems.end(), [T](const Braked& q) {
+    return T >= q.delay && holds(reach(q.problem, T - q.delay), q.problem.pf - q.problem.p0);
+  });
+}
+
+std::vector<Braked> all_braked(const std::vector<Problem>& problems) {
+  std::vector<Braked> out;
+  out.reserve(problems.size());
+  for (const Problem& p : problems) out.push_back(braked(p));
+  return out;
 }
 
 }  // namespace
 
 bool feasible(const Problem& p, double T) {
-  return holds(reach(p, T), p.pf - p.p0);
+  return feasible_all({braked(p)}, T);
 }
 
 bool confirms_min_common_duration(const std::vector<Problem>& problems, double T, double relative) {
-  if (T == 0.0) return feasible_all(problems, 0.0);
-  if (!feasible_all(problems, T * (1.0 + relative) + 1e-15)) return false;
-  const Below below = scan_below(problems, T * (1.0 - relative));
+  const std::vector<Braked> all = all_braked(problems);
+  if (T == 0.0) return feasible_all(all, 0.0);
+  if (!feasible_all(all, T * (1.0 + relative) + 1e-15)) return false;
+  const Below below = scan_below(all, T * (1.0 - relative));
   if (below == Below::undecided) {
     std::fprintf(stderr, "optimum_oracle: the scan below %.17g s gave up (the target grazes a reach)\n", T);
   }
@@ -340,15 +357,16 @@ bool confirms_min_duration(const Problem& p, double T, double relative) {
 }
 
 double min_common_duration(const std::vector<Problem>& problems, double upper) {
-  if (feasible_all(problems, 0.0)) return 0.0;
-  if (scan_below(problems, upper) == Below::none) return kInfinity;
+  const std::vector<Braked> all = all_braked(problems);
+  if (feasible_all(all, 0.0)) return 0.0;
+  if (scan_below(all, upper) == Below::none) return kInfinity;
   // Bisection on "some duration in [0, x] is feasible", which holds from the optimum on.
   double lo = 0.0;
   double hi = upper;
   for (int i = 0; i < 200; ++i) {
     const double mid = 0.5 * (lo + hi);
     if (mid <= lo || mid >= hi) break;
-    (scan_below(problems, mid) == Below::none ? lo : hi) = mid;
+    (scan_below(all, mid) == Below::none ? lo : hi) = mid;
   }
   return hi;
 }

@@ -63,6 +63,11 @@
 // a moving target, 57 to an accelerating one — 42 of them grid points, in the 6 % of problems whose
 // unresolved interval reaches below x (about 740 each). min_duration bisects on "a feasible
 // duration in [0, x]", each decided by that scan.
+//
+// A start beyond the limits is braked first (brake_oracle.hpp: the earliest entry into the states
+// from which the limits can be kept, found independently of the planner): feasible,
+// min_duration and the confirmations count its brake, then prove the rest from the brake's end;
+// every duration shorter than the brake is infeasible. reach() takes a start inside the limits.
 
 #include <vector>
 
@@ -73,7 +78,7 @@ struct Limits {
 };
 
 struct Problem {
-  double p0, v0, a0;  // start, inside the limits and able to stay inside them
+  double p0, v0, a0;  // start: anywhere (beyond the limits: braked first, see above)
   double pf, vf, af;  // target, likewise
   Limits limits;
 };

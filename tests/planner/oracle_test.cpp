@@ -205,7 +205,7 @@ TEST(OptimumOracle, RejectsClaimsAtTheEndOfRandomBlockedIntervals) {
   long sampling_accepted = 0;
   for (int i = 0; i < 20000; ++i) {
     const oracle::Problem p = testing::random_problem(
-        rng, testing::Start::moving, i % 2 == 0 ? testing::Target::moving : testing::Target::accelerating);
+        rng, testing::Start::within, i % 2 == 0 ? testing::Target::moving : testing::Target::accelerating);
     AxisProfile axis;
     if (axis.plan({p.p0, p.v0, p.a0}, {p.pf, p.vf, p.af},
                   AxisLimits{p.limits.vmax, p.limits.vmin, p.limits.amax, p.limits.amin, p.limits.jerk}) !=
