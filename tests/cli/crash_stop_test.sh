@@ -45,14 +45,7 @@ fail() {
 source "$(dirname "${BASH_SOURCE[0]}")/emulate_lib.sh"
 publish_config "$source_config" "$emulated"
 sed -i -E "s|^state_dir:.*|state_dir: $work/state|" "$emulated"
-awk -v dir="$work" '
-  /^[A-Za-z_]+:/ { section = $1; sub(":", "", section) }
-  /^  port: emulated/ && (section == "scu" || section == "spindle" || section == "encoder") {
-    print "  port: " dir "/" section; next
-  }
-  { print }
-' "$emulated" | grep -v "^  publish_as:" >"$config"
-[[ $(grep -c "^  port: $work/" "$config") -eq 3 ]] || fail "could not point the ports of $config into $work"
+client_config "$emulated" "$config"
 
 cat >"$work/long-move.yaml" <<'RECIPE'
 recipe: {name: long-move, version: "1", cell: demo-cell}

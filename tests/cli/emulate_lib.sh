@@ -44,3 +44,18 @@ start_emulate() {
   done
   fail "cellctl emulate did not publish $work/scu, $work/spindle and $work/encoder within 10 s"
 }
+
+# client_config EMULATED OUT: the cell of the commands that talk to `cellctl emulate` as to hardware —
+# EMULATED (made by publish_config) with each device's port the pseudo-terminal published in $work,
+# and the publish_as keys dropped. Call after publish_config (and after any edit of EMULATED that the
+# client shares, such as its state_dir).
+client_config() {
+  awk -v dir="$work" '
+    /^[A-Za-z_]+:/ { section = $1; sub(":", "", section) }
+    /^  port: emulated/ && (section == "scu" || section == "spindle" || section == "encoder") {
+      print "  port: " dir "/" section; next
+    }
+    { print }
+  ' "$1" | grep -v "^  publish_as:" >"$2"
+  [[ $(grep -c "^  port: $work/" "$2") -eq 3 ]] || fail "could not point the ports of $2 into $work"
+}
