@@ -290,8 +290,9 @@ void BM_CellVirtualTime(benchmark::State& state) {
     std::unique_ptr<web::OperatorPage> page;
     command::Arbiter arbiter(std::chrono::milliseconds(2000), {});  // as `cellctl run` has it
     arbiter.attach(run.port());
-    (void)arbiter.start({{}, std::chrono::steady_clock::now(), {}},
-                        [] { return command::Taken{command::Taken::How::done, "started"}; });
+    (void)arbiter.start({{}, std::chrono::steady_clock::now(), {}}, [] {
+      return command::Taken{command::Taken::How::done, "started"};
+    });
     if (plant_on) {
       const auto access = plant_link::fixed_run(arbiter, run.status(), "virtual-time");
       plant_link::LinkConfig lc;

@@ -57,16 +57,18 @@ CellStandby::CellStandby(config::CellConfig cell, StandbyOptions options)
     : cell_(std::move(cell)),
       options_(std::move(options)),
       arbiter_(options_.max_command_age, arbiter_tell()) {
-  arbiter_.attach({[this] { return job_state(); },
-                   [this](supervisor::Command c, const command::CommandSource& source) {
-                     return request(c, source);
-                   }});
+  arbiter_.attach(
+      {[this] { return job_state(); },
+       [this](supervisor::Command c, const command::CommandSource& source) { return request(c, source); }});
 }
 
 command::Tell CellStandby::arbiter_tell() {
   command::Tell tell;
   tell.command = [this](supervisor::Command c, const command::CommandSource& source) {
-    tell_line({{"event", "command"}, {"t", 0.0}, {"command", supervisor::to_string(c)}, {"source", source.words()}});
+    tell_line({{"event", "command"},
+               {"t", 0.0},
+               {"command", supervisor::to_string(c)},
+               {"source", source.words()}});
   };
   tell.state = [this](supervisor::State from, supervisor::State to, const std::string& reason) {
     tell_line({{"event", "state"},
@@ -149,8 +151,8 @@ Taken CellStandby::request(supervisor::Command c, const command::CommandSource& 
       if (pending_) {  // not taken by the serving thread yet: it never starts; that thread tells the end
         cancelled_ = c;
         started_.notify_all();
-        return {Taken::How::done, fmt::format("{}: the {} is cancelled before it started; nothing moved",
-                                              word, job_)};
+        return {Taken::How::done,
+                fmt::format("{}: the {} is cancelled before it started; nothing moved", word, job_)};
       }
       early_stop_ = c;  // being set up: stopped as soon as its run exists, before any motion
       return {
@@ -204,7 +206,8 @@ CellStandby::JobEnd CellStandby::not_started(const plant_link::StartRequest& r, 
              {"recipe", short_name(r)},
              {"mode", to_string(options_.mode)},
              {"steps", 0}});
-  tell_line({{"event", "state"}, {"t", 0.0}, {"from", "Starting"}, {"to", to}, {"reason", "not started: " + why}});
+  tell_line(
+      {{"event", "state"}, {"t", 0.0}, {"from", "Starting"}, {"to", to}, {"reason", "not started: " + why}});
   return {fmt::format("{}: not started: {}", to, why), end};
 }
 
@@ -239,13 +242,13 @@ int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminat
     }
     if (!job) continue;
     say(fmt::format("job {}: {} started", jobs_done_.load() + 1, what));
-    const auto end =
-        cancelled ? not_started(*job,
-                                fmt::format("cancelled by a {} before it started; nothing moved",
-                                            supervisor::to_string(*cancelled)),
-                                *cancelled == supervisor::Command::abort ? supervisor::State::aborted
-                                                                         : supervisor::State::stopped)
-                  : run_job(*job, interrupt, terminate);
+    const auto end = cancelled
+                         ? not_started(*job,
+                                       fmt::format("cancelled by a {} before it started; nothing moved",
+                                                   supervisor::to_string(*cancelled)),
+                                       *cancelled == supervisor::Command::abort ? supervisor::State::aborted
+                                                                                : supervisor::State::stopped)
+                         : run_job(*job, interrupt, terminate);
     // Told to the arbiter before the standby is free again: from here on the cell is in the job's end
     // state, and only a reset (a clear and a reset after Aborted) brings it back to Idle.
     arbiter_.job_ended(end.state);
@@ -290,7 +293,8 @@ CellStandby::JobEnd CellStandby::run_job(const plant_link::StartRequest& r, std:
   }
 }
 
-CellStandby::JobEnd CellStandby::run_recipe(const recipe::Recipe& recipe, const std::filesystem::path& run_dir,
+CellStandby::JobEnd CellStandby::run_recipe(const recipe::Recipe& recipe,
+                                            const std::filesystem::path& run_dir,
                                             std::atomic<bool>& interrupt, std::atomic<bool>& terminate) {
   runtime::RunOptions o;
   o.mode = options_.mode;
@@ -350,7 +354,8 @@ CellStandby::JobEnd CellStandby::run_teach_in(const plant_link::StartTeachIn& t,
              {"recipe", short_name(asked)},
              {"mode", to_string(o.mode)},
              {"steps", 1}});
-  tell_line({{"event", "state"}, {"t", 0.0}, {"from", "Starting"}, {"to", "Execute"}, {"reason", describe(asked)}});
+  tell_line(
+      {{"event", "state"}, {"t", 0.0}, {"from", "Starting"}, {"to", "Execute"}, {"reason", describe(asked)}});
   const auto end = [&](supervisor::State state, const std::string& words) {
     const auto to = supervisor::to_string(state);
     tell_line({{"event", "state"}, {"t", seconds()}, {"from", "Execute"}, {"to", to}, {"reason", words}});
@@ -390,7 +395,7 @@ CellStandby::JobEnd CellStandby::run_teach_in(const plant_link::StartTeachIn& t,
     change = write_teach_in_result(options_.config_file, cell_, outcome);
   } catch (const std::exception& e) {
     return end(supervisor::State::aborted, fmt::format("Teach-In verified, but {} was not changed: {}",
-                                      options_.config_file.string(), e.what()));
+                                                       options_.config_file.string(), e.what()));
   }
   const auto written = fmt::format(
       "total resolution {} ({:g} units per mm), verified: {:.4f} mm measured back; {} "

@@ -92,7 +92,8 @@ class CellStandby {
   // Registers a start the arbiter allowed.
   [[nodiscard]] plant_link::Taken start(const plant_link::StartRequest& r);
   // The job, on the serving thread.
-  JobEnd run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt, std::atomic<bool>& terminate);
+  JobEnd run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt,
+                 std::atomic<bool>& terminate);
   JobEnd run_recipe(const recipe::Recipe& recipe, const std::filesystem::path& run_dir,
                     std::atomic<bool>& interrupt, std::atomic<bool>& terminate);
   JobEnd run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt,

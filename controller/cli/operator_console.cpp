@@ -71,7 +71,8 @@ void OperatorConsole::handle(const std::string& line) {
     screen_.message(fmt::format("> {}: taken as '{}'", line, name));
   else
     screen_.message(fmt::format("> {}", name));
-  // Judged by the arbiter, as the page's and the plant's; a run's answer comes from the journal (RunNarrator).
+  // Judged by the arbiter, as the page's and the plant's; a run's answer comes from the journal
+  // (RunNarrator).
   const auto taken = arbiter_.command(
       *cmd, {{command::CommandSource::Origin::terminal, {}, {}}, std::chrono::steady_clock::now(), {}});
   if (taken.how != command::Taken::How::by_run) screen_.message(fmt::format("  {}", taken.text));

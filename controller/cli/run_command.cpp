@@ -120,8 +120,10 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
     tell.note = [&run](const std::string& words) { run.note_from_operator(words); };
     command::Arbiter arbiter(std::chrono::milliseconds(cell.max_command_age_ms), std::move(tell));
     arbiter.attach(run.port());
-    (void)arbiter.start({{command::CommandSource::Origin::terminal, {}, {}}, std::chrono::steady_clock::now(), {}},
-                        [] { return command::Taken{command::Taken::How::done, "started by cellctl run"}; });
+    (void)arbiter.start(
+        {{command::CommandSource::Origin::terminal, {}, {}}, std::chrono::steady_clock::now(), {}}, [] {
+          return command::Taken{command::Taken::How::done, "started by cellctl run"};
+        });
     const auto access = plant_link::fixed_run(arbiter, run.status(), to_string(options.mode));
     auto facing = open_plant_facing(cell, plant_link, page,
                                     plant_link ? plant_link->recipes : std::filesystem::path("recipes"),

@@ -43,16 +43,16 @@ struct Taken {
 
 // The job in progress, as the arbiter reaches it.
 struct JobPort {
-  std::function<State()> state;                                  // the job's state now
+  std::function<State()> state;                                 // the job's state now
   std::function<Taken(Command, const CommandSource&)> request;  // a command the interlocks allowed
 };
 
 // What the arbiter says of itself, on the caller's thread: `command` and `state` between jobs, under
 // the arbiter's lock; `note` (an ignored message) at any time, outside it.
 struct Tell {
-  std::function<void(Command, const CommandSource&)> command;                 // a command it took
+  std::function<void(Command, const CommandSource&)> command;                  // a command it took
   std::function<void(State from, State to, const std::string& reason)> state;  // a state it entered
-  std::function<void(const std::string&)> note;                               // one it ignored
+  std::function<void(const std::string&)> note;                                // one it ignored
 };
 
 struct ArbiterCounters {
@@ -97,9 +97,9 @@ class Arbiter {
   const std::chrono::milliseconds max_age_;
   Tell tell_;
   std::mutex mutex_;
-  State state_;         // between jobs
-  bool job_ = false;    // a job is in progress: state and commands are its own
-  JobPort port_;        // set by attach() while a job is in progress
+  State state_;       // between jobs
+  bool job_ = false;  // a job is in progress: state and commands are its own
+  JobPort port_;      // set by attach() while a job is in progress
   ArbiterCounters counters_;
 };
 

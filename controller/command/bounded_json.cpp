@@ -45,7 +45,8 @@ class DepthCheck final : public nlohmann::json::json_sax_t {
 
 }  // namespace
 
-std::variant<nlohmann::json, std::string> parse_bounded_object(std::string_view text, const JsonLimits& limits) {
+std::variant<nlohmann::json, std::string> parse_bounded_object(std::string_view text,
+                                                               const JsonLimits& limits) {
   if (text.size() > limits.max_bytes)
     return fmt::format("the payload is {} bytes, more than the {} a command may have", text.size(),
                        limits.max_bytes);

@@ -54,7 +54,7 @@ std::optional<UtcTime> parse_utc(std::string_view s) {
   const long long seconds = days_from_civil(y, static_cast<unsigned>(mo), static_cast<unsigned>(d)) * 86400 +
                             h * 3600LL + mi * 60LL + sec;
   return UtcTime(std::chrono::duration_cast<UtcTime::duration>(std::chrono::seconds(seconds) +
-                                                                std::chrono::nanoseconds(nanos)));
+                                                               std::chrono::nanoseconds(nanos)));
 }
 
 std::string expired(const Order& o, SteadyTime now, UtcTime utc_now, std::chrono::milliseconds max_age) {

@@ -30,8 +30,9 @@ struct CellCore {
   [[nodiscard]] const AxisConfig* axis(std::string_view axis_name) const noexcept;
 };
 
-// The core keys of a cell config (cell, axes, limits, stops, loop, max_command_age_ms); the caller checks unknown keys,
-// since the file holds the device sections too. Throws ConfigError (file:line:column: field: rule).
+// The core keys of a cell config (cell, axes, limits, stops, loop, max_command_age_ms); the caller checks
+// unknown keys, since the file holds the device sections too. Throws ConfigError (file:line:column: field:
+// rule).
 [[nodiscard]] CellCore parse_cell_core(const YamlNode& root, const std::filesystem::path& source);
 
 }  // namespace cellctl::config

@@ -87,19 +87,23 @@ std::optional<nlohmann::json> CommandDesk::submit(const Incoming& in, std::strin
     return with_source(answer(word, in.id ? nlohmann::json(*in.id) : nlohmann::json(), false,
                               *why + " (expected {\"id\":…} or nothing)"));
   auto& body = std::get<nlohmann::json>(parsed);
-  const nlohmann::json id = in.id ? nlohmann::json(*in.id) : body.contains("id") ? body["id"] : nlohmann::json();
+  const nlohmann::json id = in.id                 ? nlohmann::json(*in.id)
+                            : body.contains("id") ? body["id"]
+                                                  : nlohmann::json();
   if (const auto by = body.find("by"); by != body.end() && by->is_string())
     order.source.who = command::capped(by->get_ref<const std::string&>());
   if (const auto at = body.find("issued_at"); at != body.end()) {
     order.issued_at = at->is_string() ? command::parse_utc(at->get_ref<const std::string&>()) : std::nullopt;
     if (!order.issued_at)
-      return with_source(answer(word, id, false, "'issued_at' must be a UTC time: \"2026-11-27T19:50:00.125Z\""));
+      return with_source(
+          answer(word, id, false, "'issued_at' must be a UTC time: \"2026-11-27T19:50:00.125Z\""));
   }
   if (word == "start" || word == "home" || word == "teach-in")
     return with_source(start(word, id, body, order, state));
   using supervisor::Command;
   std::optional<Command> cmd;
-  for (const auto c : {Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset, Command::clear})
+  for (const auto c :
+       {Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset, Command::clear})
     if (supervisor::to_string(c) == word) cmd = c;
   if (!cmd)
     return with_source(answer(
@@ -146,7 +150,8 @@ std::variant<StartRequest, nlohmann::json> CommandDesk::recipe_start(const nlohm
 nlohmann::json CommandDesk::start(std::string_view word, const nlohmann::json& id, const nlohmann::json& body,
                                   const command::Order& order, std::string_view state) const {
   // Asked first, so that a start the state refuses costs nothing more (a flood of them included).
-  if (auto why = access_.arbiter->start_refusal(order); !why.empty()) return answer(word, id, false, std::move(why));
+  if (auto why = access_.arbiter->start_refusal(order); !why.empty())
+    return answer(word, id, false, std::move(why));
   StartRequest request;
   if (word == "start") {
     auto r = recipe_start(id, body);
@@ -232,9 +237,10 @@ std::vector<nlohmann::json> CommandDesk::expire(SteadyTime now) {
   const std::lock_guard lock(mutex_);
   while (!pending_.empty() && pending_.front().deadline <= now) {
     const auto& p = pending_.front();
-    auto a = answer(supervisor::to_string(p.command), p.id, false,
-                    fmt::format("the run gave no answer within {} ms: the outcome is unknown; see the state tag",
-                                timeout_.count()));
+    auto a =
+        answer(supervisor::to_string(p.command), p.id, false,
+               fmt::format("the run gave no answer within {} ms: the outcome is unknown; see the state tag",
+                           timeout_.count()));
     a["source"] = p.source;
     out.push_back(std::move(a));
     pending_.pop_front();

@@ -18,9 +18,9 @@
 
 #include <chrono>
 #include <deque>
-#include <mutex>
 #include <filesystem>
 #include <functional>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -74,8 +74,9 @@ class CommandDesk {
   };
   // The start of a recipe, homing or a Teach-In: the arbiter asked first, its shape checked, then
   // started (or refused).
-  [[nodiscard]] nlohmann::json start(std::string_view word, const nlohmann::json& id, const nlohmann::json& body,
-                                     const command::Order& order, std::string_view state) const;
+  [[nodiscard]] nlohmann::json start(std::string_view word, const nlohmann::json& id,
+                                     const nlohmann::json& body, const command::Order& order,
+                                     std::string_view state) const;
   // A recipe's StartRequest, or the answer that refuses it (not a name, not valid for the cell).
   [[nodiscard]] std::variant<StartRequest, nlohmann::json> recipe_start(const nlohmann::json& id,
                                                                         const nlohmann::json& body) const;

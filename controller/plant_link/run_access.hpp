@@ -46,16 +46,17 @@ struct StartTeachIn {
 using StartRequest = std::variant<StartRecipe, StartHoming, StartTeachIn>;
 
 struct RunAccess {
-  command::Arbiter* arbiter = nullptr;              // the one command path; never null in use
+  command::Arbiter* arbiter = nullptr;             // the one command path; never null in use
   std::function<std::optional<LiveRun>()> status;  // nullopt: no run in progress
-  std::string mode;  // "hardware", "emulated", "virtual-time"; "" without a run
+  std::string mode;                                // "hardware", "emulated", "virtual-time"; "" without a run
   // Registers a job the arbiter allowed (command::Arbiter::start's `begin`); empty when this cellctl
   // drives one run and can start no other.
   std::function<Taken(const StartRequest&)> start;
 };
 
 // The access to one run that exists as long as the access is used: its arbiter and its board.
-[[nodiscard]] RunAccess fixed_run(command::Arbiter& arbiter, const runtime::StatusBoard& board, std::string mode);
+[[nodiscard]] RunAccess fixed_run(command::Arbiter& arbiter, const runtime::StatusBoard& board,
+                                  std::string mode);
 
 // The board's view, its label copied.
 [[nodiscard]] LiveRun live_run(const runtime::StatusBoard& board);

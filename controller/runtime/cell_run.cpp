@@ -141,9 +141,9 @@ void CellRun::take_commands(double t, std::atomic<bool>& interrupt) {
 void CellRun::judge_reset(double t, supervisor::Command c, const journal::Text& source) {
   // Judged by the interlocks first: a reset in Aborted is refused before it clears anything.
   if (const auto why = supervisor::refusal(supervisor_->state(), c); !why.empty()) {
-    journal_.post(t, journal::Note{journal::Text::format("{} is not possible in state {}: {}",
-                                                         supervisor::to_string(c),
-                                                         supervisor::to_string(supervisor_->state()), why)});
+    journal_.post(
+        t, journal::Note{journal::Text::format("{} is not possible in state {}: {}", supervisor::to_string(c),
+                                               supervisor::to_string(supervisor_->state()), why)});
     return;
   }
   // The devices are told to clear their own latched faults (the converter's CMD System Reset) and

@@ -183,10 +183,10 @@ class CellRun {
     supervisor::Command command;
     journal::Text source;
   };
-  std::mutex request_mutex_;                         // the writers of request_sources_ (one at a time)
+  std::mutex request_mutex_;                        // the writers of request_sources_ (one at a time)
   wire::SpscQueue<Requested, 16> request_sources_;  // the loop reads it without the lock
   std::array<journal::Text, supervisor::kCommands> sources_{};  // the loop's: each command's last source
-  std::mutex note_mutex_;  // the writers of operator_notes_
+  std::mutex note_mutex_;                                       // the writers of operator_notes_
   wire::SpscQueue<journal::Note, 64> operator_notes_;
   // Feeds a note's parts into operator_notes_, waiting for room (not once the loop has ended).
   struct NoteQueueWriter final : journal::EventSink {

@@ -31,8 +31,8 @@ enum class Command : std::uint8_t { start, hold, unhold, stop, abort, reset, cle
 inline constexpr std::size_t kCommands = 7;
 
 [[nodiscard]] constexpr std::string_view to_string(State s) noexcept {
-  constexpr std::string_view names[] = {"Idle",     "Starting",   "Execute",  "Holding",   "Held",
-                                        "Unholding", "Stopping",  "Stopped",  "Aborting",  "Aborted",
+  constexpr std::string_view names[] = {"Idle",       "Starting", "Execute",   "Holding",  "Held",
+                                        "Unholding",  "Stopping", "Stopped",   "Aborting", "Aborted",
                                         "Completing", "Complete", "Resetting", "Clearing"};
   return names[static_cast<std::size_t>(s)];
 }

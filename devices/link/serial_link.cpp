@@ -1,7 +1,5 @@
 #include "link/serial_link.hpp"
 
-#include "link/crash_stop.hpp"
-
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/file.h>
@@ -14,6 +12,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "link/crash_stop.hpp"
 #include "link/fd_io.hpp"
 #include "link/link_error.hpp"
 

@@ -37,7 +37,8 @@ struct Cell {
       told.push_back(std::string(supervisor::to_string(c)) + " by " + s.words());
     };
     t.state = [this](State from, State to, const std::string&) {
-      told.push_back(std::string(supervisor::to_string(from)) + "->" + std::string(supervisor::to_string(to)));
+      told.push_back(std::string(supervisor::to_string(from)) + "->" +
+                     std::string(supervisor::to_string(to)));
     };
     t.note = [this](const std::string& n) { told.push_back("note: " + n); };
     return t;
@@ -58,7 +59,8 @@ TEST(Arbiter, AStartIsTakenInIdleAndTheJobThenOwnsTheState) {
   EXPECT_EQ(cell.arbiter.state(), State::execute);  // the job's
   const auto second = cell.start();
   EXPECT_EQ(second.how, How::refused);
-  EXPECT_EQ(second.text, "start is not possible in state Execute: a job is in progress: Start is taken only in Idle");
+  EXPECT_EQ(second.text,
+            "start is not possible in state Execute: a job is in progress: Start is taken only in Idle");
   EXPECT_EQ(cell.begun, 1);
 }
 
@@ -87,7 +89,8 @@ TEST(Arbiter, CompleteAndStoppedNeedAResetBeforeTheNextStart) {
     EXPECT_EQ(cell.start().how, How::done);
     EXPECT_EQ(cell.begun, 2);
     const std::vector<std::string> told{"reset by web 10.0.0.7:4242 (token #1)",
-                                        std::string(supervisor::to_string(end)) + "->Resetting", "Resetting->Idle"};
+                                        std::string(supervisor::to_string(end)) + "->Resetting",
+                                        "Resetting->Idle"};
     EXPECT_EQ(cell.told, told);
   }
 }

@@ -13,9 +13,9 @@ struct Row {
   const char* takes;
 };
 constexpr Row kTable[] = {
-    {State::idle, "Y--YY--"},      {State::starting, "---YYY-"}, {State::execute, "-Y-YYY-"},
-    {State::holding, "--YYYY-"},   {State::held, "--YYYY-"},     {State::unholding, "-Y-YYY-"},
-    {State::stopping, "----Y--"},  {State::stopped, "----YY-"},  {State::aborting, "-------"},
+    {State::idle, "Y--YY--"},      {State::starting, "---YYY-"},   {State::execute, "-Y-YYY-"},
+    {State::holding, "--YYYY-"},   {State::held, "--YYYY-"},       {State::unholding, "-Y-YYY-"},
+    {State::stopping, "----Y--"},  {State::stopped, "----YY-"},    {State::aborting, "-------"},
     {State::aborted, "------Y"},   {State::completing, "---YYY-"}, {State::complete, "----YY-"},
     {State::resetting, "----Y--"}, {State::clearing, "-------"},
 };
@@ -25,8 +25,8 @@ TEST(Interlock, EveryStateTakesExactlyTheCommandsOfTheTable) {
     for (std::size_t c = 0; c < kCommands; ++c) {
       const auto cmd = static_cast<Command>(c);
       const bool taken = refusal(row.state, cmd).empty();
-      EXPECT_EQ(taken, row.takes[c] == 'Y') << to_string(cmd) << " in " << to_string(row.state) << ": "
-                                            << refusal(row.state, cmd);
+      EXPECT_EQ(taken, row.takes[c] == 'Y')
+          << to_string(cmd) << " in " << to_string(row.state) << ": " << refusal(row.state, cmd);
     }
 }
 

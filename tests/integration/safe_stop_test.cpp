@@ -42,9 +42,9 @@ struct ScuSeen {
   std::uint64_t rc_at_f20 = 0;           // RC it had answered by then
   std::optional<double> rc_after_f20_t;  // it had answered an RC after the F20
   bool was_open = false;
-  std::optional<double> closed_t;        // remote mode closed (RA answered)
-  bool moving_at_close = false;          // an actuator of the plant moved then
-  std::optional<double> last_moving_t;   // an actuator of the plant last moved
+  std::optional<double> closed_t;       // remote mode closed (RA answered)
+  bool moving_at_close = false;         // an actuator of the plant moved then
+  std::optional<double> last_moving_t;  // an actuator of the plant last moved
 };
 
 class SafeStop : public FaultRun {
@@ -227,7 +227,8 @@ TEST_F(SafeStop, ScuLostAtRestIsObservedOnlyByARefreshAfterItsF20) {
   constexpr double at = 0.8;
   const auto r = run_faults({"scu:disconnect@0.8+0.2"}, at);
   ASSERT_FALSE(moving_at_fault_.value_or(true)) << "the fault must come while the axes stand still";
-  EXPECT_FALSE(scu_seen_.last_moving_t) << "an actuator moved after the fault, at " << *scu_seen_.last_moving_t;
+  EXPECT_FALSE(scu_seen_.last_moving_t)
+      << "an actuator moved after the fault, at " << *scu_seen_.last_moving_t;
   EXPECT_EQ(safe("scu"), "observed") << evidence("scu");
   ASSERT_TRUE(scu_seen_.f20_t) << "no F20 reached the SCU after its port came back";
   EXPECT_GE(*scu_seen_.f20_t, at + 0.2);
@@ -237,15 +238,15 @@ TEST_F(SafeStop, ScuLostAtRestIsObservedOnlyByARefreshAfterItsF20) {
   // The reply to that RC needs some ms on the line after the SCU answered it (the hook saw the answer
   // up to 1 ms late, the evidence is rounded to 1 ms): the margin is 1 ms.
   EXPECT_GE(*rest, *scu_seen_.rc_after_f20_t - 0.001)
-      << "rest reported from a refresh before the F20: F20 at " << *scu_seen_.f20_t << " s, first RC after it "
-      << *scu_seen_.rc_after_f20_t << " s; " << evidence("scu");
+      << "rest reported from a refresh before the F20: F20 at " << *scu_seen_.f20_t
+      << " s, first RC after it " << *scu_seen_.rc_after_f20_t << " s; " << evidence("scu");
   // The next keep-alive (100 ms) brings it: within two periods of the F20.
   EXPECT_LT(*rest, *scu_seen_.f20_t + 0.2) << evidence("scu");
   ASSERT_TRUE(scu_seen_.closed_t) << "remote mode never closed";
   EXPECT_GE(*scu_seen_.closed_t, *rest - 0.001) << "closed before the rest was seen";
   std::cout << "  [scu back at rest] F20 at " << *scu_seen_.f20_t << " s, first RC after it "
-            << *scu_seen_.rc_after_f20_t << " s, rest reported " << *rest << " s, closed " << *scu_seen_.closed_t
-            << " s, run " << r.duration_s << " s\n";
+            << *scu_seen_.rc_after_f20_t << " s, rest reported " << *rest << " s, closed "
+            << *scu_seen_.closed_t << " s, run " << r.duration_s << " s\n";
   EXPECT_FALSE(r.any_unknown());
 }
 
@@ -270,13 +271,14 @@ TEST_F(SafeStop, ScuBackWithAnActuatorRunningOnAfterItsF20IsObservedOnlyOnceItRe
   const auto rest = time_in(evidence("scu"), "every actuator reported at rest at ");
   ASSERT_TRUE(rest) << evidence("scu");
   // The refresh that shows rest was answered after z had stopped and needs some ms on the line.
-  EXPECT_GT(*rest, *scu_seen_.last_moving_t)
-      << "reported at rest while z still moved (until " << *scu_seen_.last_moving_t << " s): " << evidence("scu");
+  EXPECT_GT(*rest, *scu_seen_.last_moving_t) << "reported at rest while z still moved (until "
+                                             << *scu_seen_.last_moving_t << " s): " << evidence("scu");
   // Unhindered, z runs on for 0.4 s (2 mm at 5 mm/s); a remote mode closed early stops it sooner.
   EXPECT_GE(*scu_seen_.last_moving_t, *pushed + 0.35) << "z was stopped before it had run its 2 mm";
   EXPECT_LT(*rest, *scu_seen_.last_moving_t + 0.1 + 0.05) << "not within a keep-alive (100 ms) of z's rest";
   std::cout << "  [scu back, z running on] F20 at " << *scu_seen_.f20_t << " s, z moved until "
-            << *scu_seen_.last_moving_t << " s, rest reported " << *rest << " s, run " << r.duration_s << " s\n";
+            << *scu_seen_.last_moving_t << " s, rest reported " << *rest << " s, run " << r.duration_s
+            << " s\n";
   expect_axes_at_rest();
 }
 
@@ -293,7 +295,8 @@ TEST_F(SafeStop, ScuClosedWhileAnActuatorStillRunsDownIsBoundedByTheStoppingTime
   });
   ASSERT_TRUE(moving_at_fault_.value_or(false)) << "the stop must come while the axes move";
   ASSERT_TRUE(scu_seen_.closed_t) << "remote mode never closed";
-  ASSERT_TRUE(scu_seen_.moving_at_close) << "RA came when the plant was at rest already, at " << *scu_seen_.closed_t;
+  ASSERT_TRUE(scu_seen_.moving_at_close)
+      << "RA came when the plant was at rest already, at " << *scu_seen_.closed_t;
   EXPECT_EQ(safe("scu"), "bounded") << evidence("scu");
   EXPECT_NE(evidence("scu").find("while an actuator still moved"), std::string::npos) << evidence("scu");
   const auto closed = time_in(evidence("scu"), "remote mode closed at ");

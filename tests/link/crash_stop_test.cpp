@@ -36,7 +36,8 @@ struct Pipe {
     w = -1;
     std::vector<std::uint8_t> out;
     std::array<std::uint8_t, 256> buf{};
-    for (ssize_t n; (n = ::read(r, buf.data(), buf.size())) > 0;) out.insert(out.end(), buf.begin(), buf.begin() + n);
+    for (ssize_t n; (n = ::read(r, buf.data(), buf.size())) > 0;)
+      out.insert(out.end(), buf.begin(), buf.begin() + n);
     return out;
   }
 };

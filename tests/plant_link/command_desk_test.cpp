@@ -32,8 +32,8 @@ class CommandDeskTest : public ::testing::Test {
       config::load_cell_config(std::filesystem::path(CELLCTL_SOURCE_DIR) / "config/cell.yaml");
   command::State job_state_ = command::State::idle;  // the run's board before its first cycle
   command::Arbiter arbiter_{std::chrono::seconds(2), {}};
-  CommandDesk desk_{
-      cell_, std::filesystem::path(CELLCTL_SOURCE_DIR) / "tests/cli", access_of(arbiter_), std::chrono::seconds(1)};
+  CommandDesk desk_{cell_, std::filesystem::path(CELLCTL_SOURCE_DIR) / "tests/cli", access_of(arbiter_),
+                    std::chrono::seconds(1)};
   nlohmann::json submit(std::string_view word, std::string_view payload) {
     auto a = desk_.submit({word, payload, order().source, std::chrono::steady_clock::now(), std::nullopt},
                           "Execute");
@@ -69,10 +69,10 @@ TEST_F(CommandDeskTest, NamesWordsAndPayloadsThatAreNotCommandsAreRefused) {
   EXPECT_NE(submit("start", R"({})")["reason"].get<std::string>().find("needs the recipe's name"),
             std::string::npos);
   EXPECT_NE(submit("jump", "")["reason"].get<std::string>().find("is not a command"), std::string::npos);
-  EXPECT_NE(submit("hold", "not json")["reason"].get<std::string>().find("is no JSON"),
-            std::string::npos);
+  EXPECT_NE(submit("hold", "not json")["reason"].get<std::string>().find("is no JSON"), std::string::npos);
   // The interlocks: no hold before the run executes.
-  EXPECT_EQ(submit("hold", "")["reason"], "hold is not possible in state Idle: hold is taken only in Execute");
+  EXPECT_EQ(submit("hold", "")["reason"],
+            "hold is not possible in state Idle: hold is taken only in Execute");
   // Bounded before parsed: too deep, too large; neither echoed.
   const std::string deep = "{\"a\":" + std::string(20000, '[') + std::string(20000, ']') + "}";
   EXPECT_NE(submit("hold", deep)["reason"].get<std::string>().find("nests deeper than 32 levels"),
@@ -88,7 +88,8 @@ TEST_F(CommandDeskTest, AStartTheStateRefusesCostsNoValidation) {
   const auto a = submit("start", R"({"recipe":"bad-recipe"})");
   EXPECT_EQ(a["ok"], false);
   EXPECT_FALSE(a.contains("errors")) << "validated although the state refuses any start: " << a.dump();
-  EXPECT_EQ(a["reason"], "start is not possible in state Execute: a job is in progress: Start is taken only in Idle");
+  EXPECT_EQ(a["reason"],
+            "start is not possible in state Execute: a job is in progress: Start is taken only in Idle");
   EXPECT_NE(a["source"].get<std::string>().find("plant t/cmd"), std::string::npos) << a.dump();
 }
 
@@ -119,7 +120,8 @@ TEST_F(CommandDeskTest, AStandingControllerIsHandedTheCheckedStart) {
   CommandDesk desk(cell_, std::filesystem::path(CELLCTL_SOURCE_DIR) / "tests/cli", access,
                    std::chrono::seconds(1));
   const auto submit_to = [&](std::string_view word, std::string_view payload) {
-    return desk.submit({word, payload, order().source, std::chrono::steady_clock::now(), std::nullopt}, "Idle")
+    return desk
+        .submit({word, payload, order().source, std::chrono::steady_clock::now(), std::nullopt}, "Idle")
         .value();
   };
   EXPECT_EQ(submit_to("start", R"({"recipe":"short"})")["ok"], true);

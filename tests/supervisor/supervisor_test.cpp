@@ -273,7 +273,8 @@ TEST_F(SupervisorTest, StopThenResetReturnsToIdle) {
   EXPECT_FALSE(s.axes[0].moving);
   EXPECT_TRUE(s.spindle.at_rest);
   EXPECT_FALSE(sup_->command(Command::unhold, "operator", t()));
-  EXPECT_EQ(sup_->refusal().view(), "unhold is not possible in state Stopped: unhold is taken only in Held or Holding");
+  EXPECT_EQ(sup_->refusal().view(),
+            "unhold is not possible in state Stopped: unhold is taken only in Held or Holding");
   ASSERT_TRUE(sup_->command(Command::reset, "operator", t()));
   ASSERT_TRUE(run_to(State::idle, 1.0));
 }
