@@ -28,8 +28,9 @@ void RunNarrator::operator()(const nlohmann::json& j) {
     state_ = j.value("to", state_);
     screen_.message(fmt::format("{} {} → {}{}", at, j.value("from", "?"), state_,
                                 j.contains("reason") ? fmt::format(" ({})", j.value("reason", "")) : ""));
-  } else if (event == "command" && j.value("source", "") == "operator") {
+  } else if (event == "command" && j.value("command", "") != "start") {  // not the run's own start
     const auto cmd = j.value("command", "?");
+    const auto source = j.value("source", "");
     const char* what = cmd == "hold"
                            ? "the cell comes to rest and holds; type unhold to go on, or stop to end"
                        : cmd == "unhold" ? "checking the latched faults: Unholding follows, or a refusal"
@@ -37,7 +38,11 @@ void RunNarrator::operator()(const nlohmann::json& j) {
                        : cmd == "abort"  ? "the cell stops at once and the run ends"
                                          : "done";
     // An unhold is judged after it is journaled (a latched fault refuses it): received, not accepted.
-    screen_.message(fmt::format("{} {}: {} — {}", at, cmd, cmd == "unhold" ? "received" : "accepted", what));
+    // From the page or the plant: whose it was, so that the operator at the terminal knows.
+    const auto by =
+        source == "terminal" || source.empty() ? std::string() : fmt::format(" (from {})", source);
+    screen_.message(
+        fmt::format("{} {}{}: {} — {}", at, cmd, by, cmd == "unhold" ? "received" : "accepted", what));
   } else if (event == "note") {
     const auto text = j.value("text", "");
     if (contains(text, "operator typed")) return;  // the console has answered it

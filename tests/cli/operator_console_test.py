@@ -59,7 +59,7 @@ os.write(fd, b"HOLD\n")
 wait_for(r"hold: accepted")
 wait_for(r"Holding → Held")
 os.write(fd, b"foo\n")
-wait_for(r"'foo' is not a command: type hold, unhold, stop, abort or reset")
+wait_for(r"'foo' is not a command: type hold, unhold, stop, abort, reset or clear")
 os.write(fd, b"unhold\n")
 wait_for(r"Held → Unholding")
 os.write(fd, b"\x03")  # Ctrl-C through the terminal's line discipline: SIGINT
@@ -98,7 +98,7 @@ if "(interrupted by the stop)" not in text:
 events = [json.loads(l) for l in open(os.path.join(run_dir, "journal.jsonl"))]
 commands = [(e["command"], e["source"]) for e in events if e["event"] == "command"]
 notes = [e["text"] for e in events if e["event"] == "note"]
-for wanted in [("hold", "operator"), ("unhold", "operator"), ("stop", "operator")]:
+for wanted in [("hold", "terminal"), ("unhold", "terminal"), ("stop", "terminal")]:  # who commanded
     if wanted not in commands:
         failures.append(f"journal lacks command {wanted}: {commands}")
 if not any("operator typed 'foo'" in n for n in notes):
