@@ -164,7 +164,8 @@ long run_random(Start start, Target target, long fallback_count, std::uint64_t f
   return refused;
 }
 
-// 5 x 35 000 problems (CELLCTL_PLANNER_PROBLEMS sets the count per test, CELLCTL_PLANNER_SEED the seed).
+// 4 x 35 000 problems and 10 000 starts beyond the limits (CELLCTL_PLANNER_PROBLEMS sets the count per
+// test, CELLCTL_PLANNER_SEED the seed).
 TEST(AxisProfileRandom, RestToRestMatchesTheIndependentOptimum) {
   EXPECT_EQ(run_random(Start::at_rest, Target::at_rest, 35000, 1), 0);
 }
@@ -180,9 +181,10 @@ TEST(AxisProfileRandom, MovingTargetMatchesTheIndependentOptimum) {
 TEST(AxisProfileRandom, AcceleratingTargetMatchesTheIndependentOptimum) {
   EXPECT_EQ(run_random(Start::moving, Target::accelerating, 35000, 4), 0);
 }
-// Starts beyond the limits, velocity and acceleration either side: braked, then optimal.
+// Starts beyond the limits, velocity and acceleration either side: braked, then optimal. Fewer in the
+// suite: the brake oracle searches each start (about 6 ms a problem under ASan, 227 s for 35 000).
 TEST(AxisProfileRandom, StartBeyondTheLimitsMatchesTheIndependentOptimum) {
-  EXPECT_EQ(run_random(Start::beyond_limits, Target::moving, 35000, 7), 0);
+  EXPECT_EQ(run_random(Start::beyond_limits, Target::moving, 10000, 7), 0);
 }
 
 }  // namespace
