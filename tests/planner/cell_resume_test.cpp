@@ -117,60 +117,63 @@ Trajectory<kAxes> expect_planned(const Move& m, const std::string& what) {
   return t;
 }
 
+// Seeded cases over the cell's own axes: a first move from rest, planned; `resume` turns it into the
+// state a second plan starts from (drawing what it needs from the generator); that plan must succeed
+// and be exact. Says how many axes had to brake first.
+template <class Resume>
+void resume_cases(std::uint64_t default_seed, const char* what, Resume resume) {
+  const std::vector<config::AxisConfig> axes = cell_axes();
+  ASSERT_GE(axes.size(), static_cast<std::size_t>(kAxes));
+  const std::uint64_t seed = testing::problem_seed(default_seed);
+  std::mt19937_64 rng(seed);
+  const long count = testing::problem_count(20000) / 10;
+  long overshooting = 0;
+  for (long c = 0; c < count && !::testing::Test::HasFailure(); ++c) {
+    const Move first = move_from(axes, at_rest_in_travel(axes, rng), rng);
+    const Trajectory<kAxes> t = expect_planned(first, std::string("the move before ") + what);
+    const Move next = move_from(axes, resume(axes, t, rng), rng);
+    for (const oracle::Problem& p : next.problems) overshooting += oracle::braked(p).delay > 0.0 ? 1 : 0;
+    expect_planned(next,
+                   std::string(what) + " of case " + std::to_string(c) + " seed " + std::to_string(seed));
+  }
+  std::printf("%ld cases of %s (seed %llu), %ld axes braked first\n", count, what,
+              static_cast<unsigned long long>(seed), overshooting);
+}
+
 // An unhold while the hold still brakes: the move's planned state when the hold came (its
 // acceleration taken as zero, as MoveExecutor::hold does), braked at each axis's ramp for a random
 // part of its stop, is where the move resumes to its targets.
 TEST(CellResume, AnUnholdDuringTheBrakeIsAlwaysPlanned) {
-  const std::vector<config::AxisConfig> axes = cell_axes();
-  ASSERT_GE(axes.size(), static_cast<std::size_t>(kAxes));
-  const std::uint64_t seed = testing::problem_seed(23);
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
-  const long count = testing::problem_count(20000) / 10;
-  long overshooting = 0;
-  for (long c = 0; c < count && !::testing::Test::HasFailure(); ++c) {
-    const Move first = move_from(axes, at_rest_in_travel(axes, rng), rng);
-    const Trajectory<kAxes> t = expect_planned(first, "the move before the hold");
-    const double held_at = t.duration() * u01(rng);
-    std::array<MotionState, kAxes> resumed{};
-    for (int i = 0; i < kAxes; ++i) {
-      const MotionState s = t.profile(i).at(held_at);
-      const double ramp = axes[static_cast<std::size_t>(i)].max_accel_mm_s2;
-      const double stop_s = std::abs(s.velocity) / ramp;
-      const double since = stop_s * u01(rng);
-      const double decel = -std::copysign(ramp, s.velocity);
-      resumed[static_cast<std::size_t>(i)] = {s.position + s.velocity * since + 0.5 * decel * since * since,
-                                              s.velocity + decel * since, since < stop_s ? decel : 0.0};
-    }
-    const Move resume = move_from(axes, resumed, rng);
-    for (const oracle::Problem& p : resume.problems) overshooting += oracle::braked(p).delay > 0.0 ? 1 : 0;
-    expect_planned(resume, "the unhold of case " + std::to_string(c) + " seed " + std::to_string(seed));
-  }
-  std::printf("%ld unholds (seed %llu), %ld axes braked first\n", count,
-              static_cast<unsigned long long>(seed), overshooting);
+  resume_cases(
+      23, "the unhold",
+      [](const std::vector<config::AxisConfig>& axes, const Trajectory<kAxes>& t, std::mt19937_64& rng) {
+        std::uniform_real_distribution<double> u01(0.0, 1.0);
+        const double held_at = t.duration() * u01(rng);
+        std::array<MotionState, kAxes> resumed{};
+        for (int i = 0; i < kAxes; ++i) {
+          const MotionState s = t.profile(i).at(held_at);
+          const double ramp = axes[static_cast<std::size_t>(i)].max_accel_mm_s2;
+          const double stop_s = std::abs(s.velocity) / ramp;
+          const double since = stop_s * u01(rng);
+          const double decel = -std::copysign(ramp, s.velocity);
+          resumed[static_cast<std::size_t>(i)] = {
+              s.position + s.velocity * since + 0.5 * decel * since * since, s.velocity + decel * since,
+              since < stop_s ? decel : 0.0};
+        }
+        return resumed;
+      });
 }
 
 // A new target (and speed) while moving: from the planner's state at a random time of the move.
 TEST(CellResume, ANewTargetWhileMovingIsAlwaysPlanned) {
-  const std::vector<config::AxisConfig> axes = cell_axes();
-  ASSERT_GE(axes.size(), static_cast<std::size_t>(kAxes));
-  const std::uint64_t seed = testing::problem_seed(24);
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
-  const long count = testing::problem_count(20000) / 10;
-  long overshooting = 0;
-  for (long c = 0; c < count && !::testing::Test::HasFailure(); ++c) {
-    const Move first = move_from(axes, at_rest_in_travel(axes, rng), rng);
-    const Trajectory<kAxes> t = expect_planned(first, "the first move");
-    const double at = t.duration() * u01(rng);
-    std::array<MotionState, kAxes> moving{};
-    for (int i = 0; i < kAxes; ++i) moving[static_cast<std::size_t>(i)] = t.profile(i).at(at);
-    const Move next = move_from(axes, moving, rng);
-    for (const oracle::Problem& p : next.problems) overshooting += oracle::braked(p).delay > 0.0 ? 1 : 0;
-    expect_planned(next, "the new target of case " + std::to_string(c) + " seed " + std::to_string(seed));
-  }
-  std::printf("%ld new targets (seed %llu), %ld axes braked first\n", count,
-              static_cast<unsigned long long>(seed), overshooting);
+  resume_cases(24, "the new target",
+               [](const std::vector<config::AxisConfig>&, const Trajectory<kAxes>& t, std::mt19937_64& rng) {
+                 std::uniform_real_distribution<double> u01(0.0, 1.0);
+                 const double at = t.duration() * u01(rng);
+                 std::array<MotionState, kAxes> moving{};
+                 for (int i = 0; i < kAxes; ++i) moving[static_cast<std::size_t>(i)] = t.profile(i).at(at);
+                 return moving;
+               });
 }
 
 }  // namespace

@@ -33,14 +33,7 @@ class BrokerSecurityTest : public ::testing::Test {
     std::filesystem::remove_all(dir_);
     broker_ = std::make_unique<MqttBroker>(dir_ / "broker", broker_options_);
     broker_->start();
-    link_config_.port = broker_->port();
-    link_config_.cell = cell_.name;
-    link_config_.client_id = "cellctl-under-test";
-    link_config_.username = "cellctl";
-    link_config_.password = "cell-secret";
-    link_config_.topic_prefix = MqttBroker::kPrefix;
-    link_config_.reconnect_min = 20ms;
-    link_config_.reconnect_max = 200ms;
+    link_config_ = test_link_config(*broker_, cell_.name);
     mes_ = std::make_unique<MqttProbe>(broker_->port(), "mes", MqttBroker::kMesPassword,
                                        std::string(MqttBroker::kPrefix) + "/#");
     ASSERT_EQ(mes_->wait_connack(), 0);

@@ -12,6 +12,7 @@
 
 #include "mqtt_broker.hpp"
 #include "mqtt_probe.hpp"
+#include "plant_link/link_config.hpp"
 
 namespace cellctl::testing {
 
@@ -45,6 +46,22 @@ inline std::filesystem::path write_cell_with_plant_link(const std::filesystem::p
           "\n";
   std::ofstream(dir / "cell.yaml") << cell;
   return dir / "cell.yaml";
+}
+
+// The link as the tests run it against `broker`: the controller's account, the test prefix, a quick
+// back-off (a restarted broker is found again within 200 ms).
+inline plant_link::LinkConfig test_link_config(const MqttBroker& broker, const std::string& cell) {
+  using namespace std::chrono_literals;
+  plant_link::LinkConfig c;
+  c.port = broker.port();
+  c.cell = cell;
+  c.client_id = "cellctl-under-test";
+  c.username = "cellctl";
+  c.password = "cell-secret";
+  c.topic_prefix = MqttBroker::kPrefix;
+  c.reconnect_min = 20ms;
+  c.reconnect_max = 200ms;
+  return c;
 }
 
 }  // namespace cellctl::testing
