@@ -21,6 +21,8 @@ std::vector<AxisConfig> parse_axes(const YamlNode& list) {
     if (a.name.empty() ||
         !std::all_of(a.name.begin(), a.name.end(), [](char c) { return std::isalnum(c) || c == '_'; }))
       n.at("name").fail("an axis name is letters, digits and '_'");
+    if (a.name.size() > kAxisNameMax)
+      n.at("name").fail(fmt::format("an axis name has at most {} characters", kAxisNameMax));
     for (const auto& other : axes)
       if (other.name == a.name) n.at("name").fail(fmt::format("axis '{}' is defined twice", a.name));
     a.actuator = n.int_in<int>("actuator", 1, 6);

@@ -11,6 +11,10 @@
 
 namespace cellctl::config {
 
+// An axis name is quoted in refusals, faults and notes: bounded so that those texts are never cut
+// (journal::Text's capacity assumes it).
+inline constexpr std::size_t kAxisNameMax = 16;
+
 struct AxisConfig {
   std::string name;
   int actuator = 1;           // SCU actuator 1..6

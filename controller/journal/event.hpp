@@ -15,15 +15,24 @@ namespace cellctl::journal {
 inline constexpr std::size_t kMaxAxes = 6;
 
 // Fixed-capacity text, formatted in place: fmt::format_to_n never allocates and never overflows.
+// The capacity holds every message the program composes whole (issue 22: a 160-octet text cut the
+// advice off refusals and faults): a message template renders at most kLongestMessage octets at its
+// longest arguments, a text that wraps another adds at most kLongestWrapping, and three such layers
+// still fit. tests/journal/message_length_test.cpp walks every template in the sources to hold this.
 struct Text {
-  std::array<char, 160> chars{};
-  std::uint8_t size = 0;
+  static constexpr std::size_t kLongestMessage = 480;
+  static constexpr std::size_t kLongestWrapping = 160;
+  static constexpr std::size_t kCapacity = 1022;  // with `size`, 1 KiB
+  static_assert(kLongestMessage + 3 * kLongestWrapping <= kCapacity);
+
+  std::array<char, kCapacity> chars{};
+  std::uint16_t size = 0;
 
   template <class... Args>
   static Text format(fmt::format_string<Args...> f, Args&&... args) {
     Text t;
     const auto r = fmt::format_to_n(t.chars.data(), t.chars.size(), f, std::forward<Args>(args)...);
-    t.size = static_cast<std::uint8_t>(std::min<std::size_t>(r.size, t.chars.size()));
+    t.size = static_cast<std::uint16_t>(std::min<std::size_t>(r.size, t.chars.size()));
     return t;
   }
   [[nodiscard]] std::string_view view() const noexcept { return {chars.data(), size}; }

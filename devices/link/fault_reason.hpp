@@ -13,7 +13,8 @@
 
 namespace cellctl::link {
 
-inline constexpr std::size_t kFaultReasonCapacity = 256;
+// As journal::Text's capacity: a fault reason is quoted whole in the journal, the terminal and MQTT.
+inline constexpr std::size_t kFaultReasonCapacity = 1024;
 
 template <class... Args>
 void assign_formatted(std::string& out, fmt::format_string<Args...> format, Args&&... args) {

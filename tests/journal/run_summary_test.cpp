@@ -27,8 +27,8 @@ TEST(RunSummary, AddsUpRepeatedStepsAndListsFaults) {
 }
 
 TEST(Text, NeverOverflows) {
-  const auto t = Text::format("{}", std::string(500, 'a'));
-  EXPECT_EQ(t.view().size(), 160u);
+  const auto t = Text::format("{}", std::string(Text::kCapacity + 100, 'a'));
+  EXPECT_EQ(t.view().size(), Text::kCapacity);
 }
 
 }  // namespace
