@@ -8,7 +8,10 @@
 #include <stdexcept>
 #include <variant>
 
+#include "web/answer_status.hpp"
+#include "web/client_watch.hpp"
 #include "web/fault_remedy.hpp"
+#include "web/hand_over.hpp"
 #include "web/page_html.hpp"
 #include "web/page_server.hpp"
 
@@ -57,7 +60,7 @@ OperatorPage::OperatorPage(PageOptions options, const config::CellCore& cell, pl
       run_(std::move(run)),
       guard_(options_),
       mirror_(cell, run_.mode),
-      desk_(cell, options_.recipes, run_, std::chrono::milliseconds(2000)) {
+      desk_(cell, options_.recipes, starts_for_present_clients(run_), std::chrono::milliseconds(2000)) {
   // The command line refuses a token shorter than kMinTokenBytes (page_token.hpp).
   if (options_.token.empty()) throw std::invalid_argument("the operator page needs a token");
   if (const auto problem = listen_problem(options_); !problem.empty()) throw std::runtime_error(problem);
@@ -179,15 +182,26 @@ void OperatorPage::route() {
     if (!caller) return refuse(res, {401, "the session has ended: log in again"});
     const command::CommandSource source{command::CommandSource::Origin::web,
                                         fmt::format("{}:{}", req.remote_addr, req.remote_port), caller->who};
-    if (!brings_to_rest(word) && client_gone(req)) {
+    const auto reply = [&res](const nlohmann::json& a) {
+      res.status = answer_status(a);
+      res.set_content(a.dump(), "application/json");
+    };
+    if (brings_to_rest(word)) return reply(command(word, body, source, received));
+    // Asked before the command desk and again at the hand-over (hand_over.hpp).
+    const ClientWatch client(req);
+    const auto abandon = [&] {
       ++commands_abandoned_;
       // Journaled by the arbiter as never obeyed, so the record shows who sent it.
       run_.arbiter->ignore(fmt::format("{} from {} not obeyed: its client had gone", word, source.words()));
-      return res.set_content(
-          plant_link::answer(word, nullptr, false, "not obeyed: its client has gone").dump(),
-          "application/json");
+    };
+    if (client.gone()) {
+      abandon();
+      return reply(plant_link::answer(word, nullptr, false, std::string(kClientGone)));
     }
-    res.set_content(command(word, body, source, received).dump(), "application/json");
+    const ClientAtHandOver at_hand_over([&client] { return client.gone(); });
+    const auto answer = command(word, body, source, received);
+    if (at_hand_over.abandoned()) abandon();
+    reply(answer);
   });
   s.Get("/metrics", [this](const httplib::Request&, httplib::Response& res) {
     res.set_content(metrics_text(), "text/plain; version=0.0.4");

@@ -9,8 +9,10 @@
 // Origin, size, the token or the session, the back-off of wrong tokens); the server is set up so that
 // a stop always has a worker (page_server.hpp). Live-event readers are capped (max_streams; more
 // are answered 503 at once). A command is stamped when its headers are read, and one that could set
-// the cell moving is not handed over when its client has gone by then; a stop, an abort or a hold
-// always is.
+// the cell moving is not obeyed when its client has gone — asked when its worker takes it up and
+// again at the hand-over (hand_over.hpp) — counted in the arbiter's `ignored`; a stop, an abort or a
+// hold always is obeyed. Answers carry their kind in the HTTP status (answer_status.hpp: 409 refused
+// by the state, 410 expired or abandoned, …), the words in the JSON body.
 //
 // Like the plant link, it never touches the control loop: the run's events come from the journal's
 // writer thread through a bounded lock-free queue, the status from the run's StatusBoard, commands go

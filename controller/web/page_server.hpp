@@ -23,7 +23,6 @@
 
 namespace httplib {
 class Server;
-struct Request;
 }  // namespace httplib
 
 namespace cellctl::web {
@@ -31,10 +30,5 @@ namespace cellctl::web {
 inline constexpr std::size_t kCommandWorkers = 4;
 
 [[nodiscard]] std::unique_ptr<httplib::Server> make_page_server(const PageOptions& options);
-
-// Whether the client of a request being handled has closed its connection: a command whose
-// client has gone is not obeyed. httplib 0.11 (Debian 12) gives a handler no socket: under TLS it is
-// the request's SSL's, else the process's socket with the request's two addresses.
-[[nodiscard]] bool client_gone(const httplib::Request& req);
 
 }  // namespace cellctl::web

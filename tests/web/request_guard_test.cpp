@@ -72,6 +72,24 @@ TEST(RequestGuard, TokenOrSessionBeforeTheBodysSize) {
   EXPECT_EQ(guard.admit(request("PUT", "/cmd/stop")).status, 405);
 }
 
+TEST(RequestGuard, ACommandWithAWrongTokenOfTheRightLengthIsRefused) {
+  RequestGuard guard(options());
+  std::string wrong = kToken;
+  wrong.back() = wrong.back() == '4' ? '5' : '4';  // one byte off: the comparison must read every byte
+  for (const auto* header : {"X-Cellctl-Token", "Authorization"}) {
+    auto stop = request("POST", "/cmd/stop");
+    stop.set_header("Content-Length", "2");
+    stop.set_header(header, std::string(header[0] == 'A' ? "Bearer " : "") + wrong);
+    EXPECT_EQ(guard.admit(stop).status, 401) << header;
+    EXPECT_FALSE(guard.caller(stop)) << header;
+  }
+  EXPECT_EQ(guard.counters().wrong_tokens, 2u);
+  auto right = request("POST", "/cmd/stop");
+  right.set_header("Content-Length", "2");
+  right.set_header("X-Cellctl-Token", kToken);
+  EXPECT_EQ(guard.admit(right).status, 0);
+}
+
 TEST(RequestGuard, LoginGivesASessionThatCommandsAndEventsAcceptUntilLogout) {
   RequestGuard guard(options());
   auto login = request("POST", "/login");
