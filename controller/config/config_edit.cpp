@@ -128,11 +128,12 @@ std::string edit_section(std::string_view text, std::string_view section,
   return out;
 }
 
-ConfigChange change_config_file(const std::filesystem::path& path, std::string_view section,
-                                const std::vector<KeyChange>& changes) {
-  const std::string old_text = read_file(path);
-  const std::string new_text = edit_section(old_text, section, changes);
-  ConfigChange result;
+namespace {
+
+// What `changes` change in `section` of `old_text`, one "section.key: before → after" per key.
+std::vector<std::string> changed_keys(std::string_view old_text, std::string_view section,
+                                      const std::vector<KeyChange>& changes) {
+  std::vector<std::string> changed;
   const auto old_lines = split_lines(old_text);
   const auto old_section = find_section(old_lines, section);
   for (const auto& c : changes) {
@@ -140,19 +141,44 @@ ConfigChange change_config_file(const std::filesystem::path& path, std::string_v
     const std::string before =
         at ? value_of(old_lines[*at], old_section.key_indent + c.key.size() + 1) : std::string("(none)");
     const std::string after = c.value.value_or("(removed)");
-    if (before != after)
-      result.changed.push_back(fmt::format("{}.{}: {} → {}", section, c.key, before, after));
+    if (before != after) changed.push_back(fmt::format("{}.{}: {} → {}", section, c.key, before, after));
   }
-  // Same folder, so the rename is atomic; the loader judges the new text before it counts.
+  return changed;
+}
+
+// `text` into a temporary file beside `path` that the loader has accepted; the caller renames it.
+std::filesystem::path checked_temp(const std::filesystem::path& path, std::string_view text) {
   auto temp = path;
   temp += fmt::format(".new-{}", ::getpid());
-  write_synced(temp, new_text);
+  write_synced(temp, text);
   try {
     (void)load_cell_config(temp);
   } catch (...) {
     std::filesystem::remove(temp);
     throw;
   }
+  return temp;
+}
+
+void rename_over(const std::filesystem::path& temp, const std::filesystem::path& path) {
+  std::error_code ec;
+  std::filesystem::rename(temp, path, ec);
+  if (ec) {
+    std::filesystem::remove(temp);
+    throw std::runtime_error(fmt::format("{}: cannot be replaced: {}", path.string(), ec.message()));
+  }
+}
+
+}  // namespace
+
+ConfigChange change_config_file(const std::filesystem::path& path, std::string_view section,
+                                const std::vector<KeyChange>& changes) {
+  const std::string old_text = read_file(path);
+  const std::string new_text = edit_section(old_text, section, changes);
+  ConfigChange result;
+  result.changed = changed_keys(old_text, section, changes);
+  // Same folder, so the rename is atomic; the loader judges the new text before it counts.
+  const auto temp = checked_temp(path, new_text);
   result.backup = path;
   result.backup += ".bak";
   try {
@@ -161,13 +187,25 @@ ConfigChange change_config_file(const std::filesystem::path& path, std::string_v
     std::filesystem::remove(temp);
     throw;
   }
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
-  if (ec) {
-    std::filesystem::remove(temp);
-    throw std::runtime_error(fmt::format("{}: cannot be replaced: {}", path.string(), ec.message()));
-  }
+  rename_over(temp, path);
   return result;
+}
+
+ConfigChange change_config_copy(const std::filesystem::path& source, const std::filesystem::path& destination,
+                                std::string_view section, const std::vector<KeyChange>& changes) {
+  const std::string old_text = read_file(source);
+  ConfigChange result;
+  result.changed = changed_keys(old_text, section, changes);
+  if (destination.has_parent_path()) std::filesystem::create_directories(destination.parent_path());
+  rename_over(checked_temp(destination, edit_section(old_text, section, changes)), destination);
+  return result;
+}
+
+void replace_file(const std::filesystem::path& path, std::string_view text) {
+  auto temp = path;
+  temp += fmt::format(".new-{}", ::getpid());
+  write_synced(temp, text);
+  rename_over(temp, path);
 }
 
 }  // namespace cellctl::config

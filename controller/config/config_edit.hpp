@@ -35,4 +35,13 @@ struct ConfigChange {
 ConfigChange change_config_file(const std::filesystem::path& path, std::string_view section,
                                 const std::vector<KeyChange>& changes);
 
+// The same change, written to `destination` instead (a dry run's copy, e.g. state/config.dry-run.yaml:
+// folders made, replaced whole): `source` is only read, and no backup is made (`backup` stays empty).
+ConfigChange change_config_copy(const std::filesystem::path& source, const std::filesystem::path& destination,
+                                std::string_view section, const std::vector<KeyChange>& changes);
+
+// `text` as the whole file at `path`: written to a temporary file in the same folder, flushed to disk
+// and renamed over `path`, so a crash leaves the old or the new file. Throws std::runtime_error.
+void replace_file(const std::filesystem::path& path, std::string_view text);
+
 }  // namespace cellctl::config

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "encoder/scaling.hpp"
+#include "runtime/plant_state.hpp"
 
 namespace cellctl::runtime {
 namespace {
@@ -23,7 +24,22 @@ double mm_per_revolution(const config::EncoderSection& e, const PlantConfig& pla
 
 }  // namespace
 
-EmulatedCell::EmulatedCell(const config::CellConfig& cell, const EmulatorSetup& setup, DeviceLinks links) {
+namespace {
+
+EmulatorSetup starting_state(const EmulatorSetup& setup) {
+  if (setup.plant_state_file.empty()) return setup;
+  auto state = load_plant_state(setup.plant_state_file);
+  if (setup.power_cycle) state = power_cycled(state);
+  EmulatorSetup started = setup;
+  start_from(started, state);
+  return started;
+}
+
+}  // namespace
+
+EmulatedCell::EmulatedCell(const config::CellConfig& cell, const EmulatorSetup& given, DeviceLinks links)
+    : plant_state_file_(given.plant_state_file) {
+  const EmulatorSetup setup = starting_state(given);
   if (links.scu && setup.scu) scu_ = std::make_unique<scu::Emulator>(*links.scu, *setup.scu);
   if (links.spindle && setup.spindle)
     spindle_ = std::make_unique<spindle::Emulator>(*links.spindle, *setup.spindle);
@@ -42,6 +58,11 @@ EmulatedCell::EmulatedCell(const config::CellConfig& cell, const EmulatorSetup& 
                    [&actuator] { return actuator.true_position_mm(); });
     encoder_ = std::make_unique<encoder::Emulator>(*links.encoder, *setup.encoder, *shaft_);
   }
+}
+
+EmulatedCell::~EmulatedCell() {
+  // A failed save loses only the dry runs' continuity: the next one starts as after a power loss.
+  if (!plant_state_file_.empty()) (void)save_plant_state(plant_state_file_, plant_state_of(*this));
 }
 
 void EmulatedCell::poll(link::TimePoint now) {

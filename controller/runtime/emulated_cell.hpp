@@ -22,7 +22,12 @@ namespace cellctl::runtime {
 class EmulatedCell {
  public:
   // Throws std::invalid_argument / std::runtime_error from an emulator's set-up (config time).
+  // With setup.plant_state_file, the emulators start from the state kept there (runtime/plant_state).
   EmulatedCell(const config::CellConfig& cell, const EmulatorSetup& setup, DeviceLinks links);
+  // Keeps the plant's state in setup.plant_state_file, if any, for the next dry run.
+  ~EmulatedCell();
+  EmulatedCell(const EmulatedCell&) = delete;
+  EmulatedCell& operator=(const EmulatedCell&) = delete;
 
   // Steps every emulator (and so the plant) to `now` and answers what has arrived.
   void poll(link::TimePoint now);
@@ -38,6 +43,7 @@ class EmulatedCell {
   std::unique_ptr<spindle::Emulator> spindle_;
   std::optional<plant::Shaft> shaft_;
   std::unique_ptr<encoder::Emulator> encoder_;
+  std::filesystem::path plant_state_file_;
 };
 
 }  // namespace cellctl::runtime

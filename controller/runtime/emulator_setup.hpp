@@ -5,6 +5,7 @@
 // ramps and scale error, the converter's motor and identification, the encoder's resolution and
 // EEPROM file — and the plant that couples them (the encoder's shaft slip).
 
+#include <filesystem>
 #include <optional>
 
 #include "config/cell_config.hpp"
@@ -32,6 +33,12 @@ struct EmulatorSetup {
   std::optional<spindle::EmulatorConfig> spindle;
   std::optional<encoder::EmulatorConfig> encoder;
   PlantConfig plant;
+  // Where the emulated plant keeps its state between runs (runtime/plant_state.hpp): read when the
+  // emulators are built, written when they are destroyed. Empty: they start as after power-up and
+  // keep nothing (the library's default, so tests stay independent of each other).
+  std::filesystem::path plant_state_file;
+  // The kept state is read as after a power loss: rods where they were, nothing initialised.
+  bool power_cycle = false;
 };
 
 // Each throws config::ConfigError (file:line:column: field: rule) on an unknown key or a value out of

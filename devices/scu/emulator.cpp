@@ -51,7 +51,7 @@ Emulator::Emulator(link::Link& link, const EmulatorConfig& config) : link_(link)
 
 void Emulator::power_cycle() {
   stop_all(false);
-  initialised_ = config_.initialised;
+  initialised_ = {};  // lost whatever the emulator started with (EmulatorConfig::initialised)
   remote_open_ = rc_seen_ = lapsed_ = false;
   running_ = {};
   owner_.fill(-1);

@@ -47,6 +47,9 @@ class Emulator {
   [[nodiscard]] StatusValues status_values() const noexcept;
   [[nodiscard]] Identification identification() const noexcept;
   [[nodiscard]] const SetStart& start_parameters() const noexcept { return start_parameters_; }
+  // The operating-hour counters (P25, P26) to the fraction, to carry them into the next emulator.
+  [[nodiscard]] double converter_hours() const noexcept { return converter_seconds_ / 3600.0; }
+  [[nodiscard]] double motor_hours() const noexcept { return motor_seconds_ / 3600.0; }
   // Well-formed frames it acted on, and frames it rejected (and so left unanswered).
   [[nodiscard]] std::uint64_t frames_handled() const noexcept { return frames_handled_; }
   [[nodiscard]] std::uint64_t frames_rejected() const noexcept { return frames_rejected_; }
