@@ -12,12 +12,13 @@
 #include "link/clock.hpp"
 #include "link/pty_pair.hpp"
 #include "link/tracing_link.hpp"
+#include "runtime/dry_run_state.hpp"
 #include "runtime/emulated_cell.hpp"
 
 namespace cellctl::cli {
 namespace {
 
-int run_emulate(const GlobalOptions& global) {
+int run_emulate(const GlobalOptions& global, bool power_cycle) {
   const auto cell = config::load_cell_config(global.config);
   // Every path is locked before any link is published, so a refused emulation publishes nothing;
   // declared before the pseudo-terminals, each lock is held until its link has been removed.
@@ -42,7 +43,10 @@ int run_emulate(const GlobalOptions& global) {
   if (cell.scu) publish("scu", cell.scu->port, links.scu);
   if (cell.spindle) publish("spindle", cell.spindle->port, links.spindle);
   if (cell.encoder) publish("encoder", cell.encoder->port, links.encoder);
-  const auto setup = runtime::load_emulator_setup(cell);
+  // The emulated cell stays powered between emulations, as the dry runs' plant (one per state folder).
+  const auto setup = runtime::dry_run_emulator_setup(cell, cell.state_dir, power_cycle);
+  fmt::print("plant    {}{}\n", setup.plant_state_file.string(),
+             power_cycle ? " (after a power cycle: no actuator initialised)" : "");
   runtime::EmulatedCell emulated(cell, setup, links);
   fmt::print("Ctrl-C ends the emulation.\n");
   std::fflush(stdout);
@@ -62,7 +66,17 @@ void add_emulate_command(CLI::App& app, Commands& commands) {
                                  "Run the cell's devices as emulators on pseudo-terminals (published at each "
                                  "device's publish_as) until Ctrl-C; refuses a publish_as another live "
                                  "emulation holds");
-  commands.on(sub, [&commands] { return run_emulate(commands.global); });
+  sub->footer(
+      "The emulated plant keeps its state between emulations and dry runs, as a powered cell does: the\n"
+      "SCU's actuator positions and initialised bits and the spindle's hours in "
+      "<state_dir>/plant.dry-run.json,\n"
+      "the encoder's EEPROM in encoder.emulator.state_file (else <state_dir>/encoder.dry-run.eeprom).\n"
+      "--power-cycle starts it as after a power loss: the rods where they were, no actuator initialised\n"
+      "(a recipe's `require: homed` then refuses until the axes are homed again).");
+  auto power_cycle = std::make_shared<bool>(false);
+  sub->add_flag("--power-cycle", *power_cycle,
+                "Start the emulated cell as after a power loss (no SCU actuator initialised)");
+  commands.on(sub, [&commands, power_cycle] { return run_emulate(commands.global, *power_cycle); });
 }
 
 }  // namespace cellctl::cli

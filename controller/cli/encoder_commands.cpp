@@ -13,6 +13,7 @@
 #include "config/config_edit.hpp"
 #include "encoder/commissioning_parameters.hpp"
 #include "encoder/session.hpp"
+#include "runtime/dry_run_state.hpp"
 
 namespace cellctl::cli {
 namespace {
@@ -25,6 +26,7 @@ struct EncoderOptions : DeviceOptions {
   EncoderOptions() { timeout_s = 10.0; }
   std::uint32_t value = 0;  // preset value or new address
   std::string direction = "cw";
+  std::optional<std::string> write_config;  // preset, direction: record the change in this file
 };
 
 std::string bits_text(std::uint16_t bits,
@@ -104,20 +106,45 @@ void print_diag(const encoder::Snapshot& s) {
   fmt::print("serial         {}\n", std::string(x.serial.begin(), x.serial.end()));
 }
 
-// A preset or a direction change lives in the encoder's EEPROM and changes every position the next
-// run reads: it is recorded in the config's encoder section, where every run's start-up checks it.
-int record(const std::filesystem::path& config, const std::vector<config::KeyChange>& changes) {
+// Where a preset or a direction change is recorded. It lives in the encoder's EEPROM and changes every
+// position the next run reads, so it belongs in the config's encoder section, where every run's
+// start-up checks it — but only in the config of the encoder that was changed: a command that talked
+// to another port than the config names (--port: an emulator's pseudo-terminal, a bench encoder) is a
+// rehearsal, and a config that names hardware ports is never rewritten from it. Its change goes to the
+// dry-run copy <state_dir>/config.dry-run.yaml instead, printed, unless --write-config names the file
+// deliberately.
+struct ConfigTarget {
+  std::filesystem::path config;             // the cell's config (-c)
+  std::filesystem::path state_dir;          // the cell's state folder, for the dry-run copy
+  bool talked_to_configured = true;         // the command used the port the config names
+  std::optional<std::string> write_config;  // --write-config FILE
+};
+
+int record(const ConfigTarget& target, const std::vector<config::KeyChange>& changes) {
+  const bool own = target.write_config || target.talked_to_configured;
+  const std::filesystem::path file =
+      target.write_config ? std::filesystem::path(*target.write_config) : target.config;
   try {
-    const auto change = config::change_config_file(config, "encoder", changes);
-    for (const auto& line : change.changed) fmt::print("config         {}\n", line);
-    fmt::print("config         {} written (the previous one kept as {})\n", config.string(),
-               change.backup.string());
+    if (own) {
+      const auto change = config::change_config_file(file, "encoder", changes);
+      for (const auto& line : change.changed) fmt::print("config         {}\n", line);
+      fmt::print("config         {} written (the previous one kept as {})\n", file.string(),
+                 change.backup.string());
+      return kExitOk;
+    }
+    const auto copy = runtime::dry_run_config_file(target.state_dir);
+    const auto change = config::change_config_copy(target.config, copy, "encoder", changes);
+    for (const auto& line : change.changed) fmt::print("dry run        {}\n", line);
+    fmt::print(
+        "dry run        {} is left as it was: this encoder is not on the port it names (--port). The change "
+        "is in {}; to record it in a config deliberately: the same command with --write-config FILE\n",
+        target.config.string(), copy.string());
     return kExitOk;
   } catch (const std::exception& e) {
     spdlog::error(
         "the encoder was changed but {} could not be updated: {}. Until it is, every run refuses the encoder "
         "at start",
-        config.string(), e.what());
+        (own ? file : runtime::dry_run_config_file(target.state_dir)).string(), e.what());
     return kExitFailed;
   }
 }
@@ -125,10 +152,11 @@ int record(const std::filesystem::path& config, const std::vector<config::KeyCha
 class EncoderCommissioning {
  public:
   EncoderCommissioning(const GlobalOptions& global, const EncoderOptions& options,
-                       const config::EncoderSection& section, EncoderAction action)
-      : global_(global),
-        options_(options),
-        c_(global, options, section.port, "encoder", session_config(section.session, action)) {}
+                       const config::CellConfig& cell, EncoderAction action)
+      : options_(options),
+        target_{global.config, cell.state_dir, talks_to_configured(options, cell.encoder->port),
+                options.write_config},
+        c_(global, options, cell.encoder->port, "encoder", session_config(cell.encoder->session, action)) {}
 
   int run(EncoderAction action) {
     // A preset beyond this encoder's scaling is a bad argument (manual 4.3.2): refused before the bus.
@@ -165,7 +193,7 @@ class EncoderCommissioning {
             "axis reads its position before a run\n");
         // Set_Prm sends code_sequence at every start-up (4.1.1 octet 9 bit 0): recorded there, the change
         // lasts; the encoder is left in the configured (normal) mode at the next start-up.
-        return record(global_.config, {{"code_sequence", options_.direction}});
+        return record(target_, {{"code_sequence", options_.direction}});
       default:
         break;
     }
@@ -211,7 +239,7 @@ class EncoderCommissioning {
           "short_diagnosis: false");
       return kExitFailed;
     }
-    return record(global_.config, {{"preset_offset", std::to_string(d->detail->offset)}});
+    return record(target_, {{"preset_offset", std::to_string(d->detail->offset)}});
   }
   const encoder::Snapshot& snapshot() const { return c_.snapshot(); }
   template <class Done>
@@ -270,8 +298,14 @@ class EncoderCommissioning {
     return code == kExitLink && c_.faulted() && refused ? kExitFailed : code;
   }
 
-  const GlobalOptions& global_;
+  // --port names the configured port, or the pseudo-terminal `cellctl emulate` publishes for it.
+  static bool talks_to_configured(const EncoderOptions& o, const config::PortConfig& port) {
+    if (!o.port) return true;
+    return *o.port == (port.emulated() ? port.publish_as : port.port);
+  }
+
   const EncoderOptions& options_;
+  ConfigTarget target_;
   std::int32_t configured_offset_ = 0;
   Commissioning<encoder::Session> c_;
   encoder::Session& session_ = c_.session();
@@ -283,7 +317,7 @@ int run_encoder(const GlobalOptions& global, const EncoderOptions& options, Enco
     spdlog::error("{} has no encoder: section (the parameters and scaling come from there)", global.config);
     return kExitConfig;
   }
-  EncoderCommissioning commissioning(global, options, *cell.encoder, action);
+  EncoderCommissioning commissioning(global, options, cell, action);
   return commissioning.run(action);
 }
 
@@ -306,6 +340,10 @@ void add_encoder_commands(CLI::App& app, Commands& commands) {
                      "recorded as preset_offset in the config (backup: FILE.bak), which every run checks",
                      EncoderAction::preset);
   preset->add_option("value", options->value, "New position in measuring units")->required();
+  const char* write_config_help =
+      "Record the change in this config file (backup FILE.bak) even though the encoder was reached on "
+      "another port than the config names (without it such a change goes to <state_dir>/config.dry-run.yaml)";
+  preset->add_option("--write-config", options->write_config, write_config_help);
   auto* direction =
       add("direction",
           "Change the counting direction on the fly (the encoder is put in commissioning mode for it) and "
@@ -314,6 +352,7 @@ void add_encoder_commands(CLI::App& app, Commands& commands) {
   direction->add_option("sequence", options->direction, "cw or ccw: the direction in which counts increase")
       ->required()
       ->check(CLI::IsMember({"cw", "ccw"}));
+  direction->add_option("--write-config", options->write_config, write_config_help);
   auto* address = add("set-address", "Give an encoder at station 126 a new address (Set_Slave_Add)",
                       EncoderAction::set_address);
   address->add_option("address", options->value, "New station address")
