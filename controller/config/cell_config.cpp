@@ -15,7 +15,7 @@ CellConfig parse_cell_config(const YamlNode& root, const std::filesystem::path& 
                   "encoder", "state_dir", "max_command_age_ms"});
   CellConfig cell;
   static_cast<CellCore&>(cell) = parse_cell_core(root, source);
-  cell.state_dir = root.string_or("state_dir", cell.state_dir.string());
+  cell.state_dir = root.path_or("state_dir", cell.state_dir);  // relative to the config file
   if (auto n = root.maybe("spindle")) cell.spindle = parse_spindle_section(*n);
   if (auto n = root.maybe("encoder")) cell.encoder = parse_encoder_section(*n);
   if (auto n = root.maybe("scu")) cell.scu = parse_scu_section(*n);

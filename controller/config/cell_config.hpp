@@ -18,8 +18,9 @@ struct CellConfig : CellCore {
   std::optional<SpindleSection> spindle;
   std::optional<EncoderSection> encoder;
   std::optional<ScuSection> scu;
-  // Where the cell keeps what outlives a process (the home record), like runs/ beside the working
-  // directory unless the config names another folder.
+  // Where the cell keeps what outlives a process (the home record): `state` beside runs/ in the
+  // working directory unless the config names a folder (then relative to the config file, as every
+  // path in a config: YamlNode::as_path).
   std::filesystem::path state_dir = "state";
 };
 

@@ -7,7 +7,9 @@ PortConfig parse_port(const YamlNode& section, std::string_view device, const li
   out.line = defaults;
   out.port = section.string_or("port", "emulated");
   if (out.port.empty()) section.at("port").fail("must name a serial port or 'emulated'");
-  out.publish_as = section.string_or("publish_as", "/tmp/cellctl-" + std::string(device));
+  // Paths relative to the config file, as every path in a config (a pseudo-terminal published beside it).
+  if (!out.emulated()) out.port = section.at("port").as_path().string();
+  out.publish_as = section.path_or("publish_as", "/tmp/cellctl-" + std::string(device)).string();
   if (const auto baud = section.maybe("baud")) {
     out.line.baud = static_cast<std::uint32_t>(baud->as_integer_in(1200, 12'000'000));
   }

@@ -6,27 +6,12 @@
 #include <charconv>
 #include <cmath>
 
+#include "config/closest_word.hpp"
 #include "config/yaml_structure.hpp"
 #include "config/yaml_text.hpp"
 
 namespace cellctl::config {
 namespace {
-
-// Edit distance, for "did you mean" on misspelt keys.
-std::size_t distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0u : 1u)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
 
 std::string format_number(double v) {
   return fmt::format("{:g}", v);
@@ -116,12 +101,7 @@ void YamlNode::only_keys(std::initializer_list<std::string_view> allowed,
   for (const auto& kv : node_) {
     const auto& key = kv.first.Scalar();
     if (std::find(all.begin(), all.end(), key) != all.end()) continue;
-    std::string_view best;
-    std::size_t best_d = 3;  // suggest only close matches
-    for (auto a : all) {
-      const auto d = distance(key, a);
-      if (d < best_d) best_d = d, best = a;
-    }
+    const auto best = closest_word(key, all);
     const YamlNode key_node(kv.first, file_, child_field(key));
     key_node.fail(best.empty() ? std::string("unknown field")
                                : fmt::format("unknown field (did you mean '{}'?)", best));
@@ -199,6 +179,17 @@ bool YamlNode::bool_or(std::string_view key, bool fallback) const {
 std::string YamlNode::string_or(std::string_view key, std::string fallback) const {
   const auto n = maybe(key);
   return n ? n->as_string() : fallback;
+}
+
+std::filesystem::path YamlNode::as_path() const {
+  const std::filesystem::path p(as_string());
+  if (p.empty()) fail("must name a file or folder");
+  return p.is_absolute() ? p : std::filesystem::path(*file_).parent_path() / p;
+}
+
+std::filesystem::path YamlNode::path_or(std::string_view key, const std::filesystem::path& fallback) const {
+  const auto n = maybe(key);
+  return n ? n->as_path() : fallback;
 }
 
 }  // namespace cellctl::config

@@ -102,6 +102,13 @@ class YamlNode {
   }
   [[nodiscard]] bool bool_or(std::string_view key, bool fallback) const;
   [[nodiscard]] std::string string_or(std::string_view key, std::string fallback) const;
+  // A file or folder the config names. One rule for every path in a config: relative to the folder
+  // of the config file (so a config works wherever cellctl runs from, and a section pasted from
+  // config/examples/ means the same in any config beside it); absolute as written.
+  [[nodiscard]] std::filesystem::path as_path() const;
+  // as_path() of the child, or the fallback (taken as given) when the key is absent.
+  [[nodiscard]] std::filesystem::path path_or(std::string_view key,
+                                              const std::filesystem::path& fallback) const;
 
   // Raises a ConfigError at this node's position for this node's field.
   [[noreturn]] void fail(const std::string& rule) const;
