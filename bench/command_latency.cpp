@@ -424,12 +424,13 @@ struct Bench {
     broker.pid =
         spawn({"mosquitto", "-c", (work / "mosquitto.conf").string()}, log_file(work / "mosquitto.log"));
     // The emulated cell and the cell that drives it as hardware, as the tests of `cellctl emulate` make them.
-    const auto script = "set -e; work='" + work.string() +
-                        "'; fail() { echo \"$*\" >&2; exit 1; }; source '" +
-                        (src / "tests/cli/emulate_lib.sh").string() + "'; publish_config '" +
-                        (src / "config/cell.yaml").string() + "' \"$work/emulated.yaml\"; " +
-                        "sed -i -E \"s|^state_dir:.*|state_dir: $work/state|\" \"$work/emulated.yaml\"; " +
-                        "client_config \"$work/emulated.yaml\" \"$work/cell.yaml\"";
+    const auto script =
+        "set -e; work='" + work.string() + "'; fail() { echo \"$*\" >&2; exit 1; }; source '" +
+        (src / "tests/cli/emulate_lib.sh").string() + "'; publish_config '" +
+        (src / "config/cell.yaml").string() + "' \"$work/emulated.yaml\"; " +
+        "sed -i -E '/^state_dir:/d' \"$work/emulated.yaml\"; echo \"state_dir: $work/state\" >> "
+        "\"$work/emulated.yaml\"; " +
+        "client_config \"$work/emulated.yaml\" \"$work/cell.yaml\"";
     if (std::system(("bash -c " + quoted(script)).c_str()) != 0) die("could not write the cell configs");
     std::ofstream(work / "cell.yaml", std::ios::app)
         << "plant_link:\n  host: 127.0.0.1\n  port: " << broker_port << "\n  topic_prefix: " << kPrefix
