@@ -286,7 +286,10 @@ cookie = h.get("Set-Cookie") or ""
 check(status == 200 and "HttpOnly" in cookie and "SameSite=Strict" in cookie and TOKEN not in cookie,
       f"login: {status} {cookie!r}")
 SESSION = {"Cookie": cookie.split(";")[0]}
-check(request("POST", "/cmd/hold", SESSION, b"{}")[0] == 200, "a command by the session")
+# Admitted by the session and judged by the cell: a hold in Idle is refused by the state (409), not 401.
+status, _, body = request("POST", "/cmd/hold", SESSION, b"{}")
+check(status == 409 and "is not possible in state Idle" in json.loads(body)["reason"],
+      f"a command by the session: {status} {body!r}")
 check(request("GET", "/events", {"Cookie": "cellctl_session=" + "0" * 32}, timeout=3)[0] == 401,
       "/events with a made-up session")
 
@@ -435,7 +438,8 @@ status, h, _ = tls_request("POST", "/login", token())
 cookie = h.get("Set-Cookie") or ""
 check(status == 200 and cookie.startswith("__Host-") and "Secure" in cookie, f"HTTPS login: {status} {cookie!r}")
 status, _, body = tls_request("POST", "/cmd/reset", {"Cookie": cookie.split(";")[0]})
-check(status == 200 and "client has gone" not in json.loads(body).get("reason", ""),
+# Judged by the cell (a reset in Idle: 409), not taken for a command whose client has gone (410).
+check(status == 409 and "is not possible in state Idle" in json.loads(body)["reason"],
       f"a command over HTTPS by its session: {status} {body!r}")
 try:
     plain = http.client.HTTPConnection("127.0.0.1", TLS_PORT, timeout=5)
