@@ -20,6 +20,9 @@ struct AxisState {
   bool moving = false;            // SCU status 1: motion active (as of the last RC reply: it lags a command)
   bool commanded = false;         // a move is queued for the SCU or its RE is still open
   bool move_refused = false;      // the SCU answered an error to the last move's telegrams
+  // The moves the SCU has taken for this axis (REs acknowledged): when it counts one more, the move
+  // just asked for is under way, and its plan's clock may start.
+  std::uint32_t moves_taken = 0;
   bool homed = false;             // SCU status 2: initialised
   bool at_retracted_end = false;  // SCU status 1: in position reached (the actuator's retracted end)
   bool at_extended_end = false;   // SCU status 1: out position reached
@@ -109,7 +112,9 @@ struct CellState {
   SpindleState spindle;
   std::array<LinkState, kDevices> links{};
   ScuErrors scu_errors;
-  link::Duration scu_position_age{};  // since the SCU's positions arrived (its RC reply, every keep-alive)
+  // Since the RC whose reply brought the SCU's positions was sent (every keep-alive): the line's
+  // delay both ways is in it.
+  link::Duration scu_position_age{};
   bool scu_remote = false;            // remote mode open (RO done, RC running)
   bool scu_status2_known = false;     // actuator status 2 (homed) has been read since activation
   std::string_view scu_refusal;       // the SCU's last error reply, in words (static text)

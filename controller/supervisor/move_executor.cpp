@@ -171,13 +171,17 @@ void MoveExecutor::plan(const cell::CellState& s, double t, std::uint32_t& move_
   for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
     auto& a = axes_[i];
     a.commanded = false;
+    clock_from_[i] = t;
     // An axis inside its tolerance is left alone, unless it still moves (braking from a hold).
     if (!a.in_move || (std::abs(a.target_mm - a.start_mm) <= a.tolerance_mm && from[i].velocity == 0.0))
       continue;
     a.commanded = true;
     a.move_id = ++move_id;
     a.commanded_at = t;
+    a.taken_before = s.axes[i].moves_taken;
+    if (from[i].velocity == 0.0 && from[i].acceleration == 0.0) clock_from_[i].reset();  // until taken
   }
+  calculated_ = false;
   started_t_ = t;
   last_progress_t_ = t;
   last_speed_update_t_ = t;
@@ -193,12 +197,36 @@ double MoveExecutor::reachable_scu_target(std::size_t i, double mm) const noexce
                     c.max_mm + cell_.limits.disagreement_mm);
 }
 
+void MoveExecutor::follow_plan(const cell::CellState& s, double t) {
+  if (!calculated_) {
+    // An invalid profile (it cannot be: limits are validated at load) leaves the plan where it began.
+    if (planner::is_error(planner_.update(input_, output_))) return;
+    calculated_ = true;
+    if (!output_.note.empty()) note_ = journal::Text::format("{}", output_.note);
+  }
+  for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
+    const auto& a = axes_[i];
+    if (!a.in_move) continue;
+    if (!clock_from_[i] && s.axes[i].moves_taken != a.taken_before) clock_from_[i] = t;
+    if (!clock_from_[i]) continue;  // its plan stands where it began until the SCU takes the move
+    // One cycle on at its first: as the planner steps (the state a cycle after the start).
+    const auto at = planner_.trajectory().profile(static_cast<int>(i)).at(t - *clock_from_[i] + planner_.dt());
+    planned_[i] = at.position;
+    planned_speed_[i] = at.velocity;
+  }
+}
+
 void MoveExecutor::correct_in_motion(const cell::CellState& s, double t, std::uint32_t& move_id) {
   // A sample needs a fresh SCU reading (a keep-alive reply): between replies it stands still.
   const bool fresh = s.scu_position_age < last_scu_age_;
   last_scu_age_ = s.scu_position_age;
   if (!fresh || reference_ != Reference::best) return;
   const double age_s = link::to_seconds(s.scu_position_age);
+  // Fresh, the reading is as old as its RC's round trip. A correction in motion costs the axis an RS,
+  // two RTs and an RE on the line (an RC between each when due) while it runs down from the RS: on a
+  // slow line it would stall the axis behind its plan for longer than it saves. Left to the correction
+  // at rest there.
+  if (age_s > settings_.max_round_trip_to_correct_s) return;
   for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
     auto& a = axes_[i];
     const auto& st = s.axes[i];
@@ -269,17 +297,12 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
   // The profile: where the axes should be, and the pace the modulation keeps them on.
   // An invalid profile (it cannot be: limits are validated at load) would leave the plan where it is.
   note_ = {};
-  if (!planner::is_error(planner_.update(input_, output_))) {
-    output_.pass_to_input(input_);
-    if (output_.new_calculation && !output_.note.empty()) note_ = journal::Text::format("{}", output_.note);
-  }
+  follow_plan(s, t);
   double worst_remaining = 0.0;
   bool all_inside = true;
   for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {
     const auto& a = axes_[i];
     if (!a.in_move) continue;
-    planned_[i] = output_.new_position[static_cast<Eigen::Index>(i)];
-    planned_speed_[i] = output_.new_velocity[static_cast<Eigen::Index>(i)];
     const double remaining = std::abs(a.target_mm - best_position(s, i));
     worst_remaining = std::max(worst_remaining, remaining);
     if (remaining > a.tolerance_mm) all_inside = false;

@@ -37,6 +37,8 @@ struct MoveSettings {
   double speed_update_s = 0.1;     // at most this often a new speed goes to the SCU
   double sync_gain = 2.0;          // speed correction per unit of normalised lag
   double max_scale_error = 0.015;  // a larger drift of the SCU from the encoder is not corrected in motion
+  // No correction in motion over a slower SCU line (RC round trip; 38400 Bd with a USB adapter: 10-25 ms).
+  double max_round_trip_to_correct_s = 0.025;
 };
 
 enum class MoveStatus : std::uint8_t { running, done, failed };
@@ -93,6 +95,7 @@ class MoveExecutor {
     OffsetSlope drift;                // SCU − encoder along the travel, while moving steadily
     bool commanded = false;           // told to move (an axis already inside its tolerance is left alone)
     double commanded_at = 0.0;        // when the last command to it went out
+    std::uint32_t taken_before = 0;   // the SCU's count of moves taken when the plan commanded it
     std::uint32_t move_id = 0;        // bumped for every command to this axis (start, correction)
   };
 
@@ -116,6 +119,9 @@ class MoveExecutor {
   [[nodiscard]] double reachable_scu_target(std::size_t i, double mm) const noexcept;
   // A new SCU target for axis i (reachable), commanded now: a correction.
   void retarget(std::size_t i, double scu_target_mm, double t, std::uint32_t& move_id);
+  // Starts the clock of each commanded axis whose move the SCU has just taken (a new RE acknowledged),
+  // and sets every clocked axis's planned state at t (see clock_from_).
+  void follow_plan(const cell::CellState& s, double t);
   // The SCU's soft stop of axis i, `since` seconds after the hold: its planned state then.
   [[nodiscard]] planner::MotionState braked(std::size_t i, double since) const noexcept;
 
@@ -133,6 +139,13 @@ class MoveExecutor {
   double speed_ = 0.0;
   double planned_s_ = 0.0;
   double started_t_ = 0.0;
+  // Each axis's clock on the plan. An axis commanded from rest is on its plan from when the SCU has
+  // taken its move (its RE answered): the SCU takes the axes one after the other, each after its own
+  // telegrams, so a slow line is no following error. One moving already (a resume) or not commanded
+  // is on it at once. The plan is read at the cell's time, not counted in cycles: a cycle the loop
+  // missed under load moved the axes all the same.
+  std::array<std::optional<double>, cell::kMaxAxes> clock_from_{};
+  bool calculated_ = false;  // the planner has the plan's trajectory
   double last_progress_t_ = 0.0;
   double best_remaining_ = 0.0;
   double last_speed_update_t_ = 0.0;

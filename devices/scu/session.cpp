@@ -87,6 +87,7 @@ void Session::activate(link::TimePoint now) {
   snapshot_.remote_open = false;
   snapshot_.status2_known = false;
   snapshot_.last_refresh.reset();
+  positions_asked_at_.reset();
   keepalive_armed_ = false;
   status2_queued_ = false;
   stop_queued_.reset();
@@ -132,7 +133,7 @@ void Session::receive(link::TimePoint now) {
     }  // nobody asked: whatever arrives is stale
     return;
   }
-  snapshot_.position_age = now - snapshot_.last_refresh.value_or(activated_at_);
+  snapshot_.position_age = now - positions_asked_at_.value_or(activated_at_);
   read_link(now);
   if (lifecycle() == link::Lifecycle::fault) return;
   if (in_flight_ && now - sent_at_ > config_.reply_timeout) {
@@ -230,6 +231,7 @@ void Session::on_ack(const Reply& reply, const Pending& p, link::TimePoint now) 
     case Purpose::execute:
       fs.execution_open = true;
       fs.outcome = MoveOutcome::running;
+      ++fs.executions;
       execute_mark_[p.function] = snapshot_.refreshes;
       break;
     case Purpose::stop:
@@ -334,7 +336,10 @@ void Session::on_refresh(std::span<const std::uint8_t> data, link::TimePoint now
   if (r.errors.remote_timeout()) snapshot_.watchdog_lapse_seen = true;
   ++snapshot_.refreshes;
   snapshot_.last_refresh = now;
-  snapshot_.position_age = link::Duration::zero();
+  // The positions are from some instant between the RC's sending and its reply: their age counts from
+  // the sending, so a slow line (a USB adapter, a delay) is counted in it, not mistaken for motion.
+  positions_asked_at_ = sent_at_;
+  snapshot_.position_age = now - sent_at_;
   if (lifecycle() == link::Lifecycle::activating) enter(link::Lifecycle::active);
   close_finished_executions();
 }
@@ -427,14 +432,18 @@ bool Session::defer_for_stop(link::TimePoint now) {
 
 void Session::send_next(link::TimePoint now) {
   const bool keepalive_due = keepalive_armed_ && now - last_keepalive_sent_ >= config_.keepalive_period;
-  // Stops first; then the watchdog's RC when due (it must never starve); then the queue; with a zero
-  // period the RC fills every gap instead.
+  // Stops first; then the watchdog's RC when due (it must never starve), but never twice in a row
+  // while telegrams wait: on a slow line (an exchange longer than the keep-alive period) the RC would
+  // be due after every exchange and a move would never go out. Every second exchange is an RC then,
+  // at most two reply time-outs apart (2 × 150 ms, inside the SCU's 500 ms watchdog). Then the queue;
+  // with a zero period the RC fills every gap instead.
+  const bool queue_waits = !normal_.empty() && last_sent_keepalive_;
   if (!urgent_.empty()) {
     const Pending p = urgent_.front();
     urgent_.pop_front();
     attempts_ = 0;
     send(p, now);
-  } else if (keepalive_due && config_.keepalive_period > link::Duration::zero()) {
+  } else if (keepalive_due && config_.keepalive_period > link::Duration::zero() && !queue_waits) {
     attempts_ = 0;
     send(keepalive_, now);
   } else if (!normal_.empty()) {
@@ -452,7 +461,8 @@ void Session::send(const Pending& p, link::TimePoint now) {
   ++attempts_;
   in_flight_ = p;
   sent_at_ = now;
-  if (p.purpose == Purpose::keepalive || p.purpose == Purpose::first_keepalive) last_keepalive_sent_ = now;
+  last_sent_keepalive_ = p.purpose == Purpose::keepalive || p.purpose == Purpose::first_keepalive;
+  if (last_sent_keepalive_) last_keepalive_sent_ = now;
   replies_.expect(p.shape);
   const auto bytes = p.bytes.view();
   const auto r = link_.write(bytes);

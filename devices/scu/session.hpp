@@ -142,6 +142,8 @@ class Session final : public link::DeviceSession {
   int attempts_ = 0;
   link::TimePoint sent_at_{};
   link::TimePoint activated_at_{};
+  std::optional<link::TimePoint> positions_asked_at_;  // the last answered RC's sending
+  bool last_sent_keepalive_ = false;                   // the telegram sent last was an RC
   bool keepalive_armed_ = false;
   link::TimePoint last_keepalive_sent_{};
   bool status2_queued_ = false;

@@ -37,6 +37,7 @@ enum class MoveOutcome : std::uint8_t {
 struct FunctionState {
   bool execution_open = false;  // RE acknowledged, its RS not yet
   MoveOutcome outcome = MoveOutcome::none;
+  std::uint32_t executions = 0;  // REs the SCU acknowledged: one more, and the move asked is under way
   std::uint16_t speed_percent = 0;  // last remote speed written (the one place the speed is held)
   std::bitset<kActuatorCount> targeted;
   std::array<std::int32_t, kActuatorCount> targets{};  // edges, for the targeted actuators
@@ -64,7 +65,9 @@ struct Snapshot {
   bool watchdog_lapse_seen = false;  // error bit 22 was reported at least once
   std::uint64_t refreshes = 0;       // RC replies with position/status data
   std::optional<link::TimePoint> last_refresh;
-  link::Duration position_age{};  // since last_refresh (or since activation without one), as of receive()
+  // Since the RC whose reply gave the positions was sent (or since activation without one), as of
+  // receive(): the line's delay both ways is in it.
+  link::Duration position_age{};
   bool status2_known = false;     // actuator status 2 read since activation: `initialised` is meaningful
   LastRead last_read;
   std::optional<Refusal> last_refusal;

@@ -159,14 +159,21 @@ std::vector<MatrixCase> all_cases() {
   for (const auto d : kDevices)
     for (const auto f : kFaultClasses)
       for (const auto a : kActivities) out.push_back({d, f, a});
+  const auto cell = matrix_cell();
+  for (const auto d : kDevices)
+    for (const double delay : kServiceDelaysMs)
+      if (delay < link_limit_ms(d, cell)) out.push_back({d, FaultClass::delay_below, Activity::moving, delay});
   return out;
 }
 
 std::string name_of(const MatrixCase& c) {
-  return fmt::format("{}/{}/{}", cell::to_string(c.device), to_string(c.fault), to_string(c.activity));
+  const auto fault = c.delay_ms > 0.0 ? fmt::format("{}={:g}", to_string(c.fault), c.delay_ms)
+                                      : std::string(to_string(c.fault));
+  return fmt::format("{}/{}/{}", cell::to_string(c.device), fault, to_string(c.activity));
 }
 
 double delay_ms(const MatrixCase& c, const config::CellConfig& cell) {
+  if (c.delay_ms > 0.0) return c.delay_ms;
   const double limit = link_limit_ms(c.device, cell);
   if (c.fault == FaultClass::delay_below) return limit / 2.0;
   return limit + cell.limits.link_silence_ms;

@@ -60,9 +60,15 @@ struct MatrixCase {
   cell::Device device = cell::Device::scu;
   FaultClass fault = FaultClass::silent;
   Activity activity = Activity::idle;
+  double delay_ms = 0.0;  // a delay below the limit: this many ms (0: half the device's limit)
 };
+
+// The line latencies a cell meets in service (a USB serial adapter, a busy converter), put on every
+// device's replies while the axes move: each is no fault, however long it lasts.
+inline constexpr std::array kServiceDelaysMs = {25.0, 50.0, 100.0};
 [[nodiscard]] std::vector<MatrixCase> all_cases();
-// "scu/silent/idle": the table's and the test's name of the case.
+// "scu/silent/idle" ("scu/delay_below=50/moving" with a delay of its own): the table's and the
+// test's name of the case.
 [[nodiscard]] std::string name_of(const MatrixCase& c);
 // The delay a delay class puts on the device's replies: half of the device's link limit below it,
 // the limit plus the monitor's link silence above it.

@@ -47,7 +47,7 @@ TEST_P(FaultMatrix, EndsSafeWithinItsBounds) {
 std::string test_name(const ::testing::TestParamInfo<MatrixCase>& info) {
   std::string n = name_of(info.param);
   for (auto& ch : n)
-    if (ch == '/') ch = '_';
+    if (ch == '/' || ch == '=') ch = '_';
   return n;
 }
 

@@ -29,8 +29,10 @@ constexpr double kEncoderDiagnosisMs = 100.0;
 // reply time.
 constexpr double kScuReplyMs = 130.0;
 // The disagreement rule compares the encoder with the SCU's position of the last RC reply, allowing
-// for the travel since: a disagreement growing at 0.5 mm/s is caught with the next reply or the one after.
-constexpr double kDisagreementMs = 2 * kScuReplyMs;
+// for the travel since the RC went out (the reading's age counts its round trip, about 12 ms at
+// 38400 Bd): a disagreement growing at 0.5 mm/s is caught with the next reply or the one after, once it
+// has also outgrown that round trip's travel at the traverse's 10 mm/s (0.12 mm: 240 ms more).
+constexpr double kDisagreementMs = 2 * kScuReplyMs + 240.0;
 // The spindle's statusout is polled every 20 ms; the values (frequency) every 250 ms.
 constexpr double kSpindleStatusMs = 45.0;
 constexpr double kSpindleValuesMs = 280.0;

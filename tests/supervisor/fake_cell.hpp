@@ -39,6 +39,7 @@ class FakeCell {
     homed_.resize(actuators_.size(), false);
     refuses_moves_.resize(actuators_.size(), false);
     move_refused_.resize(actuators_.size(), false);
+    moves_taken_.resize(actuators_.size(), 0);
     fast_stop_due_.resize(actuators_.size(), false);
   }
 
@@ -72,6 +73,7 @@ class FakeCell {
         move_refused_[i] = refuses_moves_[i];
         if (move_refused_[i]) continue;
         act.move_to(intent.target_mm, intent.speed_mm_s, intent.soft);
+        ++moves_taken_[i];  // the RE answered at once
         motion_reported_from_[i] = elapsed_ + motion_latency_;
       } else {
         act.set_speed(intent.speed_mm_s);
@@ -122,6 +124,7 @@ class FakeCell {
       a.at_retracted_end = actuators_[i].at_in_limit();
       a.at_extended_end = actuators_[i].at_out_limit();
       a.move_refused = move_refused_[i];
+      a.moves_taken = moves_taken_[i];
       a.measured = cell_.axes[i].encoder;
       if (a.measured) {
         a.encoder_mm = actuators_[i].true_position_mm() + encoder_offset_mm_;
@@ -160,6 +163,7 @@ class FakeCell {
   double spindle_set_ = 0.0;
   link::Duration status2_after_ = std::chrono::milliseconds(30);  // about the real session's first RG
   std::vector<bool> homed_, refuses_moves_, move_refused_, fast_stop_due_;
+  std::vector<std::uint32_t> moves_taken_;  // REs taken per axis
   std::uint8_t spindle_refusal_ = 0;
   std::uint32_t preset_id_ = 0, preset_done_id_ = 0;
   double preset_mm_ = 0.0;
