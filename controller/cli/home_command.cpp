@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/confirm.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/home_job.hpp"
 #include "cli/run_command.hpp"
@@ -53,15 +54,6 @@ std::string plan(const config::AxisConfig& a) {
   return "not homed";
 }
 
-// Asks on the terminal; false unless the operator types yes.
-bool confirmed() {
-  fmt::print("Home now? The axes listed MOVE. Keep clear of the cell. Type yes and Enter: ");
-  std::fflush(stdout);
-  std::string answer;
-  if (!std::getline(std::cin, answer)) return false;
-  return answer == "yes" || answer == "y" || answer == "YES" || answer == "Y";
-}
-
 int home(const GlobalOptions& global, const HomeArgs& args) {
   const auto cell = config::load_cell_config(global.config);
   if (const auto problem = run_args_problem(args.run, cell); !problem.empty()) {
@@ -89,15 +81,15 @@ int home(const GlobalOptions& global, const HomeArgs& args) {
   fmt::print(
       "  before any motion it refuses when the spindle turns, a device is not ready or a limit is "
       "active;\n  Ctrl-C, a typed stop or a fault stops every moving axis\n");
-  if (!args.yes) {
-    if (isatty(STDIN_FILENO) == 0) {
+  switch (confirm("Home now? The axes listed MOVE. Keep clear of the cell.", args.yes)) {
+    case Confirmation::confirmed:
+      break;
+    case Confirmation::no_terminal:
       spdlog::error("home: confirmation needed and no terminal to ask on: add --yes to home from a script");
       return kExitUsage;
-    }
-    if (!confirmed()) {
+    case Confirmation::declined:
       fmt::print("not confirmed: nothing moved\n");
       return kExitFailed;
-    }
   }
 
   const auto run_dir =

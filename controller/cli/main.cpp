@@ -22,6 +22,7 @@
 #include "cli/serve_command.hpp"
 #include "cli/spindle_commands.hpp"
 #include "cli/teach_in_command.hpp"
+#include "cli/unknown_command.hpp"
 #include "config/yaml_node.hpp"
 #include "journal/version.hpp"
 #include "link/crash_stop.hpp"
@@ -75,6 +76,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (const auto unknown = unknown_command_message(app)) {
+      std::fprintf(stderr, "%s\n", unknown->c_str());
+      return kExitUsage;
+    }
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
   init_logging(global.log_level, global.trace);

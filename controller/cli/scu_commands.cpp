@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "cli/commissioning.hpp"
+#include "cli/confirm.hpp"
 #include "cli/exit_codes.hpp"
 #include "config/cell_config.hpp"
 #include "scu/session.hpp"
@@ -24,7 +26,55 @@ struct ScuOptions : DeviceOptions {
   double position_mm = 0.0;
   double speed_mm_s = 5.0;
   bool fast = false;
+  bool beyond_travel = false;  // a target outside the axis's travel, deliberately (confirmed)
+  bool yes = false;            // confirmed beforehand (scripts)
 };
+
+// The axis the actuator moves in the cell, if it is one.
+const config::AxisConfig* axis_of(const config::CellConfig& cell, int actuator) {
+  for (const auto& a : cell.axes)
+    if (a.actuator == actuator) return &a;
+  return nullptr;
+}
+
+// Why the move may not start, before anything moves; empty when it may. The stroke is the
+// actuator's physical end: never a target. The axis's travel (min_mm/max_mm, what the safety monitor
+// holds a run to) only with --beyond-travel, confirmed.
+std::string target_problem(const config::CellConfig& cell, const ScuOptions& o) {
+  const auto& spec = cell.scu->session.specs[static_cast<std::size_t>(o.actuator - 1)];
+  if (!cell.scu->session.actuators.test(static_cast<std::size_t>(o.actuator - 1)))
+    return fmt::format("actuator {} is not fitted (scu.actuators in {})", o.actuator, cell.source.string());
+  if (o.position_mm < 0.0 || o.position_mm > spec.stroke_mm)
+    return fmt::format(
+        "{:g} mm is beyond actuator {}'s stroke of 0 to {:g} mm: it would run into its end; nothing moved",
+        o.position_mm, o.actuator, spec.stroke_mm);
+  const auto* axis = axis_of(cell, o.actuator);
+  if (axis && !o.beyond_travel && (o.position_mm < axis->min_mm || o.position_mm > axis->max_mm))
+    return fmt::format(
+        "{:g} mm is beyond axis {}'s travel of {:g} to {:g} mm (actuator {}; axes[].min_mm/max_mm in {}); "
+        "nothing moved. To move there deliberately add --beyond-travel (it asks first)",
+        o.position_mm, axis->name, axis->min_mm, axis->max_mm, o.actuator, cell.source.string());
+  return {};
+}
+
+// After a move that did not arrive: what ended it, in words, and what to do.
+std::string why_not_arrived(const scu::Snapshot& s, const scu::ActuatorSpec& spec, int actuator,
+                            double start_mm, double target_mm) {
+  const auto& a = s.actuators[static_cast<std::size_t>(actuator - 1)];
+  constexpr double kAtEndMm = 0.5;  // the SCU's end stop is within this of the stroke's end
+  const bool at_end_on_the_way = (a.position_mm <= kAtEndMm && target_mm < a.position_mm) ||
+                                 (a.position_mm >= spec.stroke_mm - kAtEndMm && target_mm > a.position_mm);
+  if (at_end_on_the_way)
+    return fmt::format("it ran into its end at {:.2f} mm (stroke 0 to {:g} mm)", a.position_mm,
+                       spec.stroke_mm);
+  if (a.status.limit_signal) return "the actuator reports its limit signal";
+  if (s.errors.any()) return "the SCU reports an error: see the error word below";
+  if (std::abs(a.position_mm - start_mm) < kAtEndMm)
+    return "it did not move: a speed below the actuator's minimum does not move it — try a higher "
+           "--speed-mm-s";
+  return fmt::format("it stopped {:.2f} mm before the target (stopped or stalled): see the status below",
+                     std::abs(target_mm - a.position_mm));
+}
 
 void print_snapshot(const scu::Snapshot& s) {
   for (std::size_t i = 0; i < s.actuators.size(); ++i) {
@@ -56,7 +106,9 @@ void print_snapshot(const scu::Snapshot& s) {
 class ScuCommissioning {
  public:
   ScuCommissioning(const GlobalOptions& global, const ScuOptions& options, const config::ScuSection& section)
-      : options_(options), c_(global, options, section.port, "SCU", section.session) {}
+      : options_(options),
+        spec_(section.session.specs[static_cast<std::size_t>(options.actuator - 1)]),
+        c_(global, options, section.port, "SCU", section.session) {}
 
   int run(ScuAction action) {
     c_.activate();
@@ -83,6 +135,8 @@ class ScuCommissioning {
 
  private:
   int move() {
+    const double start_mm =
+        c_.snapshot().actuators[static_cast<std::size_t>(options_.actuator - 1)].position_mm;
     const scu::ActuatorTarget target[] = {{options_.actuator, options_.position_mm}};
     if (!c_.session().move_to(options_.function, target, options_.speed_mm_s, !options_.fast)) {
       spdlog::error(
@@ -110,9 +164,11 @@ class ScuCommissioning {
     if (!ended) return c_.failed_to("finish the move (raise --timeout for long strokes)");
     if (f.outcome == scu::MoveOutcome::arrived) return kExitOk;
     spdlog::error(
-        "F{} {} (actuator {} at {:.2f} mm, target {:.2f} mm): check the error word below; a speed below "
-        "the actuator's minimum does not move it — try a higher --speed-mm-s",
-        options_.function, scu::to_string(f.outcome), options_.actuator, a.position_mm, options_.position_mm);
+        "F{} {} (actuator {} at {:.2f} mm, target {:.2f} mm): {}", options_.function,
+        scu::to_string(f.outcome), options_.actuator, a.position_mm, options_.position_mm,
+        f.outcome == scu::MoveOutcome::refused
+            ? std::string("see the error word below")
+            : why_not_arrived(c_.snapshot(), spec_, options_.actuator, start_mm, options_.position_mm));
     print_snapshot(c_.snapshot());
     return kExitFailed;
   }
@@ -130,6 +186,7 @@ class ScuCommissioning {
   }
 
   const ScuOptions& options_;
+  scu::ActuatorSpec spec_;
   Commissioning<scu::Session> c_;
 };
 
@@ -138,6 +195,30 @@ int run_scu(const GlobalOptions& global, const ScuOptions& options, ScuAction ac
   if (!cell.scu) {
     spdlog::error("{} has no scu: section; add one (port, actuators, functions)", global.config);
     return kExitConfig;
+  }
+  if (action == ScuAction::move) {
+    if (const auto problem = target_problem(cell, options); !problem.empty()) {
+      spdlog::error("scu move refused: {}", problem);
+      return kExitUsage;
+    }
+    if (const auto* axis = axis_of(cell, options.actuator);
+        axis && (options.position_mm < axis->min_mm || options.position_mm > axis->max_mm)) {
+      const auto question = fmt::format(
+          "Move actuator {} to {:g} mm, beyond axis {}'s travel of {:g} to {:g} mm? Nothing but the SCU's "
+          "own limits holds it there. Keep clear of the cell.",
+          options.actuator, options.position_mm, axis->name, axis->min_mm, axis->max_mm);
+      switch (confirm(question, options.yes)) {
+        case Confirmation::confirmed:
+          break;
+        case Confirmation::no_terminal:
+          spdlog::error(
+              "scu move: --beyond-travel needs a confirmation and there is no terminal to ask on: add --yes");
+          return kExitUsage;
+        case Confirmation::declined:
+          fmt::print("not confirmed: nothing moved\n");
+          return kExitFailed;
+      }
+    }
   }
   ScuCommissioning commissioning(global, options, *cell.scu);
   return commissioning.run(action);
@@ -172,6 +253,10 @@ void add_scu_commands(CLI::App& app, Commands& commands) {
       ->check(CLI::Range(0.001, 1000.0))
       ->capture_default_str();
   move->add_flag("--fast", options->fast, "Fast start/stop (no ramps)");
+  move->add_flag("--beyond-travel", options->beyond_travel,
+                 "Allow a target outside the axis's travel (min_mm/max_mm), never beyond the actuator's "
+                 "stroke; asks first");
+  move->add_flag("--yes", options->yes, "Confirm --beyond-travel beforehand (for scripts)");
   auto* stop = add("stop", "Stop a function (soft unless --fast)", ScuAction::stop);
   stop->add_option("--function", options->function, "Function F1..F10")
       ->check(CLI::Range(1, 10))

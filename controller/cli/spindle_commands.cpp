@@ -153,6 +153,18 @@ int run_spindle(const GlobalOptions& global, const SpindleOptions& options, Spin
     spdlog::error("{} has no spindle: section; add one or give --port", global.config);
     return kExitConfig;
   }
+  if (action == SpindleAction::start || action == SpindleAction::set) {
+    // The safety monitor stops a run outside this range: commissioning obeys it too, before anything turns.
+    const auto& l = cell.limits;
+    if (options.frequency_hz < l.spindle_min_hz || options.frequency_hz > l.spindle_max_hz) {
+      spdlog::error(
+          "spindle {} refused: {:g} Hz is outside the cell's spindle range of {:g} to {:g} Hz "
+          "(limits.spindle_min_hz/spindle_max_hz in {}); nothing turned",
+          action == SpindleAction::start ? "start" : "set", options.frequency_hz, l.spindle_min_hz,
+          l.spindle_max_hz, global.config);
+      return kExitUsage;
+    }
+  }
   SpindleCommissioning commissioning(global, options, cell.spindle.value_or(config::SpindleSection{}));
   return commissioning.run(action);
 }
