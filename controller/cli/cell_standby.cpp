@@ -8,6 +8,7 @@
 #include <chrono>
 #include <memory>
 
+#include "cli/end_state_gate.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/home_job.hpp"
 #include "cli/run_record_info.hpp"
@@ -15,7 +16,7 @@
 #include "journal/record_header.hpp"
 #include "recipe/program.hpp"
 #include "recipe/recipe_loader.hpp"
-#include "runtime/teach_in_run.hpp"
+#include "runtime/dry_run_state.hpp"
 
 namespace cellctl::cli {
 namespace {
@@ -105,7 +106,6 @@ struct CellStandby::JobSlot {
   ~JobSlot() {
     std::lock_guard lock(standby.mutex_);
     standby.run_ = nullptr;
-    standby.teach_abort_ = nullptr;
     standby.busy_ = Busy::ending;  // no command reaches a run that is gone
   }
 };
@@ -115,8 +115,6 @@ supervisor::State CellStandby::job_state() {
   switch (busy_) {
     case Busy::run:
       return run_->status().read().state;
-    case Busy::teach_in:
-      return supervisor::State::execute;
     case Busy::ending:
       return supervisor::State::completing;
     case Busy::none:
@@ -133,17 +131,6 @@ Taken CellStandby::request(supervisor::Command c, const command::CommandSource& 
     case Busy::run:
       run_->request(c, source.words());
       return {Taken::How::by_run, {}};
-    case Busy::teach_in:
-      if (is_stop(c)) {
-        teach_abort_->store(true);
-        return {
-            Taken::How::done,
-            fmt::format("{} requested: the Teach-In aborts and restores the encoder's configured parameters; "
-                        "its end (the state tag) tells the outcome",
-                        word)};
-      }
-      return {Taken::How::refused,
-              fmt::format("{} is not possible during the {}: stop or abort ends it", word, job_)};
     case Busy::none:
     case Busy::starting:
       if (!is_stop(c))
@@ -274,8 +261,15 @@ std::filesystem::path CellStandby::job_dir(const std::string& stem) const {
 CellStandby::JobEnd CellStandby::run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt,
                                          std::atomic<bool>& terminate) {
   try {
-    if (const auto* t = std::get_if<plant_link::StartTeachIn>(&r))
-      return run_teach_in(*t, interrupt, terminate);
+    if (const auto* t = std::get_if<plant_link::StartTeachIn>(&r)) {
+      const auto request =
+          std::get<routines::TeachInRequest>(teach_in_request(cell_, ask_of(*t)));  // start() checked
+      const auto dir = job_dir("teach-in-" + t->axis);
+      return run_recipe(teach_in_recipe(cell_, request, dir), dir, interrupt, terminate,
+                        [this, manual = request.manual](const runtime::RunResult& result, JobEnd& end) {
+                          after_teach_in(result, manual, end);
+                        });
+    }
     if (const auto* recipe = std::get_if<plant_link::StartRecipe>(&r))
       return run_recipe(recipe::load_recipe(recipe->file, cell_), job_dir(recipe->file.stem().string()),
                         interrupt, terminate);
@@ -295,16 +289,23 @@ CellStandby::JobEnd CellStandby::run_job(const plant_link::StartRequest& r, std:
 
 CellStandby::JobEnd CellStandby::run_recipe(const recipe::Recipe& recipe,
                                             const std::filesystem::path& run_dir,
-                                            std::atomic<bool>& interrupt, std::atomic<bool>& terminate) {
+                                            std::atomic<bool>& interrupt, std::atomic<bool>& terminate,
+                                            const AfterRun& after) {
   runtime::RunOptions o;
   o.mode = options_.mode;
   o.journal_dir = run_dir;
   o.state_dir = options_.state_dir;
   o.trace = options_.trace;
+  o.faults = options_.faults;
+  // The dry run's emulated plant kept between jobs (and serve's runs), as a powered cell keeps its own.
+  if (o.mode != runtime::RunMode::hardware)
+    o.emulators = runtime::dry_run_emulator_setup(
+        cell_, options_.state_dir.empty() ? cell_.state_dir : options_.state_dir);
   o.record_header = journal::record_header(
       record_info(cell_, options_.config_file, recipe, recipe::unroll(recipe), o.mode));
   runtime::CellRun run(cell_, recipe, o);  // a port that does not open: thrown, reported by run_job
-  run.on_journal_line(listener_);
+  EndStateGate gate(listener_);
+  run.on_journal_line([&gate](const nlohmann::json& line) { gate(line); });
   runtime::RunResult result;
   {
     const JobSlot slot{*this};
@@ -317,7 +318,8 @@ CellStandby::JobEnd CellStandby::run_recipe(const recipe::Recipe& recipe,
     result = run.run(interrupt, &terminate);
   }
   run.on_journal_line({});
-  std::string words = fmt::format("{} {}", supervisor::to_string(result.final_state), run_dir.string());
+  const auto head = fmt::format("{} {}", supervisor::to_string(result.final_state), run_dir.string());
+  std::string words = head;
   if (!result.failure.empty()) words += "; failed step: " + result.failure;
   if (!result.ended_by.empty()) words += "; ended by: " + result.ended_by;
   for (std::size_t d = 0; d < cell::kDevices; ++d)
@@ -330,78 +332,27 @@ CellStandby::JobEnd CellStandby::run_recipe(const recipe::Recipe& recipe,
       words += "; WARNING: " + blocked_;
     }
   if (!result.home_record.empty()) words += "; " + result.home_record;
-  return {words, result.final_state};
+  JobEnd end{words, result.final_state};
+  if (after) after(result, end);
+  // The end state goes out only now, with the job's work on disk (the journal closed, the home record
+  // and a taught config written).
+  gate.release(end.words.size() > head.size() + 2 ? end.words.substr(head.size() + 2) : std::string());
+  return end;
 }
 
-CellStandby::JobEnd CellStandby::run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt,
-                                              const std::atomic<bool>& terminate) {
-  const plant_link::StartRequest asked{t};
-  const auto request =
-      std::get<routines::TeachInRequest>(teach_in_request(cell_, ask_of(t)));  // start() checked
-  runtime::TeachInRunOptions o;
-  o.mode = options_.mode;
-  o.journal_dir = job_dir("teach-in-" + t.axis);
-  o.trace = options_.trace;
-  o.record_header = teach_in_record_header(options_.config_file, t.axis, t.distance_mm, o.mode);
-  runtime::TeachInRun run(cell_, request, o);  // set-up problems: thrown, reported by run_job
-  // The Teach-In's journal has phases, not PackML states: the plant sees it as a run of its own.
-  const auto began = std::chrono::steady_clock::now();
-  const auto seconds = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-  };
-  tell_line({{"event", "run_started"},
-             {"t", 0.0},
-             {"recipe", short_name(asked)},
-             {"mode", to_string(o.mode)},
-             {"steps", 1}});
-  tell_line(
-      {{"event", "state"}, {"t", 0.0}, {"from", "Starting"}, {"to", "Execute"}, {"reason", describe(asked)}});
-  const auto end = [&](supervisor::State state, const std::string& words) {
-    const auto to = supervisor::to_string(state);
-    tell_line({{"event", "state"}, {"t", seconds()}, {"from", "Execute"}, {"to", to}, {"reason", words}});
-    return JobEnd{fmt::format("{} {}: {}", to, o.journal_dir.string(), words), state};
-  };
-  run.on_journal_line(listener_);
-  runtime::TeachInOutcome outcome;
-  {
-    const JobSlot slot{*this};
-    {
-      std::lock_guard lock(mutex_);
-      teach_abort_ = &interrupt;
-      busy_ = Busy::teach_in;
-      if (early_stop_) interrupt.store(true);  // asked while the job was set up: aborted before any motion
-    }
-    // SIGTERM aborts it too, seen at the routine's progress (each phase change, every 0.5 s).
-    outcome = run.run(interrupt, [&](const runtime::TeachInProgress&) {
-      if (terminate.load()) interrupt.store(true);
-    });
-  }
-  run.on_journal_line({});
-  std::string devices;
-  for (const auto& n : outcome.device_notes) devices += "; device: " + n;
-  if (!outcome.restored) {
+void CellStandby::after_teach_in(const runtime::RunResult& r, bool manual, JobEnd& end) {
+  if (!r.teach_in) return;
+  if (!r.teach_in->restored) {
     std::lock_guard lock(mutex_);
     blocked_ =
         "no start is taken: the encoder's configured parameters could NOT be confirmed restored after the "
         "Teach-In; check with `cellctl encoder diag`, then start cellctl again";
   }
-  if (!outcome.done)
-    return end(outcome.interrupted ? supervisor::State::stopped : supervisor::State::aborted,
-               fmt::format("{}; {}; the config is not changed{}", outcome.failure,
-                           outcome.restored ? "the encoder's configured parameters are restored" : blocked_,
-                           devices));
-  config::ConfigChange change;
-  try {
-    change = write_teach_in_result(options_.config_file, cell_, outcome);
-  } catch (const std::exception& e) {
-    return end(supervisor::State::aborted, fmt::format("Teach-In verified, but {} was not changed: {}",
-                                                       options_.config_file.string(), e.what()));
-  }
-  const auto written = fmt::format(
-      "total resolution {} ({:g} units per mm), verified: {:.4f} mm measured back; {} "
-      "written ({}), the previous config is {}",
-      outcome.result.total_resolution, outcome.units_per_mm, outcome.result.encoder_distance_mm,
-      options_.config_file.string(), fmt::join(change.changed, "; "), change.backup.string());
+  const auto record =
+      record_teach_in(options_.config_file, cell_, r, options_.mode, options_.state_dir, manual);
+  end.words += "; " + record.words;
+  if (record.write_failed) end.state = supervisor::State::aborted;
+  if (!record.written || record.file != options_.config_file) return;
   try {
     auto fresh = config::load_cell_config(options_.config_file);
     std::lock_guard lock(mutex_);
@@ -410,9 +361,8 @@ CellStandby::JobEnd CellStandby::run_teach_in(const plant_link::StartTeachIn& t,
     std::lock_guard lock(mutex_);
     blocked_ = fmt::format("no start is taken: {} was written by the Teach-In but does not load again: {}",
                            options_.config_file.string(), e.what());
-    return end(supervisor::State::complete, written + "; " + blocked_);
+    end.words += "; " + blocked_;
   }
-  return end(supervisor::State::complete, written + devices);
 }
 
 }  // namespace cellctl::cli

@@ -45,6 +45,7 @@ struct StandbyOptions {
   std::filesystem::path runs_dir = "runs";  // each job's record: <runs>/<job>-<time>
   std::filesystem::path state_dir;          // the home record's folder; empty: the config's
   bool trace = false;
+  std::vector<runtime::FaultSpec> faults;  // rehearsed in every job (dry runs only)
   std::chrono::milliseconds max_command_age = command::kDefaultMaxCommandAge;
 };
 
@@ -75,7 +76,7 @@ class CellStandby {
   [[nodiscard]] int jobs_done() const noexcept { return jobs_done_.load(); }
 
  private:
-  enum class Busy { none, starting, run, teach_in, ending };
+  enum class Busy { none, starting, run, ending };
   // Clears the job's run pointers when its run returns or throws.
   struct JobSlot;
 
@@ -94,10 +95,14 @@ class CellStandby {
   // The job, on the serving thread.
   JobEnd run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt,
                  std::atomic<bool>& terminate);
+  // Every job — a recipe, a homing, a Teach-In — is a run of runtime::CellRun. `after` adds what the
+  // job does once its run has ended (a Teach-In writes what it taught) to its end.
+  using AfterRun = std::function<void(const runtime::RunResult&, JobEnd&)>;
   JobEnd run_recipe(const recipe::Recipe& recipe, const std::filesystem::path& run_dir,
-                    std::atomic<bool>& interrupt, std::atomic<bool>& terminate);
-  JobEnd run_teach_in(const plant_link::StartTeachIn& t, std::atomic<bool>& interrupt,
-                      const std::atomic<bool>& terminate);
+                    std::atomic<bool>& interrupt, std::atomic<bool>& terminate, const AfterRun& after = {});
+  // A verified Teach-In's result into the config (a dry run's copy in a dry run), and the config
+  // loaded again for the next jobs; one whose encoder was not restored blocks further starts.
+  void after_teach_in(const runtime::RunResult& r, bool manual, JobEnd& end);
   // <runs>/<stem>-<local time>-job<N>: the next job's record.
   [[nodiscard]] std::filesystem::path job_dir(const std::string& stem) const;
   // A line of the standby's own (between jobs: the jobs' journal threads are not writing).
@@ -118,8 +123,7 @@ class CellStandby {
   Busy busy_ = Busy::none;
   std::string job_;                                  // what is in progress, in words
   std::optional<plant_link::StartRequest> pending_;  // started, not yet taken by the serving thread
-  runtime::CellRun* run_ = nullptr;                  // the recipe's or homing's run in progress
-  std::atomic<bool>* teach_abort_ = nullptr;         // the Teach-In's abort, while one runs
+  runtime::CellRun* run_ = nullptr;                  // the job's run in progress
   std::optional<supervisor::Command> early_stop_;    // a stop or abort while the job was set up
   std::optional<supervisor::Command> cancelled_;     // a stop or abort before the job was taken
   std::string blocked_;                              // why no start is taken any more

@@ -59,7 +59,10 @@ OperatorConsole::~OperatorConsole() {
 }
 
 void OperatorConsole::handle(const std::string& line) {
-  if (trimmed_lower(line).empty()) return;
+  if (trimmed_lower(line).empty()) {
+    run_.confirm();  // Enter: a manual Teach-In's "moved as asked" (nothing else waits for it)
+    return;
+  }
   const auto cmd = parse(line);
   if (!cmd) {
     screen_.message(fmt::format("'{}' is not a command: {}", line, kWhatToType));

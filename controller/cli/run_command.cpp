@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/drive.hpp"
+#include "cli/end_state_gate.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/operator_console.hpp"
 #include "cli/plant_facing.hpp"
@@ -23,6 +24,7 @@
 #include "plant_link/link_config.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "runtime/cell_run.hpp"
+#include "runtime/dry_run_state.hpp"
 #include "runtime/fault_rehearsal.hpp"
 #include "runtime/fault_spec.hpp"
 
@@ -74,19 +76,32 @@ std::string fault_problem(const std::vector<runtime::FaultSpec>& faults, bool em
   return {};
 }
 
+runtime::RunMode run_mode(const RunArgs& args) {
+  return args.virtual_time ? runtime::RunMode::virtual_time
+         : args.emulate    ? runtime::RunMode::emulated
+                           : runtime::RunMode::hardware;
+}
+
 std::string run_args_problem(const RunArgs& args, const config::CellConfig& cell) {
+  if (args.power_cycle && !args.emulate && !args.virtual_time)
+    return "--power-cycle: only the emulated plant of a dry run can lose its power here: add --emulate or "
+           "--virtual-time (on the cell, switch it off)";
   return fault_problem(args.faults, args.emulate || args.virtual_time, cell);
 }
 
 int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cell,
-                      const recipe::Recipe& recipe, const RunArgs& args,
-                      const std::filesystem::path& run_dir) {
+                      const recipe::Recipe& recipe, const RunArgs& args, const std::filesystem::path& run_dir,
+                      const AfterRun& after) {
   runtime::RunOptions options;
-  options.mode = args.virtual_time ? runtime::RunMode::virtual_time
-                 : args.emulate    ? runtime::RunMode::emulated
-                                   : runtime::RunMode::hardware;
+  options.mode = run_mode(args);
   options.journal_dir = run_dir;
   options.state_dir = args.state_dir;
+  // A dry run's emulated plant keeps its state between runs in the state folder, as a powered cell does
+  // (runtime/dry_run_state.hpp): homed in one run, homed in the next.
+  if (options.mode != runtime::RunMode::hardware)
+    options.emulators = runtime::dry_run_emulator_setup(
+        cell, args.state_dir.empty() ? cell.state_dir : std::filesystem::path(args.state_dir),
+        args.power_cycle);
   options.trace = global.trace;
   options.faults = args.faults;
   // The plant link's section is read (and so checked) before anything opens: a bad one is exit 3.
@@ -111,6 +126,7 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
              options.journal_dir.string());
 
   runtime::RunResult result;
+  AfterRunEnd job;
   {
     TerminalScreen screen;
     RunNarrator narrator(screen);
@@ -128,9 +144,10 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
     auto facing = open_plant_facing(cell, plant_link, page,
                                     plant_link ? plant_link->recipes : std::filesystem::path("recipes"),
                                     access, [&screen](const std::string& line) { screen.message(line); });
-    run.on_journal_line([&narrator, &facing](const nlohmann::json& line) {
+    EndStateGate gate([&facing](const nlohmann::json& line) { facing.on_journal_line(line); });
+    run.on_journal_line([&narrator, &gate](const nlohmann::json& line) {
       narrator(line);
-      facing.on_journal_line(line);
+      gate(line);
     });
     fmt::print("  {}\n", ctrl_c_hint(cell.stops.operator_stop));
     std::vector<std::optional<double>> planned;
@@ -141,7 +158,9 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
       screen.message("  type hold, unhold, stop, abort, reset or clear (h, u, s, a, r, c) and Enter");
     result = run.run(g_interrupted, &g_terminated);
     run.on_journal_line({});
-    facing.close();  // the link's last tags out (the run's end), then a clean goodbye
+    if (after) job = after(result);  // the job's work saved (the run saved its own: home record, journal)
+    gate.release(job.words);         // only now the end state goes out
+    facing.close();                  // the link's last tags out (the run's end), then a clean goodbye
   }
   for (const auto& w : run.realtime_warnings()) spdlog::warn("real-time: {}", w);
   fmt::print("\n{}", result.summary_text);
@@ -165,7 +184,9 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
   fmt::print("run record: {}\n", options.journal_dir.string());
   if (!result.home_record.empty()) fmt::print("{}\n", result.home_record);
 
+  if (!job.words.empty()) fmt::print("{}\n", job.words);
   if (result.any_unknown()) return kExitSafeStateUnknown;
+  if (job.exit_status) return *job.exit_status;
   if (result.final_state == supervisor::State::complete) return kExitOk;
   // Ended by the operator (typed stop/abort, Ctrl-C, SIGTERM) with nothing else gone wrong: 130,
   // however it was asked for; a fault or a failed step: 1.
@@ -193,7 +214,11 @@ void add_run_options(CLI::App* sub, RunArgs& args) {
   sub->add_option("--journal", args.journal_dir,
                   "Directory for the run record (default runs/<recipe file name>-<start time>)");
   sub->add_option("--state-dir", args.state_dir,
-                  "Folder of the home record home.json (default: the cell config's state_dir, 'state')");
+                  "Folder of the home record home.json and of a dry run's emulated plant (default: the cell\n"
+                  "config's state_dir, 'state')");
+  sub->add_flag("--power-cycle", args.power_cycle,
+                "A dry run's emulated plant starts as after a power loss: the rods where they were, no\n"
+                "actuator initialised (then `require: homed` refuses until homed again)");
   sub->add_option("--fault", args.faults_text,
                   "Rehearse a fault (repeatable; --emulate or --virtual-time only): DEVICE:KIND@T[+D] puts\n"
                   "KIND on DEVICE T seconds after the run starts, for D seconds (for ever without +D).\n"

@@ -4,6 +4,7 @@
 // runs its homing recipe through the same path (run_loaded_recipe).
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "cli/plant_facing.hpp"
 #include "config/cell_config.hpp"
 #include "recipe/recipe.hpp"
+#include "runtime/cell_run.hpp"
 #include "runtime/fault_spec.hpp"
 
 namespace cellctl::cli {
@@ -22,6 +24,7 @@ struct RunArgs {
   bool virtual_time = false;
   std::string journal_dir;
   std::string state_dir;
+  bool power_cycle = false;  // a dry run's emulated plant starts as after a power loss
   std::vector<std::string> faults_text;
   std::vector<runtime::FaultSpec> faults;  // parsed (and so checked) by the option's validator
   PageArgs page;                           // --http and its options
@@ -30,11 +33,23 @@ struct RunArgs {
 // --emulate, --virtual-time, --journal, --state-dir, --fault and the page's options on `sub`.
 void add_run_options(CLI::App* sub, RunArgs& args);
 
+// What a job does once its run has ended (a Teach-In writes what it taught into the config): what it
+// did in words (printed, and appended to the end state's reason, which is told only now), and its exit
+// status, or none to keep the run's.
+struct AfterRunEnd {
+  std::string words;
+  std::optional<int> exit_status;
+};
+using AfterRun = std::function<AfterRunEnd(const runtime::RunResult&)>;
+
 // Runs a loaded recipe: banner, live status, operator console, the summary; its exit status.
-// `run_dir` is the run record's folder.
+// `run_dir` is the run record's folder. A device's safe state unknown is exit 5 whatever `after` says.
 [[nodiscard]] int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cell,
                                     const recipe::Recipe& recipe, const RunArgs& args,
-                                    const std::filesystem::path& run_dir);
+                                    const std::filesystem::path& run_dir, const AfterRun& after = {});
+
+// The mode the options ask for: --virtual-time, --emulate, or the hardware.
+[[nodiscard]] runtime::RunMode run_mode(const RunArgs& args);
 
 // A bad --fault for this cell, or --fault without an emulated mode: the reason (exit 2), else empty.
 [[nodiscard]] std::string run_args_problem(const RunArgs& args, const config::CellConfig& cell);

@@ -29,6 +29,7 @@ struct StepKind {
   journal::RecordStep operator()(const recipe::Wait&) const { return {{}, "wait", std::nullopt}; }
   journal::RecordStep operator()(const recipe::Require&) const { return {{}, "require", 0.0}; }
   journal::RecordStep operator()(const recipe::Home&) const { return {{}, "home", std::nullopt}; }
+  journal::RecordStep operator()(const recipe::TeachIn&) const { return {{}, "teach-in", std::nullopt}; }
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/cell_standby.hpp"
 #include "cli/drive.hpp"
@@ -24,7 +25,9 @@ struct ServeArgs {
   std::string runs_dir = "runs";
   std::string state_dir;
   std::string recipes;
-  PageArgs page;  // --http and its options
+  std::vector<std::string> faults_text;
+  std::vector<runtime::FaultSpec> faults;  // rehearsed in every job (dry runs only)
+  PageArgs page;                           // --http and its options
 };
 
 int serve(const GlobalOptions& global, const ServeArgs& args) {
@@ -34,6 +37,11 @@ int serve(const GlobalOptions& global, const ServeArgs& args) {
   const auto page = page_setup(args.page, page_problem);
   if (!page_problem.empty()) {
     spdlog::error("serve: {}", page_problem);
+    return kExitUsage;
+  }
+  if (const auto problem = fault_problem(args.faults, args.emulate || args.virtual_time, cell);
+      !problem.empty()) {
+    spdlog::error("serve: {}", problem);
     return kExitUsage;
   }
   if (!link_config && !page) {
@@ -57,6 +65,7 @@ int serve(const GlobalOptions& global, const ServeArgs& args) {
   options.runs_dir = args.runs_dir;
   options.state_dir = args.state_dir;
   options.trace = global.trace;
+  options.faults = args.faults;
   options.max_command_age = std::chrono::milliseconds(cell.max_command_age_ms);
   CellStandby standby(cell, options);
 
@@ -70,8 +79,7 @@ int serve(const GlobalOptions& global, const ServeArgs& args) {
   standby.on_journal_line([&facing](const nlohmann::json& line) { facing.on_journal_line(line); });
   say(fmt::format("  jobs: start (a recipe in {}), home, teach-in; run records under {}/", recipes.string(),
                   args.runs_dir));
-  say("  Ctrl-C: the job in progress gets it (a run as in `cellctl run`, a Teach-In aborts); with no job, it "
-      "ends cellctl serve");
+  say("  Ctrl-C: the job in progress gets it (as in `cellctl run`); with no job, it ends cellctl serve");
   const int status = standby.serve(g_interrupted, g_terminated, say);
   facing.close();
   say(fmt::format("cellctl serve: ended after {} job{}", standby.jobs_done(),
@@ -94,9 +102,11 @@ void add_serve_command(CLI::App& app, Commands& commands) {
       "result is written into the config, which is then read again). They come from the plant link's\n"
       "cmd/<word> topics (the config's plant_link: section) or the operator page's buttons (--http, with "
       "its\n"
-      "token). While a recipe or homing runs, hold, unhold, stop, abort and reset go to its run; a Teach-In\n"
-      "takes stop and abort (it aborts) and refuses the others. A stop or abort while a job starts cancels\n"
-      "it or stops it before any motion. A start is refused until the job in progress has ended, and for\n"
+      "token). Every job is a run of the same cycle as `cellctl run`: hold, unhold, stop, abort and reset "
+      "go\n"
+      "to it (a hold or a stop ends a Teach-In, the encoder's parameters restored). A stop or abort while a\n"
+      "job starts cancels it or stops it before any motion. A job's end state is told once its work is\n"
+      "saved (home record, taught config). A start is refused until the job in progress has ended, and for\n"
       "good after a job left a device's safe state unknown or the encoder's parameters unconfirmed.\n"
       "Exit status: 0 ended by SIGTERM (a job in progress gets its controlled stop first), 130 Ctrl-C with\n"
       "no job in progress, 2 bad command line or nothing to take commands from, 3 bad config, 5 a job left\n"
@@ -114,6 +124,11 @@ void add_serve_command(CLI::App& app, Commands& commands) {
       "state_dir, 'state')");
   sub->add_option("--recipes", args->recipes,
                   "Folder of the recipes a start names (default: the plant_link section's, else ./recipes)");
+  sub->add_option(
+         "--fault", args->faults_text,
+         "Rehearse a fault in every job (repeatable; --emulate or --virtual-time only), as `cellctl run\n"
+         "--fault`: DEVICE:KIND@T[+D], T seconds after each job's start")
+      ->check(fault_spec_validator(args->faults));
   add_page_options(sub, args->page);
   commands.on(sub, [&commands, args] { return serve(commands.global, *args); });
 }

@@ -11,8 +11,9 @@
 
 #include "config/cell_config.hpp"
 #include "config/config_edit.hpp"
+#include "recipe/recipe.hpp"
 #include "routines/teach_in.hpp"
-#include "runtime/teach_in_run.hpp"
+#include "runtime/cell_run.hpp"
 
 namespace cellctl::cli {
 
@@ -29,15 +30,28 @@ struct TeachInAsk {
 [[nodiscard]] std::variant<routines::TeachInRequest, std::string> teach_in_request(
     const config::CellConfig& cell, const TeachInAsk& ask);
 
-// The head of a Teach-In's record.
-[[nodiscard]] nlohmann::json teach_in_record_header(const std::filesystem::path& config_file,
-                                                    const std::string& axis, double distance_mm,
-                                                    runtime::RunMode mode);
+// The Teach-In as a program of one step, run by runtime::CellRun as any recipe is (the monitor, the
+// safe stop, samples and plot). What it does is written to `run_dir`/teach-in.yaml, the record's
+// "recipe" (a description, not a recipe to load: a Teach-In step is never part of a recipe file, since
+// only the job that runs it writes what it taught into the config).
+[[nodiscard]] recipe::Recipe teach_in_recipe(const config::CellConfig& cell,
+                                             const routines::TeachInRequest& request,
+                                             const std::filesystem::path& run_dir);
 
-// The taught resolution into the config's encoder section, as the manual asks (4.4.2.1 "End": into
-// Maximum Desired Measuring Units), with the unit per mm it counts in: temp file + rename, the old
-// file kept as FILE.bak. Throws what config::change_config_file throws.
-config::ConfigChange write_teach_in_result(const std::filesystem::path& config_file,
-                                           const config::CellConfig& cell, const runtime::TeachInOutcome& o);
+// What a Teach-In job came to once its run has ended, and what it wrote.
+struct TeachInRecord {
+  std::string words;           // for the terminal and the end state's reason
+  bool written = false;        // the taught resolution is in `file`
+  bool write_failed = false;   // verified, but `file` could not be written
+  std::filesystem::path file;  // the config written: the cell's, or a dry run's copy
+};
+
+// A verified result into the config's encoder section (temp file + rename, the old file kept as
+// FILE.bak); a dry run (`mode` not hardware) writes <state_dir>/config.dry-run.yaml instead and never
+// the cell's config (`state_dir` empty: the config's). A failed Teach-In writes nothing and says why.
+[[nodiscard]] TeachInRecord record_teach_in(const std::filesystem::path& config_file,
+                                            const config::CellConfig& cell, const runtime::RunResult& r,
+                                            runtime::RunMode mode, const std::filesystem::path& state_dir,
+                                            bool manual);
 
 }  // namespace cellctl::cli

@@ -14,7 +14,7 @@ namespace cellctl::recipe {
 struct Instruction {
   std::string label;  // human-readable, for status, journal and summary
   int line = 0;
-  std::variant<Move, Spindle, Dwell, Wait, Require, Home> action;
+  std::variant<Move, Spindle, Dwell, Wait, Require, Home, TeachIn> action;
 };
 
 struct Program {

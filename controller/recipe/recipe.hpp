@@ -84,6 +84,19 @@ struct Home {
   std::vector<int> axes;  // cell axis indices, each with a homing strategy
 };
 
+// Teaches the encoder its resolution (its guided Teach-In, routines/teach_in.hpp) on the axis it
+// measures: travels distance_mm from the start, verifies by moving back. A job of its own (`cellctl
+// teach-in`, the plant's teach-in), run as a one-step program by the same cycle as any recipe.
+struct TeachIn {
+  int axis = 0;                   // index into the cell's axes (the encoder's axis)
+  double distance_mm = 0.0;       // travel from the start, in + direction
+  std::optional<double> from_mm;  // the start (default: where the axis stands)
+  bool manual = false;            // the operator moves the axis; confirm() after each move
+  double speed_mm_s = 5.0;
+  double tolerance_mm = 0.05;          // verification: encoder distance vs SCU distance
+  double native_zero_margin_mm = 0.5;  // the travel keeps this far from the native zero
+};
+
 struct Step;
 struct Repeat {
   int times = 1;
@@ -93,7 +106,7 @@ struct Repeat {
 struct Step {
   std::string name;  // the recipe's own label, or "move", "dwell" … when none is given
   int line = 0;      // where it stands in the recipe file
-  std::variant<Move, Spindle, Dwell, Wait, Require, Home, Repeat> action;
+  std::variant<Move, Spindle, Dwell, Wait, Require, Home, TeachIn, Repeat> action;
 };
 
 struct Recipe {

@@ -27,15 +27,8 @@
 
 namespace cellctl::routines {
 
-struct TeachInRequest {
-  int axis = 0;                   // index into the cell's axes (the encoder's axis)
-  double distance_mm = 0.0;       // travel from the start, in + direction
-  std::optional<double> from_mm;  // the start (default: where the axis stands)
-  bool manual = false;            // the operator moves the axis; confirm() after each move
-  double speed_mm_s = 5.0;
-  double tolerance_mm = 0.05;          // verification: encoder distance vs SCU distance
-  double native_zero_margin_mm = 0.5;  // the travel keeps this far from the native zero
-};
+// What to teach: a recipe's Teach-In step.
+using TeachInRequest = recipe::TeachIn;
 
 enum class TeachInPhase : std::uint8_t {
   checking,
@@ -84,6 +77,8 @@ class TeachIn {
     return phase_ == TeachInPhase::done || phase_ == TeachInPhase::failed;
   }
   [[nodiscard]] TeachInPhase phase() const noexcept { return phase_; }
+  // Where the routine's present move plans the axis (for the journal's samples).
+  [[nodiscard]] double planned_mm(std::size_t axis) const noexcept { return executor_.planned_mm(axis); }
   [[nodiscard]] const cell::Intents& intents() const noexcept { return intents_; }
   [[nodiscard]] const journal::Text& failure() const noexcept { return failure_; }
   [[nodiscard]] const TeachInResult& result() const noexcept { return result_; }

@@ -1,6 +1,6 @@
 #pragma once
-// What every run on the cell opens before its loop starts — a recipe run (CellRun) as a routine
-// (TeachInRun): the cycle waiter for the mode, the faults to rehearse, the links, the emulators where
+// What a run on the cell (CellRun: a recipe, a homing, a Teach-In) opens before its loop starts: the
+// cycle waiter for the mode, the faults to rehearse, the links, the emulators where
 // devices are emulated, and the device sessions; and the emulators' own thread in real time.
 
 #include <atomic>

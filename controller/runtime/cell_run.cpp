@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -78,6 +79,15 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
   try {
     parts_ = open_cell_parts(cell, options_.mode, clock_, virtual_clock_, options_.trace, options_.faults,
                              options_.emulators);
+    const bool teaches =
+        std::any_of(program_.instructions.begin(), program_.instructions.end(),
+                    [](const auto& i) { return std::holds_alternative<recipe::TeachIn>(i.action); });
+    if (teaches) {
+      if (!cell.encoder || !parts_.devices->encoder())
+        throw std::invalid_argument("the cell has no encoder: section: nothing to teach");
+      teach_in_encoder_ = std::make_unique<TeachInEncoder>(*parts_.devices->encoder(), cell.encoder->session);
+      options_.supervisor.teach_in_port = teach_in_encoder_.get();
+    }
   } catch (const std::exception& e) {
     // A port that did not open (or a device set-up refused): the record says why nothing ran.
     journal_.close({{"outcome", "not started"}, {"reason", e.what()}});
@@ -297,11 +307,19 @@ void CellRun::publish_status(double t) {
   board_.publish(v);
 }
 
+std::string_view CellRun::first_active_detail() const noexcept {
+  for (std::size_t r = 0; r < monitor::kRuleCount; ++r)
+    if (const auto& latch = monitor_.latch(static_cast<monitor::Rule>(r)); latch.active)
+      return latch.detail.view();
+  return {};
+}
+
 void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
   const double t = link::to_seconds(now - start_);
   if (hook_) hook_(t, *this);
   if (parts_.rehearsal) parts_.rehearsal->post_journal(now, t, journal_);
   take_commands(t, interrupt);
+  if (confirm_.exchange(false)) supervisor_->confirm();
   {  // the stages, timed back to back; the last ends with this block
     auto stages = loop_->stage_sequence();
     stages.begin(index(ControlStage::read_sessions));
@@ -310,9 +328,11 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
       parts_.emulated->poll(now);
     }
     parts_.devices->receive(now);
+    if (teach_in_encoder_) teach_in_encoder_->step(now);
 
     stages.begin(index(ControlStage::state));
     parts_.devices->read(now, state_);
+    supervisor_->adjust(state_);
     safe_stop_->observe(now);
 
     stages.begin(index(ControlStage::monitor));
@@ -328,7 +348,7 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
     }
 
     stages.begin(index(ControlStage::supervisor));
-    supervisor_->step(state_, monitor_.demanded_stop(), t);
+    supervisor_->step(state_, monitor_.demanded_stop(), t, first_active_detail());
     const auto& sp = supervisor_->intents().spindle;
     monitor_.expect_spindle(sp.run, sp.frequency_hz);
     monitor_.expect_axes(supervisor_->intents());
@@ -420,6 +440,19 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   extra["wall_s"] = r.wall_s;
   extra["mode"] = to_string(options_.mode);
   extra["corrections"] = supervisor_->corrections();
+  if (const auto* teach = supervisor_->teach_in()) {
+    TeachInOutcome o;
+    o.done = teach->phase() == routines::TeachInPhase::done;
+    o.result = teach->result();
+    o.failure = std::string(teach->failure().view());
+    o.restored = !teach->switched() || o.done;
+    o.units_per_mm = teach_in_encoder_->units_per_mm();
+    if (o.done) o.taught = teach_in_encoder_->taught(o.result.total_resolution);
+    extra["teach_in"] = {{"taught", o.done},
+                         {"total_resolution", o.result.total_resolution},
+                         {"encoder_restored", o.restored}};
+    r.teach_in = std::move(o);
+  }
   report_safety(r, extra);
   journal_.close(extra);
   r.faults = journal_.summary().faults();

@@ -39,6 +39,8 @@
 #include "runtime/fault_spec.hpp"
 #include "runtime/safe_stop.hpp"
 #include "runtime/status_view.hpp"
+#include "runtime/teach_in_encoder.hpp"
+#include "runtime/teach_in_outcome.hpp"
 #include "supervisor/supervisor.hpp"
 
 namespace cellctl::runtime {
@@ -83,6 +85,8 @@ struct RunResult {
     return false;
   }
   std::string home_record;  // "home record written: <file>" (or why not) when homing changed it
+  // How a Teach-In step ended (a Teach-In job): what to write into the config when it is done.
+  std::optional<TeachInOutcome> teach_in;
 };
 
 class CellRun {
@@ -127,6 +131,8 @@ class CellRun {
   void on_journal_line(std::function<void(const nlohmann::json&)> listener) {
     journal_.on_line(std::move(listener));
   }
+  // A manual Teach-In step: the operator has moved the axis as its prompt asked (any thread).
+  void confirm() noexcept { confirm_.store(true); }
 
   // Tests in virtual time: called at the start of every cycle, on the loop's thread.
   void on_cycle(std::function<void(double t, CellRun&)> hook) { hook_ = std::move(hook); }
@@ -155,6 +161,8 @@ class CellRun {
     return 1u << static_cast<unsigned>(c);
   }
   void publish_status(double t);
+  // The words of the monitor's first active latch (what a demanded stop is for), empty with none.
+  [[nodiscard]] std::string_view first_active_detail() const noexcept;
   void run_emulator_thread();
   void save_home_record(double t, std::int64_t unix_start, RunResult& r);
 
@@ -171,6 +179,9 @@ class CellRun {
   const link::Clock& clock_;
   CellParts parts_;  // the cycle waiter, faults rehearsed, links, emulators, device sessions
   std::unique_ptr<SafeStop> safe_stop_;
+  // The encoder's Teach-In port, for a program with a Teach-In step (nullptr otherwise).
+  std::unique_ptr<TeachInEncoder> teach_in_encoder_;
+  std::atomic<bool> confirm_{false};
   journal::Journal journal_;
   monitor::Monitor monitor_;
   std::unique_ptr<supervisor::Supervisor> supervisor_;

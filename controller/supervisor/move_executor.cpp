@@ -210,7 +210,8 @@ void MoveExecutor::follow_plan(const cell::CellState& s, double t) {
     if (!clock_from_[i] && s.axes[i].moves_taken != a.taken_before) clock_from_[i] = t;
     if (!clock_from_[i]) continue;  // its plan stands where it began until the SCU takes the move
     // One cycle on at its first: as the planner steps (the state a cycle after the start).
-    const auto at = planner_.trajectory().profile(static_cast<int>(i)).at(t - *clock_from_[i] + planner_.dt());
+    const auto at =
+        planner_.trajectory().profile(static_cast<int>(i)).at(t - *clock_from_[i] + planner_.dt());
     planned_[i] = at.position;
     planned_speed_[i] = at.velocity;
   }

@@ -27,14 +27,17 @@ Supervisor::Supervisor(const config::CellCore& cell, const recipe::Recipe& recip
       program_(program),
       events_(events),
       settings_(settings),
+      dt_(dt),
       executor_(cell, recipe.limits, dt, settings.move),
       homing_(cell, events, dt, settings.move),
       record_(settings.home_record ? settings.home_record : &own_record_) {}
 
 double Supervisor::planned_mm(std::size_t axis) const noexcept {
   const auto* ins = current();
-  return ins && std::holds_alternative<recipe::Home>(ins->action) ? homing_.planned_mm(axis)
-                                                                  : executor_.planned_mm(axis);
+  if (ins && std::holds_alternative<recipe::Home>(ins->action)) return homing_.planned_mm(axis);
+  if (ins && std::holds_alternative<recipe::TeachIn>(ins->action) && teach_in_)
+    return teach_in_->planned_mm(axis);
+  return executor_.planned_mm(axis);
 }
 
 double Supervisor::step_planned_s() const noexcept {
@@ -109,6 +112,11 @@ void Supervisor::start_instruction(const cell::CellState& s, double t) {
   if (const auto* move = std::get_if<recipe::Move>(&ins.action)) executor_.start(*move, s, t, move_counter_);
   if (const auto* dwell = std::get_if<recipe::Dwell>(&ins.action)) dwell_left_s_ = dwell->seconds;
   if (const auto* home = std::get_if<recipe::Home>(&ins.action)) homing_.start(home->axes, t, *record_);
+  if (const auto* teach = std::get_if<recipe::TeachIn>(&ins.action); teach && settings_.teach_in_port) {
+    teach_in_.emplace(cell_, *settings_.teach_in_port, *teach, dt_);
+    told_phase_ = teach_in_->phase();
+    told_prompt_ = {};
+  }
   if (const auto* sp = std::get_if<recipe::Spindle>(&ins.action)) {
     intents_.spindle.run = sp->start;
     if (sp->start) {
@@ -160,6 +168,7 @@ Supervisor::StepStatus Supervisor::run_instruction(const cell::CellState& s, dou
            : status == routines::HomingStatus::failed ? StepStatus::failed
                                                       : StepStatus::running;
   }
+  if (std::holds_alternative<recipe::TeachIn>(ins.action)) return run_teach_in(s, t);
   if (std::holds_alternative<recipe::Dwell>(ins.action)) {
     dwell_left_s_ -= t - last_execute_t_;
     last_execute_t_ = t;
@@ -219,6 +228,48 @@ Supervisor::StepStatus Supervisor::run_instruction(const cell::CellState& s, dou
   return StepStatus::done;
 }
 
+Supervisor::StepStatus Supervisor::run_teach_in(const cell::CellState& s, double t) {
+  if (!teach_in_) {
+    failure_ = Text::format("this cell has no encoder port to teach (the run was set up without one)");
+    return StepStatus::failed;
+  }
+  teach_in_->step(s, std::nullopt, {}, t);
+  intents_.axes = teach_in_->intents().axes;
+  tell_teach_in(t);
+  if (teach_in_->phase() == routines::TeachInPhase::done) return StepStatus::done;
+  if (teach_in_->phase() != routines::TeachInPhase::failed) return StepStatus::running;
+  failure_ = teach_in_->failure();
+  return StepStatus::failed;
+}
+
+void Supervisor::wind_down_teach_in(const cell::CellState& s, std::optional<config::StopCategory> demanded,
+                                    std::string_view stop_reason, double t) {
+  if (teach_in_settled()) return;
+  // The supervisor's halt stops the axis; the routine only waits for it, then restores the encoder.
+  const auto category = demanded                    ? *demanded
+                        : state_ == State::aborting ? config::StopCategory::immediate
+                        : state_ == State::stopping ? config::StopCategory::controlled_off
+                                                    : config::StopCategory::controlled_hold;
+  // An operator's hold, stop or abort is named as the operator's; a monitor's stop by its rule.
+  if (!demanded) teach_in_->abort(t);
+  const auto why = demanded && !stop_reason.empty() ? Text::format("{}", stop_reason)
+                                                    : Text::format("the run went to {}", to_string(state_));
+  teach_in_->step(s, category, why.view(), t);
+  tell_teach_in(t);
+}
+
+void Supervisor::tell_teach_in(double t) {
+  if (teach_in_->phase() != told_phase_) {
+    told_phase_ = teach_in_->phase();
+    events_.post(t, journal::Note{Text::format("teach-in: {}", routines::to_string(told_phase_))});
+  }
+  if (teach_in_->prompt().view() != told_prompt_.view()) {
+    told_prompt_ = teach_in_->prompt();
+    if (!told_prompt_.view().empty())
+      events_.post(t, journal::Note{Text::format("teach-in: {}", told_prompt_.view())});
+  }
+}
+
 void Supervisor::sample(const cell::CellState& s, double t) {
   if (t < next_sample_t_) return;
   next_sample_t_ = t + settings_.sample_s;
@@ -237,7 +288,8 @@ void Supervisor::sample(const cell::CellState& s, double t) {
   events_.post(t, smp);
 }
 
-void Supervisor::step(const cell::CellState& s, std::optional<config::StopCategory> demanded, double t) {
+void Supervisor::step(const cell::CellState& s, std::optional<config::StopCategory> demanded, double t,
+                      std::string_view stop_reason) {
   const State before = state_;
   intents_.spindle.reset = device_reset_requested_;
   device_reset_requested_ = false;
@@ -340,12 +392,14 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
       clear_motion();
       intents_.halt = cell::Halt::controlled;
       if (move_started()) executor_.hold(t);
-      if (axes_still(s)) enter(State::held, t, Text::format("axes at rest"));
+      wind_down_teach_in(s, demanded, stop_reason, t);
+      if (axes_still(s) && teach_in_settled()) enter(State::held, t, Text::format("axes at rest"));
       break;
 
     case State::held:
       clear_motion();
       if (move_started()) executor_.hold(t);
+      wind_down_teach_in(s, demanded, stop_reason, t);
       break;
 
     case State::unholding:
@@ -380,7 +434,9 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
       // no longer hears the keep-alive stops every actuator by its own watchdog.
       const bool scu_lost = !s.links[static_cast<std::size_t>(cell::Device::scu)].active;
       const bool spindle_lost = !s.links[static_cast<std::size_t>(cell::Device::spindle)].active;
-      const bool rest = (axes_still(s) || scu_lost) && (s.spindle.at_rest || spindle_lost);
+      wind_down_teach_in(s, demanded, stop_reason, t);
+      const bool rest =
+          (axes_still(s) || scu_lost) && (s.spindle.at_rest || spindle_lost) && teach_in_settled();
       if (rest || t - state_since_ > settings_.stop_timeout_s) {
         const auto note =
             !rest ? Text::format("not at rest after {:g} s; giving up waiting", settings_.stop_timeout_s)

@@ -16,6 +16,8 @@
 #include "recipe/recipe.hpp"
 #include "routines/home_record.hpp"
 #include "routines/homing.hpp"
+#include "routines/teach_in.hpp"
+#include "routines/teach_in_port.hpp"
 #include "supervisor/move_executor.hpp"
 #include "supervisor/packml.hpp"
 
@@ -30,6 +32,9 @@ struct SupervisorSettings {
   // What `require: homed` checks and `home` steps write (loaded from the state folder by the runtime);
   // nullptr: an empty record of the supervisor's own (nothing homed before this run).
   routines::HomeRecord* home_record = nullptr;
+  // The encoder's Teach-In port (the runtime's TeachInEncoder) for a program with a Teach-In step;
+  // nullptr: such a step fails, naming why.
+  routines::TeachInPort* teach_in_port = nullptr;
 };
 
 class Supervisor {
@@ -40,7 +45,9 @@ class Supervisor {
   // An operator command, carried out at the next step. False when the state does not allow it now;
   // refusal() says why. Reset must only be sent once the monitor's latches are clear.
   bool command(Command c, std::string_view source, double t);
-  void step(const cell::CellState& s, std::optional<config::StopCategory> demanded, double t);
+  // `stop_reason`: the monitor's words for the demanded stop (its first active latch), if any.
+  void step(const cell::CellState& s, std::optional<config::StopCategory> demanded, double t,
+            std::string_view stop_reason = {});
   // The first half of an operator reset: the devices clear their own latched faults (CMD System Reset
   // to the spindle converter) at the next step, before the monitor's latches are judged.
   void reset_devices() noexcept { device_reset_requested_ = true; }
@@ -50,8 +57,25 @@ class Supervisor {
   [[nodiscard]] std::size_t step_index() const noexcept { return pc_; }
   [[nodiscard]] std::size_t step_count() const noexcept { return program_.instructions.size(); }
   [[nodiscard]] const recipe::Instruction* current() const noexcept;
-  // The device rules of the monitor apply from Execute on (the cell is up).
-  [[nodiscard]] bool cell_up() const noexcept { return cell_up_; }
+  // The device rules of the monitor apply from Execute on (the cell is up), except while a Teach-In
+  // re-parameterises the encoder: it leaves data exchange on purpose then.
+  [[nodiscard]] bool cell_up() const noexcept {
+    return cell_up_ && !(teach_in_ && !teach_in_->finished() && !teach_in_->moving());
+  }
+  // The state as this program reads it, before the monitor judges it: once a Teach-In step has begun,
+  // its axis is known by the SCU's position (the encoder counts in a unit being taught) for the rest
+  // of the run.
+  void adjust(cell::CellState& s) const noexcept {
+    if (teach_in_) teach_in_->adjust(s);
+  }
+  // Manual Teach-In: the operator has moved the axis as its prompt asked.
+  void confirm() noexcept {
+    if (teach_in_) teach_in_->confirm();
+  }
+  // The Teach-In step's routine, once one has begun (its phase, result, failure); nullptr before.
+  [[nodiscard]] const routines::TeachIn* teach_in() const noexcept {
+    return teach_in_ ? &*teach_in_ : nullptr;
+  }
   [[nodiscard]] const journal::Text& failure() const noexcept { return failure_; }
   [[nodiscard]] const journal::Text& refusal() const noexcept { return refusal_; }
   [[nodiscard]] double planned_mm(std::size_t axis) const noexcept;
@@ -73,14 +97,25 @@ class Supervisor {
   // The current step is a move that has begun (a hold brakes it, an unhold resumes it).
   [[nodiscard]] bool move_started() const noexcept;
   void clear_motion() noexcept;
+  // A Teach-In step's cycle in Execute, and while the run halts: the routine halts its axis and
+  // restores the encoder's configured parameters before the halting state may end.
+  StepStatus run_teach_in(const cell::CellState& s, double t);
+  void wind_down_teach_in(const cell::CellState& s, std::optional<config::StopCategory> demanded,
+                          std::string_view stop_reason, double t);
+  [[nodiscard]] bool teach_in_settled() const noexcept { return !teach_in_ || teach_in_->finished(); }
+  void tell_teach_in(double t);
 
   const config::CellCore& cell_;
   const recipe::Recipe& recipe_;
   const recipe::Program& program_;
   journal::EventSink& events_;
   SupervisorSettings settings_;
+  double dt_;
   MoveExecutor executor_;
   routines::Homing homing_;
+  std::optional<routines::TeachIn> teach_in_;
+  routines::TeachInPhase told_phase_ = routines::TeachInPhase::checking;
+  journal::Text told_prompt_;
   routines::HomeRecord own_record_;
   routines::HomeRecord* record_;
   std::uint32_t preset_counter_ = 0;

@@ -1,5 +1,6 @@
-// The guided Teach-In (issue 10, part 5) in virtual time on the shipped cell's emulators: end to end
-// and verified; aborted by the operator and stopped by an injected fault, each leaving the encoder's
+// The guided Teach-In (issue 10, part 5) in virtual time on the shipped cell's emulators, as the job
+// runs it: a program of one Teach-In step in runtime::CellRun (issue 21: one cycle for every job). End
+// to end and verified; aborted by the operator and stopped by an injected fault, each leaving the encoder's
 // EEPROM and parameters as they were; a start at the encoder's native zero refused before any motion;
 // the manual mode with the operator's hand moves (taught and verified) and without them (restored).
 #include <gtest/gtest.h>
@@ -7,6 +8,8 @@
 
 #include <atomic>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <variant>
@@ -14,7 +17,7 @@
 #include "config/cell_config.hpp"
 #include "encoder/eeprom_file.hpp"
 #include "run_fixture.hpp"
-#include "runtime/teach_in_run.hpp"
+#include "runtime/cell_run.hpp"
 
 namespace cellctl::testing {
 namespace {
@@ -40,14 +43,34 @@ class TeachInTest : public ::testing::Test {
   void TearDown() override {
     if (!HasFailure()) std::filesystem::remove_all(dir_);
   }
-  runtime::TeachInRun& make_run(std::vector<runtime::FaultSpec> faults = {}) {
-    runtime::TeachInRunOptions o;
+  runtime::CellRun& make_run(std::vector<runtime::FaultSpec> faults = {}) {
+    runtime::RunOptions o;
     o.mode = runtime::RunMode::virtual_time;
     o.emulators = setup_;
     o.journal_dir = dir_ / "journal";
+    o.state_dir = dir_ / "state";
     o.faults = std::move(faults);
-    run_ = std::make_unique<runtime::TeachInRun>(cell_, request_, o);
+    recipe_ = {};
+    recipe_.name = "teach-in";
+    recipe_.cell = cell_.name;
+    recipe_.limits.axes.resize(cell_.axes.size());
+    recipe_.steps.push_back({"teach-in x", 1, request_});
+    run_ = std::make_unique<runtime::CellRun>(cell_, recipe_, o);
     return *run_;
+  }
+  // Runs it; how its Teach-In ended.
+  runtime::TeachInOutcome teach(runtime::CellRun& run) {
+    result_ = run.run(interrupt_);
+    EXPECT_TRUE(result_.teach_in.has_value()) << "no Teach-In step ran";
+    return result_.teach_in.value_or(runtime::TeachInOutcome{});
+  }
+  static routines::TeachInPhase phase(const runtime::CellRun& r) {
+    const auto* t = r.supervisor().teach_in();
+    return t ? t->phase() : TeachInPhase::checking;
+  }
+  static std::string prompt(const runtime::CellRun& r) {
+    const auto* t = r.supervisor().teach_in();
+    return t ? std::string(t->prompt().view()) : std::string();
   }
   // The encoder's state as it was and as it must be after a failed Teach-In: its EEPROM and the
   // parameters it was last given.
@@ -60,13 +83,15 @@ class TeachInTest : public ::testing::Test {
   config::CellConfig cell_;
   runtime::EmulatorSetup setup_;
   routines::TeachInRequest request_;
-  std::unique_ptr<runtime::TeachInRun> run_;
+  recipe::Recipe recipe_;
+  std::unique_ptr<runtime::CellRun> run_;
+  runtime::RunResult result_;
   std::atomic<bool> interrupt_{false};
 };
 
 TEST_F(TeachInTest, TeachesVerifiesAndGivesTheTotalResolution) {
   auto& run = make_run();
-  const auto o = run.run(interrupt_);
+  const auto o = teach(run);
   ASSERT_TRUE(o.done) << o.failure;
   EXPECT_TRUE(o.restored);
   // 100 mm by the SCU, whose sensor reads 0.2 % long: the shaft turned 100 / 1.002 mm at 2048 steps/mm.
@@ -82,18 +107,47 @@ TEST_F(TeachInTest, TeachesVerifiesAndGivesTheTotalResolution) {
   EXPECT_DOUBLE_EQ(o.taught.counts_per_mm, 1000.0);
 }
 
+TEST_F(TeachInTest, ATeachInIsARunOfTheCellWithItsSafeStopVerdictsSamplesAndPlot) {
+  // Issue 21: one cycle for every job. The Teach-In gets what a recipe run gets: the safe stop's
+  // verdict per device, the journal's samples, the summary, the plots.
+  auto& run = make_run();
+  const auto o = teach(run);
+  ASSERT_TRUE(o.done) << o.failure;
+  EXPECT_EQ(result_.final_state, supervisor::State::complete);
+  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+    ASSERT_TRUE(result_.safety[d].has_value()) << d;
+    EXPECT_EQ(result_.safety[d]->safe, runtime::Safe::observed) << d << ": " << result_.safety[d]->evidence;
+  }
+  std::ifstream journal(dir_ / "journal/journal.jsonl");
+  std::string line;
+  int samples = 0;
+  nlohmann::json summary;
+  while (std::getline(journal, line)) {
+    const auto j = nlohmann::json::parse(line);
+    if (j.value("event", "") == "sample") ++samples;
+    if (j.value("event", "") == "summary") summary = j;
+  }
+  // About 30 s of cell time at the config's sample period: hundreds of samples.
+  EXPECT_GT(samples, 300);
+  ASSERT_TRUE(summary.contains("teach_in")) << summary.dump();
+  EXPECT_EQ(summary["teach_in"]["taught"], true);
+  EXPECT_EQ(summary["teach_in"]["total_resolution"], o.result.total_resolution);
+  EXPECT_EQ(summary["mode"], "virtual-time");
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "journal/plot.svg"));
+}
+
 TEST_F(TeachInTest, TeachingAgainOnAnUnchangedCellTeachesTheSameResolution) {
   // The cell as `cellctl teach-in` leaves it: the config rewritten with the taught resolution, the
   // encoder's EEPROM holding it. A second Teach-In on the same emulated plant (same shaft, same
   // SCU scale error) must find the same resolution; it once grew 0.2 % a time, because the emulated
   // shaft's lead was derived from the taught scaling instead of being the plant's.
   auto& first_run = make_run();
-  const auto first = first_run.run(interrupt_);
+  const auto first = teach(first_run);
   ASSERT_TRUE(first.done) << first.failure;
   run_.reset();  // its emulators saved the EEPROM; the next run starts from it
   cell_.encoder->session = first.taught;
   auto& second_run = make_run();
-  const auto second = second_run.run(interrupt_);
+  const auto second = teach(second_run);
   ASSERT_TRUE(second.done) << second.failure;
   EXPECT_NEAR(second.result.scu_distance_mm, first.result.scu_distance_mm, 0.001);
   EXPECT_NEAR(static_cast<double>(second.result.total_resolution),
@@ -104,17 +158,16 @@ TEST_F(TeachInTest, TeachingAgainOnAnUnchangedCellTeachesTheSameResolution) {
 TEST_F(TeachInTest, AbortDuringTheTravelRestoresTheEncoder) {
   auto& run = make_run();
   bool aborted_travelling = false;
-  run.on_cycle([&](double, runtime::TeachInRun& r) {
-    if (!aborted_travelling && r.routine().phase() == TeachInPhase::travelling &&
-        r.state().axes[0].scu_mm > 40.0) {
+  run.on_cycle([&](double, runtime::CellRun& r) {
+    if (!aborted_travelling && phase(r) == TeachInPhase::travelling && r.state().axes[0].scu_mm > 40.0) {
       aborted_travelling = true;
-      interrupt_.store(true);
+      r.request(supervisor::Command::stop, "the test's operator");
     }
   });
-  const auto o = run.run(interrupt_);
+  const auto o = teach(run);
   ASSERT_TRUE(aborted_travelling);
   EXPECT_FALSE(o.done);
-  EXPECT_TRUE(o.interrupted);
+  EXPECT_EQ(result_.final_state, supervisor::State::stopped);
   EXPECT_TRUE(o.restored);
   EXPECT_NE(o.failure.find("aborted by the operator in phase 'travelling'"), std::string::npos) << o.failure;
   expect_encoder_as_configured();
@@ -128,10 +181,10 @@ TEST_F(TeachInTest, AnInjectedFaultDuringTheTravelRestoresTheEncoder) {
   ASSERT_TRUE(std::holds_alternative<runtime::FaultSpec>(spec));
   auto& run = make_run({std::get<runtime::FaultSpec>(spec)});
   TeachInPhase phase_at_fault = TeachInPhase::checking;
-  run.on_cycle([&](double t, runtime::TeachInRun& r) {
-    if (t < 8.0) phase_at_fault = r.routine().phase();
+  run.on_cycle([&](double t, runtime::CellRun& r) {
+    if (t < 8.0) phase_at_fault = phase(r);
   });
-  const auto o = run.run(interrupt_);
+  const auto o = teach(run);
   EXPECT_EQ(phase_at_fault, TeachInPhase::travelling);
   EXPECT_FALSE(o.done);
   EXPECT_TRUE(o.restored);
@@ -143,10 +196,10 @@ TEST_F(TeachInTest, AFailedVerificationRestoresTheConfiguredParameters) {
   // The encoder's coupling starts to slip 2 % once the taught encoder has measured the end point: on
   // the way back it measures 0.1 mm less than the SCU (tolerance 0.05 mm).
   auto& run = make_run();
-  run.on_cycle([](double, runtime::TeachInRun& r) {
-    if (r.routine().phase() == TeachInPhase::returning) r.emulators()->shaft()->set_slip(0.02);
+  run.on_cycle([](double, runtime::CellRun& r) {
+    if (phase(r) == TeachInPhase::returning) r.emulators()->shaft()->set_slip(0.02);
   });
-  const auto o = run.run(interrupt_);
+  const auto o = teach(run);
   EXPECT_FALSE(o.done);
   EXPECT_TRUE(o.restored);
   EXPECT_NE(o.failure.find("verification failed"), std::string::npos) << o.failure;
@@ -158,9 +211,8 @@ TEST_F(TeachInTest, AStartAtTheNativeZeroIsRefusedBeforeAnyMotion) {
   request_.from_mm = 0.0;
   auto& run = make_run();
   double farthest = 0.0;
-  run.on_cycle(
-      [&](double, runtime::TeachInRun& r) { farthest = std::max(farthest, r.state().axes[0].scu_mm); });
-  const auto o = run.run(interrupt_);
+  run.on_cycle([&](double, runtime::CellRun& r) { farthest = std::max(farthest, r.state().axes[0].scu_mm); });
+  const auto o = teach(run);
   EXPECT_FALSE(o.done);
   EXPECT_NE(o.failure.find("native zero"), std::string::npos) << o.failure;
   // Whole, with what to do (it once ran past journal::Text's 160 octets and lost its advice).
@@ -181,13 +233,13 @@ TEST_F(TeachInTest, ManualModeTeachesOverTheDistanceTheOperatorMovedAndVerifiesI
   auto& run = make_run();
   std::string prompts;
   std::optional<double> hand_target_mm;  // the SCU's frame, where the hand is taking the rod
-  run.on_cycle([&](double, runtime::TeachInRun& r) {
+  run.on_cycle([&](double, runtime::CellRun& r) {
     auto& rod = r.emulators()->scu()->actuator(1);
     if (hand_target_mm && !rod.moving()) {  // the hand has arrived: the operator confirms
       hand_target_mm.reset();
       r.confirm();
     }
-    const auto p = std::string(r.routine().prompt().view());
+    const auto p = prompt(r);
     if (p.empty() || prompts.find(p) != std::string::npos) return;
     prompts += p + "\n";
     if (p.find("by 100.000 mm in + direction") != std::string::npos) {
@@ -200,7 +252,7 @@ TEST_F(TeachInTest, ManualModeTeachesOverTheDistanceTheOperatorMovedAndVerifiesI
     }
     rod.move_to(*hand_target_mm, 20.0, true);
   });
-  const auto o = run.run(interrupt_);
+  const auto o = teach(run);
   ASSERT_TRUE(o.done) << o.failure << "\nprompts:\n" << prompts;
   EXPECT_TRUE(o.restored);
   EXPECT_NE(prompts.find("back to the start mark"), std::string::npos) << prompts;
@@ -221,14 +273,14 @@ TEST_F(TeachInTest, ManualModeGuidesTheOperatorAndAnEndWithoutTravelRestoresTheE
   request_.from_mm.reset();
   auto& run = make_run();
   std::string prompts;
-  run.on_cycle([&](double, runtime::TeachInRun& r) {
-    const auto p = std::string(r.routine().prompt().view());
+  run.on_cycle([&](double, runtime::CellRun& r) {
+    const auto p = prompt(r);
     if (!p.empty() && prompts.find(p) == std::string::npos) {
       prompts += p + "\n";
       r.confirm();
     }
   });
-  const auto o = run.run(interrupt_);
+  const auto o = teach(run);
   EXPECT_NE(prompts.find("Teach-In started: move axis x by 100.000 mm in + direction"), std::string::npos)
       << prompts;
   EXPECT_FALSE(o.done);
