@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli/commissioning.hpp"
+#include "cli/encoder_status.hpp"
 #include "cli/exit_codes.hpp"
 #include "config/cell_config.hpp"
 #include "config/config_edit.hpp"
@@ -39,10 +40,7 @@ std::string bits_text(std::uint16_t bits,
 
 void print_status(const encoder::Session& session) {
   const auto& s = session.snapshot();
-  fmt::print("bus            {} ({}), {} exchanges, last input {:.1f} ms ago\n",
-             link::to_string(session.lifecycle()), profibus::to_string(s.dp_state), s.exchanges,
-             link::to_seconds(s.input_age) * 1e3);
-  fmt::print("position       {} counts = {:.3f} mm\n", s.position_counts, s.position_mm);
+  fmt::print("{}", encoder_input_lines(session.lifecycle(), s));
   const auto f = session.config().parameters.functionality;
   if (f == encoder::Functionality::scancon22 || f == encoder::Functionality::scancon30)
     fmt::print("velocity       {:.3f} mm/s (raw {}{})\n", s.velocity_mm_s, s.velocity_raw,
@@ -205,6 +203,12 @@ class EncoderCommissioning {
           "WARNING        the encoder holds preset offset {}, the config expects preset_offset: {}: a run "
           "refuses this encoder at start\n",
           d->detail->offset, configured_offset_);
+    // A bus in data exchange whose inputs are no positions is no working encoder: said, and not exit 0.
+    if (!encoder_inputs_valid(snapshot())) {
+      spdlog::error("encoder on {}: its inputs are not valid positions ({})", c_.path(),
+                    snapshot().input_fault.empty() ? "none valid" : snapshot().input_fault);
+      return kExitFailed;
+    }
     return kExitOk;
   }
 

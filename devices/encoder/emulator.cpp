@@ -137,7 +137,9 @@ std::size_t Emulator::Behaviour::exchange(std::span<const std::uint8_t> outputs,
   if (has_outputs(f)) word = decode_output(outputs);
   // A Class 2+ exchange without a 4-octet output (cannot happen after Chk_Cfg) counts as zeros.
   if (has_outputs(f) && !word) word = 0;
-  return encode_input(f, device.exchange(word), inputs);
+  const auto length = encode_input(f, device.exchange(word), inputs);
+  if (inputs_all_ones) std::fill_n(inputs.begin(), length, std::uint8_t{0xff});
+  return length;
 }
 
 void Emulator::Behaviour::on_address_changed(std::uint8_t new_address, bool) {

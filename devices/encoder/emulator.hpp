@@ -52,6 +52,10 @@ class Emulator {
   void set_warning(std::uint16_t mask, bool on) noexcept;
   // A slave that stops answering (and starts again).
   void set_silent(bool silent) noexcept { slave_.set_silent(silent); }
+  // A slave whose every input octet is 0xff (`ff ff ff ff` for Class 2: bit 31 set, which the manual
+  // says is always 0): what a broken or third-party slave may send. The master must not take it for
+  // a position (its session marks it invalid).
+  void set_inputs_all_ones(bool on) noexcept { behaviour_.inputs_all_ones = on; }
 
   [[nodiscard]] const profibus::DpSlave& slave() const noexcept { return slave_; }
   [[nodiscard]] const EncoderDevice& device() const noexcept { return behaviour_.device; }
@@ -85,6 +89,7 @@ class Emulator {
     wire::FixedBytes<64> accepted_prm;
     std::optional<Functionality> accepted_family;
     bool diag_changed = false;
+    bool inputs_all_ones = false;  // set_inputs_all_ones
   };
 
   [[nodiscard]] static std::uint8_t start_address(const EmulatorConfig& c, const NonVolatile& nv);

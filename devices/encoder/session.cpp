@@ -127,6 +127,7 @@ void Session::receive(link::TimePoint now) {
   snapshot_.new_diagnosis = fresh_diagnosis && snapshot_.data_exchange;
   snapshot_.exchanges = seen_exchanges_;
   snapshot_.input_age = master_.input_age(now);
+  snapshot_.had_valid_input = stats.last_input_at.has_value();
   snapshot_.bad_inputs = stats.bad_inputs;
   if (!snapshot_.data_exchange) snapshot_.input_valid = false;
   snapshot_.startup_fault = master_.last_startup_fault().kind;

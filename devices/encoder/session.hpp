@@ -49,8 +49,9 @@ struct CommandStatus {
 struct Snapshot {
   profibus::DpState dp_state = profibus::DpState::stopped;
   bool data_exchange = false;
-  std::uint64_t exchanges = 0;  // Data_Exchange replies of the configured length so far
-  link::Duration input_age{};   // since the last valid input
+  std::uint64_t exchanges = 0;   // Data_Exchange replies of the configured length so far
+  link::Duration input_age{};    // since the last valid input (none yet: since the activation)
+  bool had_valid_input = false;  // a valid input since the activation: input_age counts from it
   // The position, velocity and acceleration below are from the last input; they are the encoder's
   // measurement only while input_valid. An input the manual does not allow (bit 31 set without
   // status bits), or one the encoder flags (Ready clear, Teach-In running: unscaled, a direction
