@@ -23,7 +23,7 @@ own_config() {
 
 # 1. Teach-In end to end.
 config=$(own_config taught)
-"$cellctl" -c "$config" teach-in x --distance 100 --from 5 --virtual-time --journal "$work/taught/j" \
+"$cellctl" -c "$config" teach-in x --distance 100 --from 5 --virtual-time --yes --journal "$work/taught/j" \
   >"$work/taught/out.txt" 2>&1
 rc=$?
 [ "$rc" -eq 0 ] || fail "teach-in exits $rc: $(tail -5 "$work/taught/out.txt")"
@@ -41,7 +41,7 @@ grep -Eq "^taught_units [1-9][0-9]+$" "$work/taught/encoder.eeprom" || fail "the
 
 # 2. A fault during the travel: nothing written, the encoder as it was.
 config=$(own_config fault)
-"$cellctl" -c "$config" teach-in x --distance 100 --from 5 --virtual-time --journal "$work/fault/j" \
+"$cellctl" -c "$config" teach-in x --distance 100 --from 5 --virtual-time --yes --journal "$work/fault/j" \
   --fault scu:error@8 >"$work/fault/out.txt" 2>&1
 rc=$?
 [ "$rc" -eq 1 ] || fail "teach-in stopped by a fault exits $rc, not 1"
