@@ -1,30 +1,50 @@
 #!/bin/bash
-# The real-time emulated demo beside a load that keeps every core busy: proves that a dry run on a
-# loaded machine has no fault of its own (issue 9, part 4). Each run starts LOAD busy loops per core
-# (plain shell loops at normal priority, like a compiler or another user's job), runs
-# `cellctl run RECIPE --emulate`, stops its own loops (by their PIDs) and reads the result.
+# A real-time emulated job beside a load that keeps every core busy: proves that a dry run on a
+# loaded machine has no fault of its own (issue 9, part 4; the routines: issue 22, item 4). Each run
+# starts LOAD busy loops per core (plain shell loops at normal priority, like a compiler or another
+# user's job), runs the job with --emulate, stops its own loops (by their PIDs) and reads the result.
 # Passes when every run completes with no fault. Prints per run the load average and, per device,
 # the worst reply round trip and the longest silence between good replies.
 #
-#   tools/demo_under_load.sh [-n RUNS] [-l LOOPS_PER_CORE] [-c CELLCTL] [-r RECIPE] [-f CONFIG] [-o DIR]
+#   tools/demo_under_load.sh [-j run|home|teach-in] [-n RUNS] [-l LOOPS_PER_CORE] [-c CELLCTL]
+#                            [-r RECIPE] [-f CONFIG] [-o DIR]
 #
-# Defaults: 5 runs, 2 loops per core, build/release/cellctl, recipes/demo.yaml (about 91 s a run),
-# run records under /tmp/cellctl-under-load. Run from the repository root.
+# Defaults: the job `run` of recipes/demo.yaml (about 91 s a run; `home`: every axis with homing,
+# about 10 s; `teach-in`: the encoder on x over 100 mm from 5 mm, about 45 s), 5 runs, 2 loops per
+# core, build/release/cellctl, run records under /tmp/cellctl-under-load (its state/ folder is the
+# dry runs' emulated plant, kept from run to run). Run from the repository root.
 set -u
 runs=5 per_core=2 cellctl=build/release/cellctl recipe=recipes/demo.yaml out=/tmp/cellctl-under-load
-config=config/cell.yaml
-while getopts "n:l:c:r:o:f:" opt; do
+config=config/cell.yaml job=run
+while getopts "j:n:l:c:r:o:f:" opt; do
   case $opt in
+    j) job=$OPTARG ;;
     n) runs=$OPTARG ;;
     l) per_core=$OPTARG ;;
     c) cellctl=$OPTARG ;;
     r) recipe=$OPTARG ;;
     o) out=$OPTARG ;;
     f) config=$OPTARG ;;
-    *) sed -n '2,12p' "$0"; exit 2 ;;
+    *) sed -n '2,15p' "$0"; exit 2 ;;
   esac
 done
 [ -x "$cellctl" ] || { echo "no cellctl at $cellctl (build it: cmake --build --preset release)" >&2; exit 2; }
+case $job in
+  run) what="$recipe" ;;
+  home) what="homing" ;;
+  teach-in) what="Teach-In of x" ;;
+  *) echo "-j: run, home or teach-in" >&2; exit 2 ;;
+esac
+# One job, its record in $1.
+run_job() {
+  case $job in
+    run) "$cellctl" -c "$config" run "$recipe" --emulate --journal "$1" --state-dir "$out/state" ;;
+    home) "$cellctl" -c "$config" home --yes --emulate --journal "$1" --state-dir "$out/state" ;;
+    teach-in)
+      "$cellctl" -c "$config" teach-in x --distance 100 --from 5 --yes --emulate --journal "$1" \
+        --state-dir "$out/state" ;;
+  esac
+}
 cores=$(nproc)
 loops=()
 stop_load() {
@@ -35,13 +55,13 @@ stop_load() {
 trap 'stop_load; exit 130' INT TERM
 rm -rf "$out" && mkdir -p "$out"
 failed=0
-echo "cellctl under load: $runs run(s) of $recipe --emulate beside $((cores * per_core)) busy loops on $cores cores"
+echo "cellctl under load: $runs run(s) of $what --emulate beside $((cores * per_core)) busy loops on $cores cores"
 for i in $(seq 1 "$runs"); do
   for _ in $(seq 1 $((cores * per_core))); do
     sh -c 'while :; do :; done' &
     loops+=($!)
   done
-  "$cellctl" -c "$config" run "$recipe" --emulate --journal "$out/run$i" >"$out/run$i.txt" 2>&1
+  run_job "$out/run$i" >"$out/run$i.txt" 2>&1
   rc=$?
   stop_load
   faults=$(grep -c '^  fault:' "$out/run$i.txt")

@@ -17,7 +17,6 @@
 #include "cli/terminal_screen.hpp"
 #include "config/cell_config.hpp"
 #include "runtime/cell_run.hpp"
-#include "runtime/dry_run_state.hpp"
 #include "runtime/fault_rehearsal.hpp"
 
 namespace cellctl::cli {
@@ -41,15 +40,6 @@ std::filesystem::path default_dir(const std::string& axis) {
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &utc);
   return std::filesystem::path("runs") / fmt::format("teach-in-{}-{}", axis, stamp);
-}
-
-// Where a verified result goes, as record_teach_in writes it: a dry run into its own copy, never the
-// cell's config.
-std::filesystem::path result_file(const GlobalOptions& global, const config::CellConfig& cell,
-                                  const RunArgs& run) {
-  if (run_mode(run) == runtime::RunMode::hardware) return global.config;
-  return runtime::dry_run_config_file(run.state_dir.empty() ? cell.state_dir
-                                                            : std::filesystem::path(run.state_dir));
 }
 
 // What the Teach-In will move and write, said before anything moves (as `cellctl home` does), so the
@@ -90,7 +80,9 @@ int teach_in(const GlobalOptions& global, const TeachInArgs& args) {
   }
   const auto& request = std::get<routines::TeachInRequest>(asked);
   const bool dry_run = run_mode(args.run) != runtime::RunMode::hardware;
-  fmt::print("{}", plan(cell, request, result_file(global, cell, args.run), dry_run));
+  fmt::print(
+      "{}", plan(cell, request,
+                 teach_in_destination(global.config, cell, run_mode(args.run), args.run.state_dir), dry_run));
   switch (confirm("Start the Teach-In now? Keep clear of the cell.", args.yes)) {
     case Confirmation::confirmed:
       break;

@@ -43,7 +43,7 @@ recipe::Recipe teach_in_recipe(const config::CellConfig& cell, const routines::T
   const auto& axis = cell.axes.at(static_cast<std::size_t>(request.axis));
   recipe::Recipe r;
   r.name = fmt::format("teach-in {}", axis.name);  // as the page and the plant name the job
-  r.version = "1";
+  r.version = std::string(1, '1');  // (not = "1": g++ 12 -O2 warns a false -Wrestrict on that)
   r.cell = cell.name;
   r.limits.axes.resize(cell.axes.size());  // no recipe move: the routine keeps to the axis's own limits
   r.steps.push_back({fmt::format("teach-in {}", axis.name), 1, request});
@@ -83,6 +83,14 @@ config::ConfigChange write_result(const std::filesystem::path& config_file,
 
 }  // namespace
 
+std::filesystem::path teach_in_destination(const std::filesystem::path& config_file,
+                                           const config::CellConfig& cell, runtime::RunMode mode,
+                                           const std::filesystem::path& state_dir) {
+  // A rehearsal on emulators never rewrites the cell's config: its result goes into a copy.
+  if (mode == runtime::RunMode::hardware) return config_file;
+  return runtime::dry_run_config_file(state_dir.empty() ? cell.state_dir : state_dir);
+}
+
 TeachInRecord record_teach_in(const std::filesystem::path& config_file, const config::CellConfig& cell,
                               const runtime::RunResult& r, runtime::RunMode mode,
                               const std::filesystem::path& state_dir, bool manual) {
@@ -103,10 +111,8 @@ TeachInRecord record_teach_in(const std::filesystem::path& config_file, const co
       "verified: moving back, the encoder measured {:.4f} mm, the {} {:.4f} mm",
       o.result.total_resolution, o.units_per_mm, o.result.encoder_distance_mm,
       manual ? "distance given" : "SCU", o.result.scu_back_mm);
-  // A rehearsal on emulators never rewrites the cell's config: its result goes into a copy.
   const bool dry_run = mode != runtime::RunMode::hardware;
-  out.file =
-      dry_run ? runtime::dry_run_config_file(state_dir.empty() ? cell.state_dir : state_dir) : config_file;
+  out.file = teach_in_destination(config_file, cell, mode, state_dir);
   try {
     const auto change = write_result(config_file, out.file, cell, o);
     out.written = true;

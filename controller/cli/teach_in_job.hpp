@@ -46,6 +46,13 @@ struct TeachInRecord {
   std::filesystem::path file;  // the config written: the cell's, or a dry run's copy
 };
 
+// Where a Teach-In's verified result is written: the cell's config, or in a dry run (`mode` not
+// hardware) <state_dir>/config.dry-run.yaml (`state_dir` empty: the config's).
+[[nodiscard]] std::filesystem::path teach_in_destination(const std::filesystem::path& config_file,
+                                                         const config::CellConfig& cell,
+                                                         runtime::RunMode mode,
+                                                         const std::filesystem::path& state_dir);
+
 // A verified result into the config's encoder section (temp file + rename, the old file kept as
 // FILE.bak); a dry run (`mode` not hardware) writes <state_dir>/config.dry-run.yaml instead and never
 // the cell's config (`state_dir` empty: the config's). A failed Teach-In writes nothing and says why.

@@ -106,7 +106,7 @@ function ask(cmd){if(cmd==='start'){const r=$('recipe').value.trim();
  if(cmd==='home')return{body:{},q:'Home every axis that has homing? The axes MOVE. Keep clear of the cell.'};
  if(cmd==='teach-in'){const b={axis:$('ti-axis').value.trim(),distance_mm:parseFloat($('ti-distance').value)};
   if($('ti-from').value.trim()!=='')b.from_mm=parseFloat($('ti-from').value);
-  return{body:b,q:'Teach-In of the encoder on axis '+b.axis+' over '+b.distance_mm+' mm? The axis MOVES, and the cell config is rewritten once the result is verified.'};}
+  return{body:b,q:'Teach-In of the encoder on axis '+b.axis+' over '+b.distance_mm+' mm? The axis MOVES, and the verified result is written into the cell config (in a dry run, into its copy of it).'};}
  return{body:{},q:cmd+' the cell?'};}
 for(const b of document.querySelectorAll('button[data-cmd]'))b.onclick=async()=>{const cmd=b.dataset.cmd;
  const a0=ask(cmd);if(!confirm(a0.q))return;$('answer').textContent=cmd+'…';$('answer').className='';

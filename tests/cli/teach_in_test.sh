@@ -1,8 +1,8 @@
 #!/bin/bash
 # Issue 10 parts 4 and 5 as a user meets them, each scenario on its own copy of the cell config with
 # its own encoder EEPROM file in a fresh folder (nothing shared in /tmp):
-#  - `cellctl teach-in x` in virtual time: taught, verified, written into the config (backup kept),
-#    and a run of the demo on the taught config completes;
+#  - `cellctl teach-in x` in virtual time: taught, verified, written into the dry run's copy of the
+#    config (the cell's config untouched), and a run of the demo on that copy completes;
 #  - the same with an injected SCU fault during the travel: exit 1, config and EEPROM untouched;
 #  - an encoder preset since the config was written (its EEPROM holds offset 1000): the run is refused
 #    at start with both values and what to do; with preset_offset: 1000 recorded, it runs.
@@ -21,23 +21,26 @@ own_config() {
   echo "$work/$1/cell.yaml"
 }
 
-# 1. Teach-In end to end.
+# 1. Teach-In end to end, rehearsed: taught, verified, written into the dry run's copy of the config
+#    (issue 22: a dry run never writes the cell's config), and the demo runs on that copy.
 config=$(own_config taught)
+taught="$work/taught/state/config.dry-run.yaml"
 "$cellctl" -c "$config" teach-in x --distance 100 --from 5 --virtual-time --yes --journal "$work/taught/j" \
-  >"$work/taught/out.txt" 2>&1
+  --state-dir "$work/taught/state" >"$work/taught/out.txt" 2>&1
 rc=$?
 [ "$rc" -eq 0 ] || fail "teach-in exits $rc: $(tail -5 "$work/taught/out.txt")"
 grep -q "verified: moving back, the encoder measured 100.0" "$work/taught/out.txt" || fail "no verification said"
-grep -Eq "^  measuring_units: [0-9]+$" "$config" || fail "measuring_units not written: $(grep -A20 '^encoder:' "$config")"
-grep -q "^  counts_per_mm: 1000$" "$config" || fail "counts_per_mm not written"
-grep -q "^  units_select: per_total_range$" "$config" || fail "units_select not written"
-grep -q "^  mm_per_revolution:" "$config" && fail "mm_per_revolution left beside counts_per_mm"
-cmp -s "$config.bak" "$work/taught/cell.orig.yaml" || fail "the backup is not the config as it was"
+cmp -s "$config" "$work/taught/cell.orig.yaml" || fail "a dry-run Teach-In changed the cell's config"
+[ -e "$config.bak" ] && fail "a backup of the cell's config was written"
+grep -Eq "^  measuring_units: [0-9]+$" "$taught" || fail "measuring_units not written: $(grep -A20 '^encoder:' "$taught")"
+grep -q "^  counts_per_mm: 1000$" "$taught" || fail "counts_per_mm not written"
+grep -q "^  units_select: per_total_range$" "$taught" || fail "units_select not written"
+grep -q "^  mm_per_revolution:" "$taught" && fail "mm_per_revolution left beside counts_per_mm"
 grep -q "encoder.measuring_units: (none) → " "$work/taught/out.txt" || fail "the change is not printed"
-ls "$work/taught/" | grep -q "\.new-" && fail "a temporary file was left"
+ls "$work/taught/state/" | grep -q "\.new-" && fail "a temporary file was left"
 grep -Eq "^taught_units [1-9][0-9]+$" "$work/taught/encoder.eeprom" || fail "the encoder kept no Teach-In"
-"$cellctl" -c "$config" run "$recipe" --virtual-time --journal "$work/taught/run" >"$work/taught/run.txt" 2>&1 ||
-  fail "the demo on the taught config fails: $(tail -5 "$work/taught/run.txt")"
+"$cellctl" -c "$taught" run "$recipe" --virtual-time --journal "$work/taught/run" --state-dir "$work/taught/state" \
+  >"$work/taught/run.txt" 2>&1 || fail "the demo on the taught config fails: $(tail -5 "$work/taught/run.txt")"
 
 # 2. A fault during the travel: nothing written, the encoder as it was.
 config=$(own_config fault)

@@ -5,10 +5,10 @@ Teach-In and Start buttons, each behind a confirmation that says what moves, sta
 
 usage: serve_page_test.py CELLCTL CONFIG RECIPES_DIR OUT_DIR
 
-Works on a copy of CONFIG in OUT_DIR (the Teach-In writes its result into it). Checks: the page shows
+Works on a copy of CONFIG in OUT_DIR, with the state folder OUT_DIR/state. Checks: the page shows
 Idle with no job; a dismissed confirmation sends nothing; Home (confirmed) homes the cell to Complete;
 Reset brings it back to Idle (a start is taken only there); Teach-In over 100 mm from 5 mm (confirmed)
-is taught and written into the config copy; after another Reset, Start of a recipe runs it to Complete; /metrics counts the three runs; a screenshot is saved (OUT_DIR/serve_page.png);
+is taught and written into the dry run's config (STATE/config.dry-run.yaml), the cell's config untouched; after another Reset, Start of a recipe runs it to Complete; /metrics counts the three runs; a screenshot is saved (OUT_DIR/serve_page.png);
 SIGTERM ends cellctl serve with 0. Every wait is on a condition with a time-out.
 """
 import os
@@ -34,8 +34,9 @@ with open(os.path.join(out, "token"), "w") as f:
 
 page = PageSession(out)
 driver = page.driver
+state_dir = os.path.join(out, "state")
 page.start([cellctl, "-c", config, "serve", "--virtual-time", "--runs", os.path.join(out, "runs"), "--state-dir",
-            os.path.join(out, "state"), "--recipes", recipes, "--http-token-file", os.path.join(out, "token")])
+            state_dir, "--recipes", recipes, "--http-token-file", os.path.join(out, "token")])
 
 
 def text(element_id):
@@ -88,11 +89,14 @@ try:
     reset_to_idle(wait)
 
     driver.find_element(By.ID, "ti-from").send_keys("5")
-    confirm_and_answer("teach-in", "the cell config is rewritten", "teach-in: started: Teach-In", wait)
+    confirm_and_answer("teach-in", "the verified result is written into the cell config", "teach-in: started: Teach-In", wait)
     completed(2, "the Teach-In to complete")
     wait.until(EC.text_to_be_present_in_element((By.ID, "mode"), "teach-in x"))
-    with open(config) as f:
-        assert "measuring_units: " in f.read(), "the Teach-In did not write the config"
+    # A dry run (serve --virtual-time) writes the dry run's copy, never the cell's config (issue 22).
+    with open(os.path.join(state_dir, "config.dry-run.yaml")) as f:
+        assert "measuring_units: " in f.read(), "the Teach-In did not write the dry run's config"
+    with open(config) as f, open(config_given) as g:
+        assert f.read() == g.read(), "a dry-run Teach-In changed the cell's config"
     reset_to_idle(wait)
 
     recipe = driver.find_element(By.ID, "recipe")
