@@ -178,6 +178,9 @@ void CellRun::judge_reset(double t, supervisor::Command c, const journal::Text& 
     if (had_stop) operator_stop_ = true;
     return;
   }
+  // Every latch cleared: what ends the run from here on is a fault after this reset, not the one
+  // that was reset (the summary's ended_by).
+  first_fault_.reset();
   // Held by a category-2 stop, the run goes on: a reset clears the latches, unhold resumes. Only a
   // run that has ended changes state.
   if (!supervisor::is_final(supervisor_->state())) {
@@ -207,9 +210,9 @@ void CellRun::report_devices(double t, RunResult& r) {
     note("encoder: DP start-up begun again: " + enc->restart_reason());
 }
 
-CellRun::FirstFault CellRun::first_fault(monitor::Rule rule, double t,
+CellRun::FirstFault CellRun::first_fault(monitor::Rule rule, config::StopCategory category, double t,
                                          const journal::Text& detail) const noexcept {
-  FirstFault f{rule, t, detail, std::nullopt, 0.0};
+  FirstFault f{rule, category, t, detail, std::nullopt, 0.0};
   // The link that failed: of the lost or silent ones, the longest silent; the encoder when it left
   // data exchange.
   link::Duration longest{};
@@ -344,7 +347,12 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
       const auto& latch = monitor_.latch(rule);
       journal_.post(t, journal::Fault{monitor::to_string(rule), static_cast<std::uint8_t>(latch.category),
                                       latch.detail});
-      if (!first_fault_ && !shutdown_since_) first_fault_ = first_fault(rule, t, latch.detail);
+      // The fault that ended the run: the first, unless a later one demands a stronger stop (an
+      // emergency stop while held by a Ctrl-C: the run ends Aborted by it).
+      const bool stronger =
+          first_fault_ && static_cast<int>(latch.category) < static_cast<int>(first_fault_->category);
+      if ((!first_fault_ || stronger) && !shutdown_since_)
+        first_fault_ = first_fault(rule, latch.category, t, latch.detail);
     }
 
     stages.begin(index(ControlStage::supervisor));

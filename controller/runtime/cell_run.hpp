@@ -221,15 +221,17 @@ class CellRun {
   bool operator_stop_ = false;   // Ctrl-C once: the monitor's operator stop
   bool emergency_stop_ = false;  // Ctrl-C twice: the monitor's emergency stop
   std::optional<link::TimePoint> shutdown_since_;
-  // The first monitor fault of the run (the one that ended it, when one did).
+  // The monitor fault that ended the run, when one did: the first since the last reset, or a later
+  // one that demanded a stronger stop.
   struct FirstFault {
     monitor::Rule rule;
+    config::StopCategory category;  // the stop it demanded
     double t;
     journal::Text detail;
     std::optional<cell::Device> link;  // a device link that had failed then: the fault is named after it
     double link_since = 0.0;           // its last good reply, s from the start
   };
-  [[nodiscard]] FirstFault first_fault(monitor::Rule rule, double t,
+  [[nodiscard]] FirstFault first_fault(monitor::Rule rule, config::StopCategory category, double t,
                                        const journal::Text& detail) const noexcept;
   std::optional<FirstFault> first_fault_;
   std::atomic<bool> loop_stop_{false};

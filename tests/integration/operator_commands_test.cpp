@@ -171,5 +171,41 @@ TEST_F(OperatorCommands, ResetIsRefusedWhileTheCauseIsPresent) {
   expect_completed(r);
 }
 
+TEST_F(OperatorCommands, EndedByNamesTheEmergencyStopNotACtrlCThatWasReset) {
+  // Issue 22: Ctrl-C holds the cell (the shipped operator stop, category 2); the operator resets and
+  // unholds; later Ctrl-C twice is an emergency stop that ends the run. The summary's ended_by names
+  // that emergency stop, not the first Ctrl-C, whose latch the reset had cleared.
+  int presses = 0;
+  const auto r = run_with(
+      [this](double, runtime::CellRun& run) {
+        if (!in_traverse_past(run, 10.0)) return false;
+        interrupt_.store(true);
+        return true;
+      },
+      [&, this](double t, runtime::CellRun& run) {
+        track_held(t, run);
+        const auto state = run.supervisor().state();
+        if (held_for(t, 0.5) && state == State::held && presses == 0) {
+          run.request(Command::reset);
+          presses = 1;
+        } else if (presses == 1 && state == State::held && !run.monitor().demanded_stop()) {
+          run.request(Command::unhold);
+          presses = 2;
+        } else if (presses == 2 && state == State::execute && in_traverse_past(run, 20.0)) {
+          interrupt_.store(true);  // Ctrl-C again: the operator stop …
+          presses = 3;
+        } else if (presses == 3) {
+          interrupt_.store(true);  // … and once more, the next cycle: the emergency stop
+          presses = 4;
+        }
+      });
+  ASSERT_EQ(presses, 4) << r.summary_text;
+  EXPECT_EQ(r.final_state, State::aborted) << r.summary_text;
+  const auto ends = events("summary");
+  ASSERT_EQ(ends.size(), 1u);
+  const auto ended = ends[0]["ended_by"];
+  EXPECT_EQ(ended["rule"], "emergency_stop") << ended.dump();
+}
+
 }  // namespace
 }  // namespace cellctl::testing
