@@ -195,7 +195,7 @@ CellStandby::JobEnd CellStandby::not_started(const plant_link::StartRequest& r, 
              {"steps", 0}});
   tell_line(
       {{"event", "state"}, {"t", 0.0}, {"from", "Starting"}, {"to", to}, {"reason", "not started: " + why}});
-  return {fmt::format("{}: not started: {}", to, why), end};
+  return {fmt::format("{}: not started: {}", to, why), end, std::nullopt};
 }
 
 int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminate,
@@ -245,7 +245,8 @@ int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminat
       busy_ = Busy::none;
       job_.clear();
     }
-    interrupt.store(false);  // a Ctrl-C during the job was the job's
+    if (end.end_line) tell_line(*end.end_line);  // the standby takes the plant's next command now
+    interrupt.store(false);                      // a Ctrl-C during the job was the job's
   }
   if (!blocked_.empty()) return kExitSafeStateUnknown;
   return terminate.load() ? kExitOk : kExitInterrupted;
@@ -332,11 +333,12 @@ CellStandby::JobEnd CellStandby::run_recipe(const recipe::Recipe& recipe,
       words += "; WARNING: " + blocked_;
     }
   if (!result.home_record.empty()) words += "; " + result.home_record;
-  JobEnd end{words, result.final_state};
+  JobEnd end{words, result.final_state, std::nullopt};
   if (after) after(result, end);
-  // The end state goes out only now, with the job's work on disk (the journal closed, the home record
-  // and a taught config written).
-  gate.release(end.words.size() > head.size() + 2 ? end.words.substr(head.size() + 2) : std::string());
+  // The end state goes out once the job's work is on disk (the journal closed, the home record and a
+  // taught config written) and the standby is free again: serve() tells it.
+  end.end_line =
+      gate.take(end.words.size() > head.size() + 2 ? end.words.substr(head.size() + 2) : std::string());
   return end;
 }
 

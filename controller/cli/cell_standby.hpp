@@ -84,6 +84,9 @@ class CellStandby {
   struct JobEnd {
     std::string words;
     supervisor::State state = supervisor::State::aborted;
+    // The run's end state line (its journal's), told only once the job's work is saved and the
+    // standby is free for the command the plant sends on it (a reset on Complete).
+    std::optional<nlohmann::json> end_line;
   };
 
   // The arbiter's port to the job in progress.

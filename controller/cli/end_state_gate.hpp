@@ -35,14 +35,19 @@ class EndStateGate {
   // Once the job's work is on disk: the held end state goes on, `words` appended to its reason. A run
   // that never reached an end state (it could not start) has nothing held.
   void release(const std::string& words = {}) {
+    const auto line = take(words);
+    if (line && next_) next_(*line);
+  }
+  // The held end state with `words` appended to its reason, for the caller to tell when it is ready
+  // for what the line will bring (serve: once it takes the next command); none when nothing is held.
+  [[nodiscard]] std::optional<nlohmann::json> take(const std::string& words = {}) {
     std::optional<nlohmann::json> line;
     {
       const std::lock_guard lock(mutex_);
       line.swap(held_);
     }
-    if (!line || !next_) return;
-    if (!words.empty()) (*line)["reason"] = line->value("reason", std::string()) + "; " + words;
-    next_(*line);
+    if (line && !words.empty()) (*line)["reason"] = line->value("reason", std::string()) + "; " + words;
+    return line;
   }
 
  private:
