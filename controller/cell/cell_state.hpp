@@ -15,11 +15,11 @@ namespace cellctl::cell {
 inline constexpr std::size_t kMaxAxes = 6;
 
 struct AxisState {
-  bool present = false;           // the SCU reports the actuator
-  double scu_mm = 0.0;            // the SCU's own position
-  bool moving = false;            // SCU status 1: motion active (as of the last RC reply: it lags a command)
-  bool commanded = false;         // a move is queued for the SCU or its RE is still open
-  bool move_refused = false;      // the SCU answered an error to the last move's telegrams
+  bool present = false;       // the SCU reports the actuator
+  double scu_mm = 0.0;        // the SCU's own position
+  bool moving = false;        // SCU status 1: motion active (as of the last RC reply: it lags a command)
+  bool commanded = false;     // a move is queued for the SCU or its RE is still open
+  bool move_refused = false;  // the SCU answered an error to the last move's telegrams
   // The moves the SCU has taken for this axis (REs acknowledged): when it counts one more, the move
   // just asked for is under way, and its plan's clock may start.
   std::uint32_t moves_taken = 0;
@@ -115,9 +115,9 @@ struct CellState {
   // Since the RC whose reply brought the SCU's positions was sent (every keep-alive): the line's
   // delay both ways is in it.
   link::Duration scu_position_age{};
-  bool scu_remote = false;            // remote mode open (RO done, RC running)
-  bool scu_status2_known = false;     // actuator status 2 (homed) has been read since activation
-  std::string_view scu_refusal;       // the SCU's last error reply, in words (static text)
+  bool scu_remote = false;         // remote mode open (RO done, RC running)
+  bool scu_status2_known = false;  // actuator status 2 (homed) has been read since activation
+  std::string_view scu_refusal;    // the SCU's last error reply, in words (static text)
 };
 
 }  // namespace cellctl::cell

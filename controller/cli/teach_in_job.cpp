@@ -43,7 +43,7 @@ recipe::Recipe teach_in_recipe(const config::CellConfig& cell, const routines::T
   const auto& axis = cell.axes.at(static_cast<std::size_t>(request.axis));
   recipe::Recipe r;
   r.name = fmt::format("teach-in {}", axis.name);  // as the page and the plant name the job
-  r.version = std::string(1, '1');  // (not = "1": g++ 12 -O2 warns a false -Wrestrict on that)
+  r.version = std::string(1, '1');                 // (not = "1": g++ 12 -O2 warns a false -Wrestrict on that)
   r.cell = cell.name;
   r.limits.axes.resize(cell.axes.size());  // no recipe move: the routine keeps to the axis's own limits
   r.steps.push_back({fmt::format("teach-in {}", axis.name), 1, request});

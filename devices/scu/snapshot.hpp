@@ -37,7 +37,7 @@ enum class MoveOutcome : std::uint8_t {
 struct FunctionState {
   bool execution_open = false;  // RE acknowledged, its RS not yet
   MoveOutcome outcome = MoveOutcome::none;
-  std::uint32_t executions = 0;  // REs the SCU acknowledged: one more, and the move asked is under way
+  std::uint32_t executions = 0;     // REs the SCU acknowledged: one more, and the move asked is under way
   std::uint16_t speed_percent = 0;  // last remote speed written (the one place the speed is held)
   std::bitset<kActuatorCount> targeted;
   std::array<std::int32_t, kActuatorCount> targets{};  // edges, for the targeted actuators
@@ -68,7 +68,7 @@ struct Snapshot {
   // Since the RC whose reply gave the positions was sent (or since activation without one), as of
   // receive(): the line's delay both ways is in it.
   link::Duration position_age{};
-  bool status2_known = false;     // actuator status 2 read since activation: `initialised` is meaningful
+  bool status2_known = false;  // actuator status 2 read since activation: `initialised` is meaningful
   LastRead last_read;
   std::optional<Refusal> last_refusal;
   std::uint64_t refusals = 0;

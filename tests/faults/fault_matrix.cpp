@@ -162,7 +162,8 @@ std::vector<MatrixCase> all_cases() {
   const auto cell = matrix_cell();
   for (const auto d : kDevices)
     for (const double delay : kServiceDelaysMs)
-      if (delay < link_limit_ms(d, cell)) out.push_back({d, FaultClass::delay_below, Activity::moving, delay});
+      if (delay < link_limit_ms(d, cell))
+        out.push_back({d, FaultClass::delay_below, Activity::moving, delay});
   return out;
 }
 
