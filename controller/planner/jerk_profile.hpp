@@ -46,9 +46,10 @@ struct PositionExtrema {
 
 class JerkProfile {
  public:
-  // The longest profile: a brake (3 segments) then a blend of two 7-segment extreme profiles,
-  // whose merged switching times give at most 13 segments.
-  static constexpr std::size_t kMaxSegments = 16;
+  // The longest profile: a mix (travel_fit.hpp) of a blend and an axis's own shortest profile held
+  // at the target, after their common brake: 3 segments, then the blend's 13 (two 7-segment extreme
+  // profiles, their switching times merged) merged with the other's 13 and its hold, at most 27.
+  static constexpr std::size_t kMaxSegments = 32;
 
   JerkProfile() = default;
   explicit JerkProfile(const MotionState& start) noexcept : start_(start), end_(start) {}

@@ -8,7 +8,10 @@
 //   target velocities and accelerations are all on that line; otherwise time synchronisation and
 //   a note;
 // - none: every axis on its own shortest profile.
-// Every axis's motion (overshoot included) must stay in its travel, or the plan is refused.
+// Every axis's motion (overshoot included) must stay in its travel, or the plan is refused. An
+// axis whose time-synchronised blend leaves it gets a profile of the common duration that keeps it
+// if its own shortest motion does and its target is at rest (travel_fit.hpp); a refusal names the
+// end of the travel and by how much the motion the planner could make leaves it.
 // Fixed-size storage: calculating and evaluating never allocate.
 
 #include <algorithm>
@@ -21,6 +24,7 @@
 #include "planner/input.hpp"
 #include "planner/jerk_profile.hpp"
 #include "planner/result.hpp"
+#include "planner/travel_fit.hpp"
 
 namespace cellctl::planner {
 
@@ -234,8 +238,8 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
       if (any_motion) t.note_ = kPhaseFallbackNote;
     }
   }
+  std::array<AxisProfile, kN> axes;  // not {}: that zeroed their brakes' unused segment slots
   if (!planned) {
-    std::array<AxisProfile, kN> axes;  // not {}: that zeroed their brakes' unused segment slots
     double common = 0.0;
     for (int i = 0; i < N; ++i) {
       if (!in.enabled[idx(i)]) continue;
@@ -281,15 +285,32 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
   // The travel: the target and the whole motion inside it.
   for (int i = 0; i < N; ++i) {
     if (!in.enabled[idx(i)] || (in.min_position[i] == -kInf && in.max_position[i] == kInf)) continue;
-    const PositionExtrema e = t.profiles_[idx(i)].extrema();
+    const double lo = in.min_position[i];
+    const double hi = in.max_position[i];
     const double slack = 1e-9 * (1.0 + std::abs(in.target_position[i]));
-    const double below = in.min_position[i] - e.min.position;
-    const double above = e.max.position - in.max_position[i];
-    if (below > slack || above > slack) {
-      error_axis = i;
-      if (excess != nullptr) *excess = TravelExcess{above >= below, std::max(above, below)};
-      return Result::outside_travel;
+    JerkProfile& p = t.profiles_[idx(i)];
+    TravelExcess e = travel_excess(p, lo, hi);
+    if (e.by <= slack) continue;
+    // A blend at a longer duration than the axis's own: its own shortest motion held at the target
+    // (at rest) may keep the travel (see travel_fit.hpp).
+    const AxisProfile& a = axes[idx(i)];
+    const bool blended =
+        !planned && t.synchronization_ == Synchronization::time && t.duration_ > a.min_duration();
+    if (blended && in.target_velocity[i] == 0.0 && in.target_acceleration[i] == 0.0) {
+      JerkProfile own;
+      if (a.build(a.min_duration(), own)) {
+        own.append({0.0, std::max(0.0, p.duration() - own.duration())});
+        const TravelExcess own_excess = travel_excess(own, lo, hi);
+        if (own_excess.by <= slack) {
+          p = nearest_inside(own, p, lo, hi);
+          continue;
+        }
+        e = own_excess;  // what the motion the planner could make leaves the travel by
+      }
     }
+    error_axis = i;
+    if (excess != nullptr) *excess = e;
+    return Result::outside_travel;
   }
   out = t;
   return Result::working;

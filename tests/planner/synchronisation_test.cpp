@@ -249,6 +249,89 @@ TEST(Travel, UnavoidableOvershootIsRefusedAndAStopInsideIsNot) {
   EXPECT_NEAR(t.profile(0).at(e.max.time).velocity, 0.0, 1e-9);
 }
 
+TEST(Travel, AnAxisSlowedForTheOthersKeepsTheTravelItsOwnMotionKeeps) {
+  // Axis 0 moves away from its target 0.15 above min_position: turning at once it stops 0.041
+  // above it. Axis 1's long move sets the common duration, at which axis 0's blend of extremes
+  // turned late, 0.12 below min_position: this was refused (outside_travel) before travel_fit.hpp.
+  Input<2> in;
+  in.current_position = Vector<2>{0.15, 0.0};
+  in.current_velocity = Vector<2>{-0.5, 0.0};
+  in.target_position = Vector<2>{0.5, 10.0};
+  in.max_acceleration = Vector<2>{2.0, 2.0};
+  in.max_jerk = Vector<2>{10.0, 10.0};
+  in.min_position = Vector<2>{0.0, -100.0};
+  in.max_position = Vector<2>{1.0, 100.0};
+  Trajectory<2> t;
+  int axis = -1;
+  TravelExcess excess;
+  ASSERT_EQ(Trajectory<2>::calculate(in, t, axis, &excess), Result::working)
+      << "axis " << axis << " by " << excess.by;
+  EXPECT_GT(t.duration(), t.axis_min_duration(0) + 5.0);
+  expect_arrives_together(t, in, "slowed axis");
+  EXPECT_GE(t.position_extrema(0).min.position, -1e-12);
+  EXPECT_LE(t.position_extrema(0).max.position, 0.5 + 1e-12);
+  // Not the shortest motion held at the target: it arrives with axis 1 (still moving just before).
+  EXPECT_GT(std::abs(t.profile(0).at(t.duration() - 0.01).velocity), 1e-6);
+  // Where its own motion leaves the travel too, that motion's excess is what the refusal says.
+  in.current_position[0] = 0.03;
+  EXPECT_EQ(Trajectory<2>::calculate(in, t, axis, &excess), Result::outside_travel);
+  EXPECT_EQ(axis, 0);
+  EXPECT_FALSE(excess.beyond_max);
+  EXPECT_NEAR(excess.by, 0.15 - 0.0408333 - 0.03, 1e-6);
+}
+
+// Random time-synchronised problems whose travel each axis's own shortest motion keeps (its
+// extremes, the target's side a little further): every one is planned, inside the travel.
+TEST(Travel, EveryAxisWhoseOwnMotionKeepsTheTravelIsPlannedInsideIt) {
+  constexpr int kAxes = 3;
+  const long count = testing::problem_count(35000) / 10;
+  const std::uint64_t seed = testing::problem_seed(17);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> room(0.0, 0.05);
+  long fitted = 0;
+  for (long c = 0; c < count && !::testing::Test::HasFailure(); ++c) {
+    std::vector<oracle::Problem> axes;
+    for (int i = 0; i < kAxes; ++i) axes.push_back(testing::random_problem(rng, testing::Start::moving));
+    Input<kAxes> in = testing::input_of<kAxes>(axes);
+    Input<kAxes> alone = in;
+    alone.synchronization = Synchronization::none;
+    Trajectory<kAxes> t;
+    int axis = -1;
+    ASSERT_EQ(Trajectory<kAxes>::calculate(alone, t, axis), Result::working);
+    for (int i = 0; i < kAxes; ++i) {
+      const PositionExtrema e = t.position_extrema(i);
+      in.min_position[i] = e.min.position - room(rng);
+      in.max_position[i] = e.max.position + room(rng);
+    }
+    Trajectory<kAxes> unbounded;
+    Input<kAxes> free = in;
+    free.min_position.setConstant(-kInf);
+    free.max_position.setConstant(kInf);
+    ASSERT_EQ(Trajectory<kAxes>::calculate(free, unbounded, axis), Result::working);
+    const std::string what =
+        "case " + std::to_string(c) + " seed " + std::to_string(seed) + "\n" + to_string(in);
+    TravelExcess excess;
+    ASSERT_EQ(Trajectory<kAxes>::calculate(in, t, axis, &excess), Result::working)
+        << what << "\naxis " << axis << " by " << excess.by;
+    EXPECT_EQ(t.duration(), unbounded.duration()) << what;
+    for (int i = 0; i < kAxes; ++i) {
+      const PositionExtrema e = t.position_extrema(i);
+      EXPECT_GE(e.min.position, in.min_position[i] - 1e-9) << what << " axis " << i;
+      EXPECT_LE(e.max.position, in.max_position[i] + 1e-9) << what << " axis " << i;
+      const JerkProfile& a = t.profile(i);
+      const JerkProfile& b = unbounded.profile(i);
+      bool same = a.size() == b.size();
+      for (std::size_t k = 0; same && k < a.size(); ++k) {
+        same = a.segment(k).jerk == b.segment(k).jerk && a.segment(k).duration == b.segment(k).duration;
+      }
+      if (!same) ++fitted;
+    }
+    expect_arrives_together(t, in, what);
+  }
+  std::printf("%ld axes of %ld kept in their travel by another profile than without it (seed %llu)\n", fitted,
+              count * kAxes, static_cast<unsigned long long>(seed));
+}
+
 TEST(Input, PrintsItselfForErrorMessages) {
   Input<2> in;
   in.current_position = Vector<2>{1.25, 0.0};
