@@ -46,8 +46,10 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   limits_ = limits;
   blocked_count_ = 0;
   if (!target_within(target, limits)) return AxisStatus::target_outside_limits;
-  // Every start has a brake into the safe states: none is refused (see brake.hpp).
-  brake_ = brake_profile(start, limits);
+  // Every start has a brake into the safe states: none is refused (see brake.hpp). A start at rest
+  // needs none (the limits are > 0): not asked, the commonest start.
+  brake_ =
+      start.velocity == 0.0 && start.acceleration == 0.0 ? JerkProfile(start) : brake_profile(start, limits);
   const MotionState s = brake_.end();
   main_start_ = {s.position, std::clamp(s.velocity, limits.min_velocity, limits.max_velocity),
                  std::clamp(s.acceleration, limits.min_acceleration, limits.max_acceleration)};
@@ -61,11 +63,10 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   symmetric_ = rest_to_rest && limits.min_velocity == -limits.max_velocity &&
                limits.min_acceleration == -limits.max_acceleration;
   // Constructed in place: one built elsewhere and copied in is read back with wide loads straight
-  // after its narrow stores, a stalled store forward per piece.
-  std::construct_at(&extremes_[0], v, a, target.velocity, target.acceleration, limits);
-  if (symmetric_) {
-    extremes_[1] = extremes_[0];
-  } else {
+  // after its narrow stores, a stalled store forward per piece. Symmetric from rest to rest, build()
+  // has them in closed form (rest_to_rest_farthest): none.
+  if (!symmetric_) {
+    std::construct_at(&extremes_[0], v, a, target.velocity, target.acceleration, limits);
     std::construct_at(&extremes_[1], -v, -a, -target.velocity, -target.acceleration, limits.mirrored());
   }
   if (rest_to_rest) {
@@ -358,20 +359,22 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
   // Unless that profile misses the target by more than rounding (the shortest duration lies a few
   // ulps past the root; where the position's slope is steep, 2 in 10^5 problems missed by 1e-11 m):
   // the blend then ends on the target.
+  SevenDurations up{};
+  SevenDurations down{};
+  // Symmetric from rest to rest the nearest profile is the farthest one mirrored.
+  const double far_symmetric = symmetric_ ? rest_to_rest_farthest(main, limits_, up) : 0.0;
   if (T == min_duration_ && min_side_ >= 0) {
     const auto side = static_cast<std::size_t>(min_side_);
     const double sign = side == 0 ? 1.0 : -1.0;
-    SevenDurations d{};
-    const double reached = extremes_[side].position(main, d);
+    SevenDurations d = up;
+    const double reached = symmetric_ ? far_symmetric : extremes_[side].position(main, d);
     if (std::abs(sign * reached - target_offset_) <= 1e-13 * (1.0 + std::abs(target_offset_))) {
       for (std::size_t i = 0; i < d.size(); ++i) pieces[n++] = {sign * kFarthestJerkSigns[i] * j, d[i]};
       out.append(pieces.data(), n);
       return arrives(out);
     }
   }
-  SevenDurations up{};
-  SevenDurations down{};
-  const double far = extremes_[0].position(main, up);
+  const double far = symmetric_ ? far_symmetric : extremes_[0].position(main, up);
   if (symmetric_) down = up;
   const double near = symmetric_ ? -far : -extremes_[1].position(main, down);
   const bool has_up = !std::isnan(far);
@@ -384,7 +387,13 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
   } else if (has_down && far - near > 0.0) {
     share = std::clamp((target_offset_ - near) / (far - near), 0.0, 1.0);
   }
-  if (share == 1.0 || share == 0.0) {
+  if (symmetric_ && share != 1.0 && share != 0.0) {
+    // Both extremes switch at the same times: the blend is the farthest profile scaled, no merge
+    // (the same jerks, bit for bit, as the merge below gives; it cost the most of a rest-to-rest plan).
+    for (std::size_t i = 0; i < up.size(); ++i) {
+      pieces[n++] = {j * (share * kFarthestJerkSigns[i] - (1.0 - share) * kFarthestJerkSigns[i]), up[i]};
+    }
+  } else if (share == 1.0 || share == 0.0) {
     const bool use_up = share == 1.0;
     const SevenDurations& d = use_up ? up : down;
     const double sign = use_up ? 1.0 : -1.0;

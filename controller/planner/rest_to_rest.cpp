@@ -60,4 +60,33 @@ double rest_to_rest_time(double distance, const AxisLimits& limits) noexcept {
   return change_time(v, a_up, j) + change_time(v, a_down, j);
 }
 
+double rest_to_rest_farthest(double T, const AxisLimits& limits, SevenDurations& t) noexcept {
+  const double vmax = limits.max_velocity;
+  const double amax = limits.max_acceleration;
+  const double j = limits.jerk;
+  const double to_vmax = change_time(vmax, amax, j);  // from rest to max_velocity
+  double ramp = 0.0;
+  double hold = 0.0;
+  if (T >= 2.0 * to_vmax) {
+    const bool plateau = vmax >= amax * amax / j;
+    ramp = plateau ? amax / j : std::sqrt(vmax / j);
+    hold = plateau ? vmax / amax - amax / j : 0.0;
+    const double cruise = T - 2.0 * to_vmax;
+    t = SevenDurations{ramp, hold, ramp, cruise, ramp, hold, ramp};
+    return vmax * (to_vmax + cruise);
+  }
+  const double half = T / 2.0;
+  double peak = 0.0;
+  if (half >= 2.0 * amax / j) {
+    ramp = amax / j;
+    hold = half - 2.0 * ramp;
+    peak = amax * (ramp + hold);
+  } else {
+    ramp = half / 2.0;
+    peak = j * ramp * ramp;
+  }
+  t = SevenDurations{ramp, hold, ramp, 0.0, ramp, hold, ramp};
+  return peak * half;
+}
+
 }  // namespace cellctl::planner

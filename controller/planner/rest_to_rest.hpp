@@ -5,10 +5,19 @@
 // may differ).
 
 #include "planner/axis_limits.hpp"
+#include "planner/farthest_profile.hpp"
 
 namespace cellctl::planner {
 
 // distance: signed; limits: finite and of the right signs. Returns 0 for a zero distance.
 [[nodiscard]] double rest_to_rest_time(double distance, const AxisLimits& limits) noexcept;
+
+// The farthest profile of duration T from rest to rest with symmetric limits (FarthestProfile's,
+// in closed form, with its seven durations in `t`): accelerating as hard as it may for T / 2 and
+// braking as a mirror image, cruising at max_velocity in between once T allows it. Its position:
+// the peak velocity times T / 2 (each half's velocity is point-symmetric about its middle), plus
+// the cruise. Why: every recipe move is one, and FarthestProfile's general set-up and case search
+// were most of its plan.
+[[nodiscard]] double rest_to_rest_farthest(double T, const AxisLimits& limits, SevenDurations& t) noexcept;
 
 }  // namespace cellctl::planner
