@@ -27,6 +27,7 @@
 
 #include "planner/axis_limits.hpp"
 #include "planner/farthest_profile.hpp"
+#include "planner/input.hpp"
 #include "planner/jerk_profile.hpp"
 
 namespace cellctl::planner {
@@ -44,6 +45,10 @@ enum class AxisStatus : std::uint8_t {
   target_outside_limits,  // target velocity/acceleration beyond the limits or bound to cross them
   unsupported_target,     // the built profile misses the target: a safety net (see above)
 };
+
+// Which bound a target state breaks and by how much (limit none: it keeps them all); the first in
+// TargetLimit's order when it breaks several.
+[[nodiscard]] TargetExcess target_excess(const MotionState& target, const AxisLimits& limits) noexcept;
 
 class AxisProfile {
  public:

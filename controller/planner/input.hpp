@@ -122,6 +122,44 @@ struct TravelExcess {
   double by = 0.0;
 };
 
+// With Result::target_outside_limits: which bound the target state breaks and by how much (> 0).
+// The *_on_arrival ones: a target velocity within its limits, but with an acceleration that could
+// only have been ramped in (at full jerk, from zero) from a velocity beyond that limit.
+enum class TargetLimit : std::uint8_t {
+  none,
+  max_velocity,
+  min_velocity,
+  max_acceleration,
+  min_acceleration,
+  max_velocity_on_arrival,
+  min_velocity_on_arrival,
+};
+
+[[nodiscard]] constexpr std::string_view to_string(TargetLimit l) noexcept {
+  switch (l) {
+    case TargetLimit::none:
+      return "none";
+    case TargetLimit::max_velocity:
+      return "max_velocity";
+    case TargetLimit::min_velocity:
+      return "min_velocity";
+    case TargetLimit::max_acceleration:
+      return "max_acceleration";
+    case TargetLimit::min_acceleration:
+      return "min_acceleration";
+    case TargetLimit::max_velocity_on_arrival:
+      return "max_velocity on the way into the target acceleration";
+    case TargetLimit::min_velocity_on_arrival:
+      return "min_velocity on the way into the target acceleration";
+  }
+  return "?";
+}
+
+struct TargetExcess {
+  TargetLimit limit = TargetLimit::none;
+  double by = 0.0;
+};
+
 template <int N>
 struct Output {
   Vector<N> new_position = Vector<N>::Zero();
@@ -134,6 +172,7 @@ struct Output {
   bool new_calculation = false;  // this cycle planned a new trajectory
   int error_axis = -1;           // the axis named by an error Result, -1 otherwise
   TravelExcess travel_excess;    // with Result::outside_travel (see TravelExcess)
+  TargetExcess target_excess;    // with Result::target_outside_limits (see TargetExcess)
   // Set when phase synchronisation was asked for but the states are not on one line: the
   // trajectory is time-synchronised instead (a static string, empty otherwise).
   std::string_view note;

@@ -50,8 +50,10 @@ class Planner {
   [[nodiscard]] Result update(const Input<N>& in, Output<N>& out) noexcept {
     out.new_calculation = false;
     out.travel_excess = {};
+    out.target_excess = {};
     if (!planned_ || !(in == continued_)) {
-      const Result r = Trajectory<N>::calculate(in, trajectory_, out.error_axis, &out.travel_excess);
+      const Result r =
+          Trajectory<N>::calculate(in, trajectory_, out.error_axis, &out.travel_excess, &out.target_excess);
       if (is_error(r)) {
         planned_ = false;
         return r;

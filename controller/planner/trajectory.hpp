@@ -88,9 +88,11 @@ class Trajectory {
   }
 
   // Plans `in`; on an error the trajectory is unchanged and `error_axis` names the axis; with
-  // outside_travel, `excess` (if given) says which end of its travel and by how much.
+  // outside_travel, `excess` (if given) says which end of its travel and by how much; with
+  // target_outside_limits, `refusal` (if given) which limit and by how much.
   [[nodiscard]] static Result calculate(const Input<N>& in, Trajectory& out, int& error_axis,
-                                        TravelExcess* excess = nullptr) noexcept;
+                                        TravelExcess* excess = nullptr,
+                                        TargetExcess* refusal = nullptr) noexcept;
 
  private:
   static constexpr std::size_t idx(int axis) noexcept { return static_cast<std::size_t>(axis); }
@@ -216,10 +218,18 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
 }
 
 template <int N>
-Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_axis,
-                                TravelExcess* excess) noexcept {
+Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_axis, TravelExcess* excess,
+                                TargetExcess* refusal) noexcept {
   error_axis = -1;
   if (const Result r = validate(in, error_axis); is_error(r)) return r;
+  // Which limit a refused target breaks, and by how much: worked out only once refused.
+  const auto refused_target = [&](int i) {
+    if (refusal != nullptr) {
+      *refusal =
+          target_excess(MotionState{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]},
+                        limits_of(in, i));
+    }
+  };
   // Plan into a scratch copy: a refused plan leaves `out` as it was.
   Trajectory t;
   t.enabled_ = in.enabled;
@@ -228,6 +238,18 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
   if (in.synchronization == Synchronization::phase) {
     Result r = Result::working;
     planned = t.plan_phase(in, error_axis, r);
+    if (r == Result::target_outside_limits) {
+      // Along the line the scaled limits are the tightest of all axes': the axis whose own limits
+      // the target breaks, if one does (limit none: only the line's).
+      for (int i = 0; i < N && refusal != nullptr; ++i) {
+        if (!in.enabled[idx(i)]) continue;
+        refused_target(i);
+        if (refusal->limit != TargetLimit::none) {
+          error_axis = i;
+          break;
+        }
+      }
+    }
     if (is_error(r)) return r;
     if (!planned) {
       t.synchronization_ = Synchronization::time;
@@ -248,6 +270,7 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
       const AxisStatus st = axes[idx(i)].plan(start, target, limits_of(in, i));
       if (st != AxisStatus::ok) {
         error_axis = i;
+        if (st == AxisStatus::target_outside_limits) refused_target(i);
         return status_result(st);
       }
       t.min_duration_[idx(i)] = axes[idx(i)].min_duration();

@@ -332,6 +332,39 @@ TEST(Travel, EveryAxisWhoseOwnMotionKeepsTheTravelIsPlannedInsideIt) {
               count * kAxes, static_cast<unsigned long long>(seed));
 }
 
+TEST(TargetLimits, ARefusedTargetSaysWhichLimitAndByHowMuch) {
+  Input<2> in;  // V 1, A 1, J 1 on both axes
+  in.target_position = Vector<2>{1.0, 2.0};
+  in.target_velocity = Vector<2>{0.0, 1.5};
+  Trajectory<2> t;
+  int axis = -1;
+  TargetExcess excess;
+  EXPECT_EQ(Trajectory<2>::calculate(in, t, axis, nullptr, &excess), Result::target_outside_limits);
+  EXPECT_EQ(axis, 1);
+  EXPECT_EQ(excess.limit, TargetLimit::max_velocity);
+  EXPECT_NEAR(excess.by, 0.5, 1e-12);
+  // An acceleration beyond its bound, through the planner's output.
+  in.target_velocity = Vector<2>{0.0, 0.0};
+  in.target_acceleration = Vector<2>{-3.0, 0.0};
+  Planner<2> planner(0.001);
+  Output<2> out;
+  EXPECT_EQ(planner.update(in, out), Result::target_outside_limits);
+  EXPECT_EQ(out.error_axis, 0);
+  EXPECT_EQ(out.target_excess.limit, TargetLimit::min_acceleration);
+  EXPECT_NEAR(out.target_excess.by, 2.0, 1e-12);
+  // Both within their bounds, but -0.5 of acceleration at 0.9 could only come from 0.9 + 0.125.
+  in.target_velocity = Vector<2>{0.9, 0.0};
+  in.target_acceleration = Vector<2>{-0.5, 0.0};
+  in.max_velocity[0] = 1.0;
+  EXPECT_EQ(Trajectory<2>::calculate(in, t, axis, nullptr, &excess), Result::target_outside_limits);
+  EXPECT_EQ(excess.limit, TargetLimit::max_velocity_on_arrival);
+  EXPECT_NEAR(excess.by, 0.025, 1e-12);
+  EXPECT_NE(to_string(excess.limit).find("max_velocity"), std::string_view::npos);
+  // The same target 0.03 lower is planned.
+  in.target_velocity[0] = 0.87;
+  EXPECT_EQ(Trajectory<2>::calculate(in, t, axis, nullptr, &excess), Result::working);
+}
+
 TEST(Input, PrintsItselfForErrorMessages) {
   Input<2> in;
   in.current_position = Vector<2>{1.25, 0.0};
