@@ -47,8 +47,23 @@ enum class AxisStatus : std::uint8_t {
 };
 
 // Which bound a target state breaks and by how much (limit none: it keeps them all); the first in
-// TargetLimit's order when it breaks several.
-[[nodiscard]] TargetExcess target_excess(const MotionState& target, const AxisLimits& limits) noexcept;
+// TargetLimit's order when it breaks several. Inline: every axis planned asks it.
+[[nodiscard]] inline TargetExcess target_excess(const MotionState& target, const AxisLimits& l) noexcept {
+  const double v = target.velocity;
+  const double a = target.acceleration;
+  const double ramp = a * a / (2.0 * l.jerk);  // velocity change while the acceleration ramps in
+  if (v > l.max_velocity) return {TargetLimit::max_velocity, v - l.max_velocity};
+  if (v < l.min_velocity) return {TargetLimit::min_velocity, l.min_velocity - v};
+  if (a > l.max_acceleration) return {TargetLimit::max_acceleration, a - l.max_acceleration};
+  if (a < l.min_acceleration) return {TargetLimit::min_acceleration, l.min_acceleration - a};
+  // Arriving with a > 0 the velocity was lower just before: ramping a in from zero took `ramp` of
+  // it, so v - ramp must be reachable (>= min_velocity); the mirror for a < 0.
+  if (a > 0.0 && v - ramp < l.min_velocity)
+    return {TargetLimit::min_velocity_on_arrival, l.min_velocity - (v - ramp)};
+  if (a < 0.0 && v + ramp > l.max_velocity)
+    return {TargetLimit::max_velocity_on_arrival, v + ramp - l.max_velocity};
+  return {};
+}
 
 class AxisProfile {
  public:
