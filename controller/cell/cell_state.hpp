@@ -23,7 +23,8 @@ struct AxisState {
   // The moves the SCU has taken for this axis (REs acknowledged): when it counts one more, the move
   // just asked for is under way, and its plan's clock may start.
   std::uint32_t moves_taken = 0;
-  bool homed = false;             // SCU status 2: initialised
+  // SCU status 2 bit 0: the SCU has initialised the actuator (not the home record: routines/home_record).
+  bool scu_initialised = false;
   bool at_retracted_end = false;  // SCU status 1: in position reached (the actuator's retracted end)
   bool at_extended_end = false;   // SCU status 1: out position reached
   bool actuator_fault = false;    // the SCU's error word names this actuator
@@ -116,7 +117,7 @@ struct CellState {
   // delay both ways is in it.
   link::Duration scu_position_age{};
   bool scu_remote = false;         // remote mode open (RO done, RC running)
-  bool scu_status2_known = false;  // actuator status 2 (homed) has been read since activation
+  bool scu_status2_known = false;  // actuator status 2 (initialised) has been read since activation
   std::string_view scu_refusal;    // the SCU's last error reply, in words (static text)
 };
 

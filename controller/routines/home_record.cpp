@@ -21,7 +21,7 @@ journal::Text check_homed(const HomeRecord& record, const config::CellCore& cell
   if (record.config_changed || home.strategy != c.homing.strategy)
     return journal::Text::format("axis {}: the cell config changed since it was homed: home it again",
                                  c.name);
-  if (c.homing.strategy != config::HomingStrategy::absolute_encoder && !a.homed)
+  if (c.homing.strategy != config::HomingStrategy::absolute_encoder && !a.scu_initialised)
     return journal::Text::format(
         "axis {}: the SCU reports actuator {} not initialised (power loss or reset since homing): home "
         "it again",

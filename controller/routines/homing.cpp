@@ -210,7 +210,7 @@ void Homing::begin_group(const cell::CellState& s, double t, std::uint32_t& move
     in_group_[i] = true;
     const auto& h = cell_.axes[i].homing;
     if (h.strategy == HomingStrategy::absolute_encoder) continue;  // judged in finish_group
-    const bool needs_end = h.strategy == HomingStrategy::end_position || !s.axes[i].homed;
+    const bool needs_end = h.strategy == HomingStrategy::end_position || !s.axes[i].scu_initialised;
     if (!needs_end) {
       enter(i, HomingPhase::to_home, s, t);
       continue;
@@ -295,7 +295,8 @@ HomingStatus Homing::step(const cell::CellState& s, double t, cell::Intents& out
       for (std::size_t i = 0; i < cell_.axes.size(); ++i) {
         if (phase_[i] != HomingPhase::at_end) continue;
         const auto& a = s.axes[i];
-        const bool initialised = cell_.axes[i].homing.strategy != HomingStrategy::scu_initialised || a.homed;
+        const bool initialised =
+            cell_.axes[i].homing.strategy != HomingStrategy::scu_initialised || a.scu_initialised;
         if (!a.moving && !a.commanded && at_end(s, i) && initialised) continue;
         all = false;
         if (in_stage > kEndWaitS)

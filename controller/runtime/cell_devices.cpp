@@ -83,7 +83,7 @@ void CellDevices::read(link::TimePoint now, cell::CellState& out) {
       st.commanded = fn.execution_open || fn.outcome == scu::MoveOutcome::queued;
       st.move_refused = fn.outcome == scu::MoveOutcome::refused;
       st.moves_taken = fn.executions;
-      st.homed = act.initialised;
+      st.scu_initialised = act.initialised;
       st.at_retracted_end = act.status.in_position;
       st.at_extended_end = act.status.out_position;
       st.actuator_fault = act.fault;

@@ -67,7 +67,7 @@ TEST_F(HomingTest, ScuInitialisedDrivesANotInitialisedActuatorIntoItsRetractedEn
   const auto r = run_steps("  - home: [z]\n");
   ASSERT_EQ(r.final_state, supervisor::State::complete) << r.failure;
   EXPECT_TRUE(run_->emulators()->scu()->initialised(2));
-  EXPECT_TRUE(run_->state().axes[1].homed);
+  EXPECT_TRUE(run_->state().axes[1].scu_initialised);
   EXPECT_NEAR(run_->state().axes[1].scu_mm, 5.0, 0.1);
   EXPECT_EQ(notes_with("home z: backing off the end"), 1u) << "z stood in its end at power-up";
   const auto rec = record();

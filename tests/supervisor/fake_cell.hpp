@@ -7,7 +7,7 @@
 // is on the line in cycle k, the SCU acts on it after), a controlled hold keeps the spindle running,
 // and "initialised" is known only once the SCU's status 2 has been read (set_status2_after). As the
 // SCU (and its emulator) does, an actuator is not initialised at power-up and becomes initialised when
-// a run brings it into its retracted end (set_homed says it already is); the end bits ("in"/"out
+// a run brings it into its retracted end (set_scu_initialised says it already is); the end bits ("in"/"out
 // position") follow the plant, and the encoder takes a preset (Intents::encoder) a few cycles after it
 // is asked for. The failure branches can be produced on purpose: an axis not homed, a refused move,
 // a refused start.
@@ -36,7 +36,7 @@ class FakeCell {
                                                     .scale_error = scale_error});
     ids_.resize(actuators_.size(), 0);
     motion_reported_from_.resize(actuators_.size(), link::Duration{});
-    homed_.resize(actuators_.size(), false);
+    scu_initialised_.resize(actuators_.size(), false);
     refuses_moves_.resize(actuators_.size(), false);
     move_refused_.resize(actuators_.size(), false);
     moves_taken_.resize(actuators_.size(), 0);
@@ -46,7 +46,7 @@ class FakeCell {
   // Actuator status 2 is known from this time on (the real session reads it after the first refresh);
   // Duration::max(): never.
   void set_status2_after(link::Duration d) { status2_after_ = d; }
-  void set_homed(std::size_t axis, bool homed) { homed_.at(axis) = homed; }
+  void set_scu_initialised(std::size_t axis, bool initialised) { scu_initialised_.at(axis) = initialised; }
   // The SCU answers an error to the axis's next moves: the actuator does not move, the move reads refused.
   void refuse_moves(std::size_t axis) { refuses_moves_.at(axis) = true; }
   // The converter acknowledges starts but stays at rest, with this warning/fault number.
@@ -97,7 +97,8 @@ class FakeCell {
     for (std::size_t i = 0; i < actuators_.size(); ++i) {
       const double before = actuators_[i].position_mm();
       actuators_[i].step(dt);
-      if (actuators_[i].at_in_limit() && before > 0.0) homed_[i] = true;  // run into the retracted end
+      if (actuators_[i].at_in_limit() && before > 0.0)
+        scu_initialised_[i] = true;  // run into the retracted end
       if (fast_stop_due_[i]) actuators_[i].stop(false);
       fast_stop_due_[i] = false;
     }
@@ -120,7 +121,8 @@ class FakeCell {
       a.moving = actuators_[i].moving() && elapsed_ >= motion_reported_from_[i];
       // The move stays open until the SCU has reported it and the actuator has come to its end.
       a.commanded = ids_[i] != 0 && (elapsed_ < motion_reported_from_[i] || actuators_[i].active());
-      a.homed = homed_[i] && elapsed_ >= status2_after_;  // unknown reads as not initialised
+      a.scu_initialised =
+          scu_initialised_[i] && elapsed_ >= status2_after_;  // unknown reads as not initialised
       a.at_retracted_end = actuators_[i].at_in_limit();
       a.at_extended_end = actuators_[i].at_out_limit();
       a.move_refused = move_refused_[i];
@@ -162,7 +164,7 @@ class FakeCell {
   plant::SpindleMotor spindle_;
   double spindle_set_ = 0.0;
   link::Duration status2_after_ = std::chrono::milliseconds(30);  // about the real session's first RG
-  std::vector<bool> homed_, refuses_moves_, move_refused_, fast_stop_due_;
+  std::vector<bool> scu_initialised_, refuses_moves_, move_refused_, fast_stop_due_;
   std::vector<std::uint32_t> moves_taken_;  // REs taken per axis
   std::uint8_t spindle_refusal_ = 0;
   std::uint32_t preset_id_ = 0, preset_done_id_ = 0;

@@ -384,8 +384,8 @@ TEST_F(SupervisorTest, ARequireWaitsForTheScuStatusBeforeJudgingHomed) {
   - move: {to: {x: 10}, speed_mm_s: 15}
 )",
        0.0, 0.5, settings);
-  fake_->set_homed(0, true);
-  fake_->set_homed(1, true);
+  fake_->set_scu_initialised(0, true);
+  fake_->set_scu_initialised(1, true);
   fake_->set_status2_after(500ms);
   ASSERT_TRUE(sup_->command(Command::start, "test", t()));
   ASSERT_TRUE(run_to(State::complete, 30.0)) << sup_->failure().view();
@@ -399,8 +399,8 @@ TEST_F(SupervisorTest, HomingRunsTheSequencesInOrderAndWritesTheRecord) {
   - home: [z, x]
   - require: {homed: [x, z]}
 )");
-  fake_->set_homed(0, true);
-  fake_->set_homed(1, true);
+  fake_->set_scu_initialised(0, true);
+  fake_->set_scu_initialised(1, true);
   // (Not the recipe's business: the recipe limits let it move x and z, and homing needs none.)
   ASSERT_TRUE(sup_->command(Command::start, "test", t()));
   double x_homed_at = -1.0, z_left_at = -1.0;
