@@ -46,10 +46,10 @@ struct PositionExtrema {
 
 class JerkProfile {
  public:
-  // The longest profile: a mix (travel_fit.hpp) of a blend and an axis's own shortest profile held
-  // at the target, after their common brake: 3 segments, then the blend's 13 (two 7-segment extreme
-  // profiles, their switching times merged) merged with the other's 13 and its hold, at most 27.
-  static constexpr std::size_t kMaxSegments = 32;
+  // The longest profile: a mix (travel_fit.hpp) of a blend — a brake (3 segments) and 13 (two
+  // 7-segment extreme profiles, their switching times merged) — and a turn (2), a brake and 13, held
+  // at the target (1): their switching times merged, at most 35.
+  static constexpr std::size_t kMaxSegments = 40;
 
   JerkProfile() = default;
   explicit JerkProfile(const MotionState& start) noexcept : start_(start), end_(start) {}

@@ -113,6 +113,11 @@ class Trajectory {
     }
   }
   [[nodiscard]] bool plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept;
+  // Every axis's motion inside its travel (see travel_fit.hpp), or outside_travel naming the axis
+  // and the least excess the planner found. `longer` > 0: a time-synchronised axis keeps its travel
+  // only with a longer duration than the common one (the caller raises it and rebuilds).
+  [[nodiscard]] Result keep_travel(const Input<N>& in, const std::array<AxisProfile, kN>& axes, bool planned,
+                                   int& error_axis, TravelExcess* excess, double& longer) noexcept;
 
   // Default-initialised, not value-initialised ({}): that zeroed every profile's unused segment
   // slots on each plan (see JerkSegment).
@@ -218,6 +223,64 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
 }
 
 template <int N>
+Result Trajectory<N>::keep_travel(const Input<N>& in, const std::array<AxisProfile, kN>& axes, bool planned,
+                                  int& error_axis, TravelExcess* excess, double& longer) noexcept {
+  for (int i = 0; i < N; ++i) {
+    if (!in.enabled[idx(i)] || (in.min_position[i] == -kInf && in.max_position[i] == kInf)) continue;
+    const double lo = in.min_position[i];
+    const double hi = in.max_position[i];
+    const double slack = 1e-9 * (1.0 + std::abs(in.target_position[i]));
+    JerkProfile& p = profiles_[idx(i)];
+    const TravelExcess e = travel_excess(p, lo, hi);
+    if (e.by <= slack) continue;
+    TravelExcess least = e;  // what the motion the planner could make leaves the travel by
+    const auto consider = [&](const TravelExcess& x) {
+      if (x.by < least.by) least = x;
+      return x.by <= slack;
+    };
+    const AxisProfile& a = axes[idx(i)];
+    const double T = p.duration();
+    const bool at_rest = in.target_velocity[i] == 0.0 && in.target_acceleration[i] == 0.0;
+    const bool blended = !planned && synchronization_ == Synchronization::time && T > a.min_duration();
+    // A blend at a longer duration than the axis's own: its own shortest motion held at the target.
+    if (blended && at_rest) {
+      JerkProfile own;
+      if (a.build(a.min_duration(), own)) {
+        own.append({0.0, std::max(0.0, T - own.duration())});
+        if (consider(travel_excess(own, lo, hi))) {
+          p = nearest_inside(own, p, lo, hi);
+          continue;
+        }
+      }
+    }
+    // The fastest turn away from the end it leaves, then the shortest motion from there.
+    JerkProfile turned;
+    const MotionState start{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]};
+    const MotionState target{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]};
+    if (!planned && turn_first(start, target, limits_of(in, i), e.beyond_max, turned) &&
+        consider(travel_excess(turned, lo, hi))) {
+      if (synchronization_ == Synchronization::none) {
+        p = turned;
+        duration_ = std::max(duration_, p.duration());
+        continue;
+      }
+      const double rounding = 1e-12 * (1.0 + T);  // a raised T is the turn's, rebuilt: equal up to rounding
+      if (turned.duration() > T + rounding) {
+        longer = std::max(longer, turned.duration());
+      } else if (at_rest || T - turned.duration() <= rounding) {
+        turned.append({0.0, T - turned.duration()});
+        p = nearest_inside(turned, p, lo, hi);
+        continue;
+      }
+    }
+    error_axis = i;
+    if (excess != nullptr) *excess = least;
+    return Result::outside_travel;
+  }
+  return Result::working;
+}
+
+template <int N>
 Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_axis, TravelExcess* excess,
                                 TargetExcess* refusal) noexcept {
   error_axis = -1;
@@ -261,8 +324,8 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
     }
   }
   std::array<AxisProfile, kN> axes;  // not {}: that zeroed their brakes' unused segment slots
+  double common = 0.0;
   if (!planned) {
-    double common = 0.0;
     for (int i = 0; i < N; ++i) {
       if (!in.enabled[idx(i)]) continue;
       const MotionState start{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]};
@@ -279,61 +342,42 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
         t.blocked_[idx(i)][b] = axes[idx(i)].blocked(b);
       common = std::max(common, axes[idx(i)].min_duration());
     }
-    if (t.synchronization_ == Synchronization::time) {
-      // Out of every blocked interval; each move to an interval's end can only land in a later one.
-      for (int pass = 0; pass <= 2 * N * static_cast<int>(AxisProfile::kMaxBlocked); ++pass) {
-        bool moved = false;
-        for (int i = 0; i < N; ++i) {
-          if (!in.enabled[idx(i)]) continue;
-          for (std::size_t b = 0; b < t.blocked_count_[idx(i)]; ++b) {
-            if (t.blocked_[idx(i)][b].contains(common)) {
-              common = t.blocked_[idx(i)][b].hi;
-              moved = true;
+  }
+  // Built, then checked against the travel; an axis that keeps it only with a longer duration
+  // raises the common one, once per axis at most (each raise is its own motion's duration).
+  for (int attempt = 0;; ++attempt) {
+    if (!planned) {
+      if (t.synchronization_ == Synchronization::time) {
+        // Out of every blocked interval; each move to an interval's end can only land in a later one.
+        for (int pass = 0; pass <= 2 * N * static_cast<int>(AxisProfile::kMaxBlocked); ++pass) {
+          bool moved = false;
+          for (int i = 0; i < N; ++i) {
+            if (!in.enabled[idx(i)]) continue;
+            for (std::size_t b = 0; b < t.blocked_count_[idx(i)]; ++b) {
+              if (t.blocked_[idx(i)][b].contains(common)) {
+                common = t.blocked_[idx(i)][b].hi;
+                moved = true;
+              }
             }
           }
+          if (!moved) break;
         }
-        if (!moved) break;
       }
-    }
-    for (int i = 0; i < N; ++i) {
-      if (!in.enabled[idx(i)]) continue;
-      const bool own = t.synchronization_ == Synchronization::none;
-      if (!axes[idx(i)].build(own ? axes[idx(i)].min_duration() : common, t.profiles_[idx(i)])) {
-        error_axis = i;  // only with a non-zero target acceleration (see axis_profile.hpp)
-        return Result::unsupported_target;
-      }
-    }
-    t.duration_ = common;
-  }
-  // The travel: the target and the whole motion inside it.
-  for (int i = 0; i < N; ++i) {
-    if (!in.enabled[idx(i)] || (in.min_position[i] == -kInf && in.max_position[i] == kInf)) continue;
-    const double lo = in.min_position[i];
-    const double hi = in.max_position[i];
-    const double slack = 1e-9 * (1.0 + std::abs(in.target_position[i]));
-    JerkProfile& p = t.profiles_[idx(i)];
-    TravelExcess e = travel_excess(p, lo, hi);
-    if (e.by <= slack) continue;
-    // A blend at a longer duration than the axis's own: its own shortest motion held at the target
-    // (at rest) may keep the travel (see travel_fit.hpp).
-    const AxisProfile& a = axes[idx(i)];
-    const bool blended =
-        !planned && t.synchronization_ == Synchronization::time && t.duration_ > a.min_duration();
-    if (blended && in.target_velocity[i] == 0.0 && in.target_acceleration[i] == 0.0) {
-      JerkProfile own;
-      if (a.build(a.min_duration(), own)) {
-        own.append({0.0, std::max(0.0, p.duration() - own.duration())});
-        const TravelExcess own_excess = travel_excess(own, lo, hi);
-        if (own_excess.by <= slack) {
-          p = nearest_inside(own, p, lo, hi);
-          continue;
+      for (int i = 0; i < N; ++i) {
+        if (!in.enabled[idx(i)]) continue;
+        const bool own = t.synchronization_ == Synchronization::none;
+        if (!axes[idx(i)].build(own ? axes[idx(i)].min_duration() : common, t.profiles_[idx(i)])) {
+          error_axis = i;  // only with a non-zero target acceleration (see axis_profile.hpp)
+          return Result::unsupported_target;
         }
-        e = own_excess;  // what the motion the planner could make leaves the travel by
       }
+      t.duration_ = common;
     }
-    error_axis = i;
-    if (excess != nullptr) *excess = e;
-    return Result::outside_travel;
+    double longer = 0.0;
+    const Result r = t.keep_travel(in, axes, planned, error_axis, excess, longer);
+    if (!is_error(r)) break;
+    if (!(longer > common) || attempt >= N) return r;
+    common = longer;
   }
   out = t;
   return Result::working;

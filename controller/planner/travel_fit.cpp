@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "planner/axis_profile.hpp"
+#include "planner/brake.hpp"
+
 namespace cellctl::planner {
 
 TravelExcess travel_excess(const JerkProfile& p, double min_position, double max_position) noexcept {
@@ -56,6 +59,40 @@ JerkProfile nearest_inside(const JerkProfile& inside, const JerkProfile& outside
     }
   }
   return best;
+}
+
+bool turn_first(const MotionState& start, const MotionState& target, const AxisLimits& limits,
+                bool towards_max, JerkProfile& out) noexcept {
+  if (!is_safe(start.velocity, start.acceleration, limits)) return false;
+  // In the frame where the motion goes towards max_position.
+  const double sign = towards_max ? 1.0 : -1.0;
+  const AxisLimits l = towards_max ? limits : limits.mirrored();
+  const double v = sign * start.velocity;
+  const double a = std::max(sign * start.acceleration, l.min_acceleration);
+  const double j = l.jerk;
+  if (!(v > 0.0)) return false;
+  // -J until the velocity is zero (v + a t - J t^2 / 2 = 0) or the acceleration at its bound.
+  const double ramp = (a - l.min_acceleration) / j;
+  const double to_zero = (a + std::sqrt(a * a + 2.0 * j * v)) / j;
+  JerkProfile turn(start);
+  if (to_zero <= ramp) {
+    turn.append({-sign * j, to_zero});
+  } else {
+    const double left = v + a * ramp - j * ramp * ramp / 2.0;  // > 0
+    turn.append({-sign * j, ramp});
+    turn.append({0.0, left / -l.min_acceleration});
+  }
+  // Turning further than ramping the acceleration out can undo would cross the opposite velocity
+  // limit (tight limits): no such turn. Each state of the turn is safer than its end (the velocity
+  // and the acceleration only fall), so a safe end keeps the limits throughout.
+  if (!is_safe(turn.end().velocity, turn.end().acceleration, limits)) return false;
+  AxisProfile rest;
+  if (rest.plan(turn.end(), target, limits) != AxisStatus::ok) return false;
+  JerkProfile from_turn;
+  if (!rest.build(rest.min_duration(), from_turn)) return false;
+  out = turn;
+  for (std::size_t k = 0; k < from_turn.size(); ++k) out.append(from_turn.segment(k));
+  return true;
 }
 
 }  // namespace cellctl::planner

@@ -10,9 +10,10 @@
 // every limit both keep (the bounds are convex), ends where both end, and its positions are the same
 // mix of theirs. The lowest and highest position are convex in w: of the mixes of a profile inside
 // the travel with the blend, the one nearest the blend that is still inside is found by bisection.
-// For a target at rest, the axis's own shortest motion held at the target until T is inside
-// whenever the axis could make the move alone: the mix with the blend then arrives with the others.
+// For a target at rest, the axis's own shortest motion held at the target until T, if inside (else
+// turn_first's motion, below), mixed with the blend then arrives with the others.
 
+#include "planner/axis_limits.hpp"
 #include "planner/input.hpp"
 #include "planner/jerk_profile.hpp"
 
@@ -31,5 +32,17 @@ namespace cellctl::planner {
 // no more than `inside` does (not at all when `inside` keeps it).
 [[nodiscard]] JerkProfile nearest_inside(const JerkProfile& inside, const JerkProfile& outside,
                                          double min_position, double max_position) noexcept;
+
+// Where even the axis's own shortest motion leaves the travel, a slower one may not: the shortest
+// motion to a target behind a moving start turns later than it could, to arrive sooner (1 m/s
+// towards max_position, A 2, J 10: turning at once peaks 0.3467 on, the shortest motion to 0.345
+// peaks at 0.3483). The fastest turn away from the end the motion leaves — full jerk against the
+// velocity until it is zero, the acceleration held at its bound if reached first — reaches the
+// least any motion can, and the shortest motion from there adds nothing towards that end (its
+// velocity starts at zero, its acceleration away from it). `out`: that turn, then that motion.
+// False when the start is not safe (is_safe) or is not moving towards that end, or no motion was
+// planned from the turn's end.
+[[nodiscard]] bool turn_first(const MotionState& start, const MotionState& target, const AxisLimits& limits,
+                              bool towards_max, JerkProfile& out) noexcept;
 
 }  // namespace cellctl::planner

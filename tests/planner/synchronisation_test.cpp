@@ -280,6 +280,59 @@ TEST(Travel, AnAxisSlowedForTheOthersKeepsTheTravelItsOwnMotionKeeps) {
   EXPECT_NEAR(excess.by, 0.15 - 0.0408333 - 0.03, 1e-6);
 }
 
+TEST(Travel, WhereTheShortestMotionOvershootsTheTravelTurningAtOnceMayNot) {
+  // 1 m/s towards max_position 0.347, target 0.345 behind the stop (A 2, J 10): the shortest motion
+  // turns late and peaks at 0.3483; turning at full jerk at once peaks at 0.34667 and then goes
+  // back. Refused (outside_travel, by 0.0013) before turn_first.
+  Input<1> in;
+  in.current_velocity[0] = 1.0;
+  in.target_position[0] = 0.345;
+  in.max_acceleration[0] = 2.0;
+  in.max_jerk[0] = 10.0;
+  Trajectory<1> t;
+  int axis = -1;
+  ASSERT_EQ(Trajectory<1>::calculate(in, t, axis), Result::working);
+  const double shortest = t.duration();
+  EXPECT_NEAR(t.position_extrema(0).max.position, 0.348299, 1e-6);
+  in.max_position[0] = 0.347;
+  for (const Synchronization sync : {Synchronization::none, Synchronization::time}) {
+    in.synchronization = sync;
+    TravelExcess excess;
+    ASSERT_EQ(Trajectory<1>::calculate(in, t, axis, &excess), Result::working)
+        << to_string(sync) << ": by " << excess.by;
+    EXPECT_GT(t.duration(), shortest) << to_string(sync);
+    // Alone: the turn itself; time-synchronised: mixed with the blend, as near it as the travel lets.
+    if (sync == Synchronization::none) {
+      EXPECT_NEAR(t.position_extrema(0).max.position, 0.2 - 10.0 * 0.2 * 0.2 * 0.2 / 6.0 + 0.16, 1e-9);
+    } else {
+      EXPECT_LE(t.position_extrema(0).max.position, 0.347 + 1e-12);
+    }
+    expect_arrives_together(t, in, std::string(to_string(sync)));
+  }
+  // Beside a slower axis, its turn mixed with the blend at the common duration; beside a faster
+  // one, the common duration raised to its turn's.
+  for (const double other : {20.0, 0.01}) {
+    Input<2> two;
+    two.current_velocity = Vector<2>{1.0, 0.0};
+    two.target_position = Vector<2>{0.345, other};
+    two.max_acceleration = Vector<2>{2.0, 2.0};
+    two.max_jerk = Vector<2>{10.0, 10.0};
+    two.max_position = Vector<2>{0.347, 100.0};
+    Trajectory<2> t2;
+    TravelExcess excess;
+    ASSERT_EQ(Trajectory<2>::calculate(two, t2, axis, &excess), Result::working)
+        << "other " << other << ": by " << excess.by;
+    EXPECT_LE(t2.position_extrema(0).max.position, 0.347 + 1e-12) << "other " << other;
+    expect_arrives_together(t2, two, "beside " + std::to_string(other));
+  }
+  // Where turning at once still leaves it, the refusal says by how much that turn does.
+  in.max_position[0] = 0.3466;
+  TravelExcess excess;
+  EXPECT_EQ(Trajectory<1>::calculate(in, t, axis, &excess), Result::outside_travel);
+  EXPECT_TRUE(excess.beyond_max);
+  EXPECT_NEAR(excess.by, 0.2 - 10.0 * 0.2 * 0.2 * 0.2 / 6.0 + 0.16 - 0.3466, 1e-9);
+}
+
 // Random time-synchronised problems whose travel each axis's own shortest motion keeps (its
 // extremes, the target's side a little further): every one is planned, inside the travel.
 TEST(Travel, EveryAxisWhoseOwnMotionKeepsTheTravelIsPlannedInsideIt) {
