@@ -253,11 +253,12 @@ Result Trajectory<N>::keep_travel(const Input<N>& in, const std::array<AxisProfi
         }
       }
     }
-    // The fastest turn away from the end it leaves, then the shortest motion from there.
+    // The fastest turn against the start's velocity, then the shortest motion from there (which end
+    // this blend or that shortest motion leaves may differ: the turn is only ever against the velocity).
     JerkProfile turned;
     const MotionState start{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]};
     const MotionState target{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]};
-    if (!planned && turn_first(start, target, limits_of(in, i), e.beyond_max, turned) &&
+    if (!planned && turn_first(start, target, limits_of(in, i), start.velocity > 0.0, turned) &&
         consider(travel_excess(turned, lo, hi))) {
       if (synchronization_ == Synchronization::none) {
         p = turned;
