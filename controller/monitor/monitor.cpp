@@ -21,18 +21,19 @@ constexpr double kPositionMarginMm = 0.5;
 Monitor::Monitor(const config::CellCore& cell) : cell_(cell) {}
 
 StopCategory Monitor::category_of(Rule r) const noexcept {
-  switch (r) {
-    case Rule::emergency_stop:
+  switch (rule_info(r).stop) {
+    case StopClass::emergency:
       return StopCategory::immediate;
-    case Rule::operator_stop:
+    case StopClass::operator_stop:
       return cell_.stops.operator_stop;
-    case Rule::link_silent:
+    case StopClass::link:
       return cell_.stops.link;
-    case Rule::following_error:
+    case StopClass::following_error:
       return cell_.stops.following_error;
-    default:
+    case StopClass::fault:
       return cell_.stops.fault;
   }
+  return StopCategory::immediate;  // (not reached: every class is named above)
 }
 
 void Monitor::check(const cell::CellState& s, const OperatorInputs& in,

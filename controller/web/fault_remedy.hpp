@@ -1,6 +1,7 @@
 #pragma once
 // What an operator should do about each of the safety monitor's faults, by its rule name (the
-// journal's `rule`), for the web page. Text only; the monitor decides, this explains.
+// journal's `rule`), for the web page: the remedy in the monitor's rule table (monitor/rule.hpp), a
+// pointer to the run record for a name that is no rule. Text only; the monitor decides, this explains.
 
 #include <string_view>
 
