@@ -72,8 +72,11 @@ struct SpindleState {
   std::uint8_t error_number = 0;  // the converter's warning or fault number
 };
 
+// The three devices of the cell, in their slots. A cell may have more (device_seam/device_registry.hpp
+// registers them): up to kMaxDevices, in the slots after these.
 enum class Device : std::uint8_t { scu, spindle, encoder };
 inline constexpr std::size_t kDevices = 3;
+inline constexpr std::size_t kMaxDevices = 8;
 // A device's place in the arrays indexed by device (links, sessions).
 [[nodiscard]] constexpr std::size_t slot(Device d) noexcept {
   return static_cast<std::size_t>(d);
@@ -111,7 +114,8 @@ struct CellState {
   std::array<AxisState, kMaxAxes> axes{};
   EncoderState encoder;
   SpindleState spindle;
-  std::array<LinkState, kDevices> links{};
+  std::array<LinkState, kMaxDevices> links{};      // by slot; a slot without a device: active, no rule
+  std::array<std::string_view, kMaxDevices> devices{};  // each slot's device by name, "" for none
   ScuErrors scu_errors;
   // Since the RC whose reply brought the SCU's positions was sent (every keep-alive): the line's
   // delay both ways is in it.

@@ -167,10 +167,9 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
   if (!result.failure.empty()) fmt::print("failed step: {}\n", result.failure);
   for (const auto& n : result.device_notes) fmt::print("device: {}\n", n);
   if (!result.ended_by.empty()) fmt::print("ended by: {}\n", result.ended_by);
-  for (std::size_t d = 0; d < cell::kDevices; ++d) {
-    const auto& s = result.safety[d];
+  for (const auto& s : result.safety) {
     if (!s) continue;
-    const auto* name = cell::to_string(static_cast<cell::Device>(d));
+    const auto name = s->device;
     if (s->safe == runtime::Safe::unknown)
       fmt::print(stderr, "WARNING: {} safe state UNKNOWN: {}\n", name, s->evidence);
     else

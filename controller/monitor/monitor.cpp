@@ -45,10 +45,10 @@ void Monitor::check(const cell::CellState& s, const OperatorInputs& in,
 
   // A link that failed is named as the link; the measurements it carried are stale and not judged
   // (no "disagreement" or "following error" of a position that simply stopped arriving).
-  std::array<bool, cell::kDevices> fresh{};
-  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+  std::array<bool, cell::kMaxDevices> fresh{};
+  for (std::size_t d = 0; d < cell::kMaxDevices; ++d) {
     const auto& l = s.links[d];
-    const auto name = cell::to_string(static_cast<cell::Device>(d));
+    const auto name = s.devices[d];
     const double silent_ms = link::to_milliseconds(l.silent_for);
     fresh[d] = l.active && !l.fault && silent_ms <= cell_.limits.link_silence_ms;
     if (l.fault || !l.active)

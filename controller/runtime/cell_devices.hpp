@@ -1,31 +1,42 @@
 #pragma once
-// The three device sessions seen as one cell. It composes and decodes nothing itself: each session
-// publishes its snapshot in program units with typed flags (mm, mm/s, Hz; the SCU's status bits, its
-// "initialised" bits and error word, the encoder's counts are the sessions' business), and this class
-// copies them into the CellState and turns changes of the supervisor's Intents into session commands.
-// Each cycle: receive(now) → read(now, state) → … → apply(intents) → transmit(now), so a command
-// decided in cycle k goes out in cycle k. Non-blocking and allocation-free per cycle.
+// The cell's devices seen as one cell: each device above its session (device_seam::CellDevice) fills its
+// slot of the CellState and turns changes of its part of the supervisor's Intents into session
+// commands; this class makes them from the registry (device_seam/device_registry.hpp) and iterates
+// them. It decodes nothing itself. Each cycle: receive(now) → read(now, state) → … → apply(intents) →
+// transmit(now), so a command decided in cycle k goes out in cycle k. Non-blocking and allocation-free
+// per cycle.
 
 #include <array>
-#include <cstdint>
+#include <functional>
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "cell/cell_state.hpp"
 #include "cell/intents.hpp"
 #include "config/cell_config.hpp"
-#include "encoder/session.hpp"
+#include "device_seam/cell_device.hpp"
+#include "device_seam/device_registry.hpp"
+#include "device_seam/encoder_device.hpp"
+#include "device_seam/scu_device.hpp"
+#include "device_seam/spindle_device.hpp"
 #include "link/device_session.hpp"
 #include "link/link.hpp"
 #include "runtime/device_links.hpp"
-#include "scu/session.hpp"
-#include "spindle/session.hpp"
 
 namespace cellctl::runtime {
 
 class CellDevices {
  public:
-  // Throws std::invalid_argument (a session's config) — at construction only.
-  CellDevices(const config::CellConfig& cell, DeviceLinks links);
+  // Opens a device's port again after it was lost (by slot): true when its session may use it again.
+  using Reopen = std::function<bool(std::size_t slot)>;
+
+  // The cell's devices of `kinds` (the registry's, unless a test adds its own), each on its link in
+  // `links` (by slot; nullptr: the cell has no such device). Throws std::invalid_argument (a session's
+  // config) — at construction only.
+  CellDevices(const config::CellConfig& cell, std::span<link::Link* const> links, Reopen reopen,
+              std::span<const device_seam::DeviceKind> kinds = device_seam::cell_device_kinds());
+  CellDevices(const config::CellConfig& cell, DeviceLinks links, Reopen reopen = {});
 
   void activate(link::TimePoint now);
   // Orderly shutdown: axes stopped and remote mode closed (RA), spindle stopped.
@@ -36,44 +47,30 @@ class CellDevices {
 
   // The snapshot of the cell now (after receive()).
   void read(link::TimePoint now, cell::CellState& out);
-  // Hands what changed in `intents` to the sessions (before transmit()).
+  // Hands what changed in `intents` to the devices (before transmit()).
   void apply(const cell::Intents& intents);
 
-  [[nodiscard]] scu::Session* scu() noexcept { return scu_.get(); }
-  [[nodiscard]] spindle::Session* spindle() noexcept { return spindle_.get(); }
-  [[nodiscard]] encoder::Session* encoder() noexcept { return encoder_.get(); }
-  // The sessions there are, by cell::Device (nullptr for a device the cell lacks).
-  [[nodiscard]] const std::array<link::DeviceSession*, cell::kDevices>& sessions() const noexcept {
+  // The devices the cell has, in slot order.
+  [[nodiscard]] std::span<device_seam::CellDevice* const> devices() const noexcept { return present_; }
+  [[nodiscard]] scu::Session* scu() noexcept { return scu_ ? &scu_->scu() : nullptr; }
+  [[nodiscard]] spindle::Session* spindle() noexcept { return spindle_ ? &spindle_->spindle() : nullptr; }
+  [[nodiscard]] encoder::Session* encoder() noexcept { return encoder_ ? &encoder_->encoder() : nullptr; }
+  [[nodiscard]] const encoder::Session* encoder() const noexcept {
+    return encoder_ ? &encoder_->encoder() : nullptr;
+  }
+  // The sessions there are, by slot (nullptr for a device the cell lacks).
+  [[nodiscard]] const std::array<link::DeviceSession*, cell::kMaxDevices>& sessions() const noexcept {
     return sessions_;
   }
 
  private:
-  struct AxisCommand {
-    std::uint32_t applied_move = 0;   // the last move id the SCU accepted
-    bool stop_sent = false;           // a stop went out for the motion now ending
-    bool stop_soft = false;           // and it was a soft one
-    std::uint64_t stop_refusals = 0;  // the SCU's refusal count when it went (a new refusal: send again)
-  };
-  void apply_axes(const cell::Intents& in);
-  void apply_spindle(const cell::Intents& in);
-  void apply_encoder(const cell::Intents& in);
-
-  const config::CellConfig& cell_;
-  std::unique_ptr<scu::Session> scu_;
-  std::unique_ptr<spindle::Session> spindle_;
-  std::unique_ptr<encoder::Session> encoder_;
-  std::array<link::DeviceSession*, cell::kDevices> sessions_{};
-  std::array<AxisCommand, cell::kMaxAxes> axis_cmd_{};
-  struct Preset {
-    std::uint32_t id = 0;  // the intent's preset_id last taken
-    bool sent = false;
-    bool done = false;
-    bool failed = false;
-    std::string_view failure;
-  };
-  Preset preset_;
-  bool estop_requested_ = false;      // an F20 went to the session for the halt in force
-  std::uint64_t estop_refusals_ = 0;  // the SCU's refusal count then
+  std::uint8_t axis_count_;
+  std::vector<std::unique_ptr<device_seam::CellDevice>> owned_;
+  std::vector<device_seam::CellDevice*> present_;
+  std::array<link::DeviceSession*, cell::kMaxDevices> sessions_{};
+  device_seam::ScuDevice* scu_ = nullptr;
+  device_seam::SpindleDevice* spindle_ = nullptr;
+  device_seam::EncoderDevice* encoder_ = nullptr;
 };
 
 }  // namespace cellctl::runtime

@@ -34,11 +34,9 @@ supervisor::SupervisorSettings settings_for(const config::CellConfig& cell, cons
 // beside a load shows whether the emulators kept up).
 std::string link_figures(const CellDevices& devices, nlohmann::json& out) {
   std::string text;
-  for (std::size_t d = 0; d < cell::kDevices; ++d) {
-    const auto* s = devices.sessions()[d];
-    if (!s) continue;
-    const char* name = cell::to_string(static_cast<cell::Device>(d));
-    const link::LinkHealth& h = s->health();
+  for (const auto* d : devices.devices()) {
+    const std::string name(d->name());
+    const link::LinkHealth& h = d->session().health();
     const double round_trip_ms = link::to_milliseconds(h.max_round_trip);
     const double silence_ms = link::to_milliseconds(h.max_silence);
     out[name] = {{"replies", h.good_replies},    {"max_round_trip_ms", round_trip_ms},
@@ -198,16 +196,9 @@ void CellRun::report_devices(double t, RunResult& r) {
     journal::post_note(journal_, t, text);  // never cut
     r.device_notes.push_back(std::move(text));
   };
-  static constexpr const char* kNames[cell::kDevices] = {"SCU", "spindle", "encoder"};
-  for (std::size_t d = 0; d < cell::kDevices; ++d) {
-    const auto* s = parts_.devices->sessions()[d];
-    if (s && s->lifecycle() == link::Lifecycle::fault)
-      note(std::string(kNames[d]) + ": " + s->fault_reason());
-  }
-  if (auto* sp = parts_.devices->spindle(); sp && sp->snapshot().start_refused)
-    note("spindle: " + sp->snapshot().start_refused_reason);
-  if (auto* enc = parts_.devices->encoder(); enc && !enc->restart_reason().empty())
-    note("encoder: DP start-up begun again: " + enc->restart_reason());
+  std::vector<std::string> notes;
+  for (const auto* d : parts_.devices->devices()) d->notes(notes);
+  for (auto& n : notes) note(std::move(n));
 }
 
 CellRun::FirstFault CellRun::first_fault(monitor::Rule rule, config::StopCategory category, double t,
@@ -233,10 +224,9 @@ CellRun::FirstFault CellRun::first_fault(monitor::Rule rule, config::StopCategor
 void CellRun::report_safety(RunResult& r, nlohmann::json& extra) const {
   r.safety = safe_stop_->verdicts();
   nlohmann::json devices = nlohmann::json::object();
-  for (std::size_t d = 0; d < cell::kDevices; ++d) {
-    if (!r.safety[d]) continue;
-    devices[cell::to_string(static_cast<cell::Device>(d))] = {{"safe", to_string(r.safety[d]->safe)},
-                                                              {"evidence", r.safety[d]->evidence}};
+  for (const auto* d : parts_.devices->devices()) {
+    const auto& verdict = r.safety[d->slot()];
+    devices[std::string(d->name())] = {{"safe", to_string(verdict->safe)}, {"evidence", verdict->evidence}};
   }
   extra["devices"] = devices;
   if (!first_fault_ || supervisor_->state() == supervisor::State::complete) return;
@@ -245,7 +235,7 @@ void CellRun::report_safety(RunResult& r, nlohmann::json& extra) const {
   nlohmann::json ended{{"t", journal::round_ms(f.t)}, {"rule", monitor::to_string(f.rule)}};
   if (f.link) {
     // The session's own words when it gave up on the link; else what the monitor saw of it.
-    const auto& reason = safe_stop_->lost_reason(*f.link);
+    const auto reason = safe_stop_->lost_reason(cell::slot(*f.link));
     std::string symptom = reason.empty() ? std::string(f.detail.view()) : reason;
     if (auto* enc = parts_.devices->encoder();
         *f.link == cell::Device::encoder && enc && !enc->restart_reason().empty())
@@ -336,7 +326,7 @@ void CellRun::cycle(link::TimePoint now, std::atomic<bool>& interrupt) {
     stages.begin(index(ControlStage::state));
     parts_.devices->read(now, state_);
     supervisor_->adjust(state_);
-    safe_stop_->observe(now);
+    safe_stop_->observe(now, state_);
 
     stages.begin(index(ControlStage::monitor));
     const auto fresh =
@@ -417,8 +407,7 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
     emulator_thread_ = std::thread([this] { run_emulator_thread(); });
 
   safe_stop_ = std::make_unique<SafeStop>(
-      cell_, *parts_.devices, *parts_.links,
-      std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.shutdown_timeout_s)),
+      *parts_.devices, std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.shutdown_timeout_s)),
       start_);
   parts_.devices->activate(start_);
   (void)supervisor_->command(supervisor::Command::start, "cellctl run", 0.0);

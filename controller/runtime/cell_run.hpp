@@ -76,7 +76,7 @@ struct RunResult {
   std::string link_summary;  // per device: replies, worst round trip, longest silence, time-outs
   std::string summary_text;  // the journal's summary for the terminal
   // The safe state each device was left in (nullopt: the cell has no such device).
-  std::array<std::optional<DeviceSafety>, cell::kDevices> safety;
+  Verdicts safety;
   // The fault that ended the run, in words ("scu link: … since 1.502 s"); empty when none did.
   std::string ended_by;
   [[nodiscard]] bool any_unknown() const noexcept {

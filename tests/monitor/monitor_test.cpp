@@ -32,6 +32,7 @@ cell::CellState healthy() {
   s.axes[1] = {.present = true, .scu_mm = 5.0};
   s.encoder = {.data_exchange = true, .ready = true, .mm = 10.1};
   for (auto& l : s.links) l = {.active = true, .fault = false, .silent_for = 10ms, .counts = {}};
+  s.devices = {"scu", "spindle", "encoder"};
   return s;
 }
 

@@ -1,0 +1,167 @@
+#pragma once
+// A small digital I/O module, made up for the device seam's test: a fourth kind of device that the
+// cell knows nothing of, added through the registry alone (device_seam/device_registry.hpp). It is a
+// device as far as the seam can tell: a line protocol of its own, a session over a link, an emulator on
+// the other end, its part of the intents (the coolant valve on output 0 follows the spindle) and its own
+// safe-stop (every output off, confirmed by reading it back).
+//
+// Its protocol, ASCII lines: "R\n" reads, "W hh\n" writes the outputs; the module answers every line
+// with "O hh\n", the outputs in force (two hex digits).
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "device_seam/cell_device.hpp"
+#include "device_seam/device_registry.hpp"
+#include "link/device_session.hpp"
+#include "link/link.hpp"
+
+namespace cellctl::testing::dio {
+
+using namespace std::chrono_literals;
+
+inline constexpr link::Duration kPollPeriod = 20ms;
+inline constexpr link::Duration kReplyTimeout = 50ms;
+inline constexpr link::Duration kFaultAfter = 200ms;
+
+// The module's end of the line.
+class Emulator {
+ public:
+  explicit Emulator(link::Link& link) : link_(link) {}
+  void poll() {
+    std::array<std::uint8_t, 64> buf{};
+    const auto r = link_.read(buf);
+    for (std::size_t i = 0; i < r.count; ++i) {
+      const char c = static_cast<char>(buf[i]);
+      if (c != '\n') {
+        line_ += c;
+        continue;
+      }
+      if (line_.size() == 4 && line_[0] == 'W')
+        outputs_ = static_cast<std::uint8_t>(std::stoul(line_.substr(2), nullptr, 16));
+      line_.clear();
+      if (!silent_) {
+        const auto reply = fmt::format("O {:02x}\n", outputs_);
+        (void)link_.write(std::span(reinterpret_cast<const std::uint8_t*>(reply.data()), reply.size()));
+      }
+    }
+  }
+  [[nodiscard]] std::uint8_t outputs() const noexcept { return outputs_; }
+  void set_silent(bool silent) noexcept { silent_ = silent; }
+
+ private:
+  link::Link& link_;
+  std::string line_;
+  std::uint8_t outputs_ = 0;
+  bool silent_ = false;
+};
+
+// The master's end: polls the outputs, writes a change, faults after kFaultAfter without a good reply.
+class Session final : public link::DeviceSession {
+ public:
+  explicit Session(link::Link& link) : link_(link) {}
+  void activate(link::TimePoint now) override { enter(link::Lifecycle::activating, now); }
+  void deactivate(link::TimePoint) override {
+    wanted_ = 0;
+    if (lifecycle() == link::Lifecycle::active) enter(link::Lifecycle::deactivating);
+  }
+  void receive(link::TimePoint now) override {
+    std::array<std::uint8_t, 64> buf{};
+    const auto r = link_.read(buf);
+    for (std::size_t i = 0; i < r.count; ++i) take(static_cast<char>(buf[i]), now);
+    if (sent_at_ && now - *sent_at_ > kReplyTimeout) {
+      ++health_.timeouts;
+      sent_at_.reset();
+    }
+    if (!quiet() && silent_for(now) > kFaultAfter)
+      enter_fault("dio silent for {} ms", (silent_for(now) / 1ms));
+  }
+  void transmit(link::TimePoint now) override {
+    if (quiet() || sent_at_) return;
+    if (wanted_ != outputs_) return send(fmt::format("W {:02x}\n", wanted_), now);
+    if (now - polled_at_ >= kPollPeriod) send("R\n", now);
+  }
+  [[nodiscard]] const link::LinkHealth& health() const noexcept override { return health_; }
+  [[nodiscard]] bool awaiting_reply() const noexcept override { return sent_at_.has_value(); }
+
+  void set_outputs(std::uint8_t outputs) noexcept { wanted_ = outputs; }
+  [[nodiscard]] std::optional<std::uint8_t> outputs() const noexcept { return outputs_; }
+
+ private:
+  void send(const std::string& line, link::TimePoint now) {
+    (void)link_.write(std::span(reinterpret_cast<const std::uint8_t*>(line.data()), line.size()));
+    sent_at_ = polled_at_ = now;
+  }
+  void take(char c, link::TimePoint now) {
+    if (c != '\n') {
+      line_ += c;
+      return;
+    }
+    if (line_.size() == 4 && line_[0] == 'O' && sent_at_) {
+      outputs_ = static_cast<std::uint8_t>(std::stoul(line_.substr(2), nullptr, 16));
+      health_.record_reply(*sent_at_, now);
+      sent_at_.reset();
+      if (lifecycle() == link::Lifecycle::activating) enter(link::Lifecycle::active);
+      if (lifecycle() == link::Lifecycle::deactivating && outputs_ == 0) enter(link::Lifecycle::inactive);
+    } else {
+      ++health_.bad_frames;
+    }
+    line_.clear();
+  }
+
+  link::Link& link_;
+  link::LinkHealth health_;
+  std::string line_;
+  std::optional<link::TimePoint> sent_at_;
+  link::TimePoint polled_at_{};
+  std::uint8_t wanted_ = 0;
+  std::optional<std::uint8_t> outputs_;
+};
+
+// The module above its session: output 0 is the coolant valve, open while the spindle is asked to run
+// and no halt is in force. Its safe-stop: every output off, observed once the module reads back 0;
+// without an answer within confirm_within it is unknown (a valve may still be open).
+class Device final : public device_seam::CellDevice {
+ public:
+  Device(std::size_t slot, link::Link& link, Reopen reopen)
+      : CellDevice(slot, "dio", "I/O module", std::move(reopen)), session_(link) {}
+
+  [[nodiscard]] link::DeviceSession& session() noexcept override { return session_; }
+  [[nodiscard]] const link::DeviceSession& session() const noexcept override { return session_; }
+  [[nodiscard]] Session& dio() noexcept { return session_; }
+
+  void read(link::TimePoint, cell::CellState&) override {}  // no slot of its own beyond its link
+  void apply(const cell::Intents& in) override {
+    session_.set_outputs(in.spindle.run && in.halt == cell::Halt::none ? 0x01 : 0x00);
+  }
+  void begin_stop(link::TimePoint now) override { session_.deactivate(now); }
+  void step_stop(link::TimePoint now, const device_seam::StopContext& ctx) override {
+    if (resolved()) return;
+    if (session_.lifecycle() == link::Lifecycle::inactive) return resolve(device_seam::Safe::observed, now);
+    if (session_.lifecycle() == link::Lifecycle::fault) recover(now);
+    if (now >= ctx.begun_at.value_or(lost_at().value_or(now)) + ctx.confirm_within)
+      resolve(device_seam::Safe::unknown, now);
+  }
+  [[nodiscard]] std::string evidence(const device_seam::StopContext& ctx) const override {
+    return loss_evidence("I/O module", ctx) +
+           (resolved() == device_seam::Safe::observed
+                ? fmt::format("every output off, read back at {:.3f} s", ctx.t_of(resolved_at()))
+                : std::string("outputs never read back off: the coolant valve may still be open"));
+  }
+
+ private:
+  Session session_;
+};
+
+inline std::unique_ptr<device_seam::CellDevice> make(std::size_t slot, const config::CellConfig&,
+                                                     link::Link& link,
+                                                     device_seam::CellDevice::Reopen reopen) {
+  return std::make_unique<Device>(slot, link, std::move(reopen));
+}
+
+}  // namespace cellctl::testing::dio
