@@ -407,7 +407,8 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
     emulator_thread_ = std::thread([this] { run_emulator_thread(); });
 
   safe_stop_ = std::make_unique<SafeStop>(
-      *parts_.devices, std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.shutdown_timeout_s)),
+      *parts_.devices,
+      std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.shutdown_timeout_s)),
       start_);
   parts_.devices->activate(start_);
   (void)supervisor_->command(supervisor::Command::start, "cellctl run", 0.0);
