@@ -122,9 +122,12 @@ class ScuCommissioning {
         code = move();
         break;
       case ScuAction::stop:
-        if (!c_.session().stop(options_.function, !options_.fast)) {
-          spdlog::error("F{} is not a function of this SCU: check scu.functions in the cell config",
-                        options_.function);
+        if (const auto r = c_.session().stop(options_.function, !options_.fast); !r) {
+          if (r.status == scu::CommandStatus::unknown_function)
+            spdlog::error("F{} is not a function of this SCU: check scu.functions in the cell config",
+                          options_.function);
+          else
+            spdlog::error("stop of F{} refused: {}", options_.function, to_string(r.status));
           code = kExitFailed;
         }
         break;
@@ -138,11 +141,16 @@ class ScuCommissioning {
     const double start_mm =
         c_.snapshot().actuators[static_cast<std::size_t>(options_.actuator - 1)].position_mm;
     const scu::ActuatorTarget target[] = {{options_.actuator, options_.position_mm}};
-    if (!c_.session().move_to(options_.function, target, options_.speed_mm_s, !options_.fast)) {
-      spdlog::error(
-          "move refused: F{} must be a configured function that moves exactly actuator {} "
-          "(see scu.functions in the cell config), speed above 0",
-          options_.function, options_.actuator);
+    if (const auto r = c_.session().move_to(options_.function, target, options_.speed_mm_s, !options_.fast);
+        !r) {
+      using enum scu::CommandStatus;
+      if (r.status == unknown_function || r.status == wrong_actuators || r.status == bad_speed)
+        spdlog::error(
+            "move refused: F{} must be a configured function that moves exactly actuator {} "
+            "(see scu.functions in the cell config), speed above 0",
+            options_.function, options_.actuator);
+      else
+        spdlog::error("move refused: F{}: {}", options_.function, to_string(r.status));
       return kExitFailed;
     }
     const auto& f = c_.snapshot().functions[static_cast<std::size_t>(options_.function - 1)];

@@ -35,6 +35,10 @@ std::uint8_t fnc(int function) {
 // carries status 1), so it is read by itself: after the first refresh and then this often.
 constexpr std::uint16_t kStatus2Group = 0x00E0;
 constexpr auto kStatus2Period = std::chrono::seconds(2);
+// What read_link takes from the link at a time: less than a reply, so that the reply stream (two
+// replies) always takes a whole chunk beside the part of a reply it may hold.
+constexpr std::size_t kReadChunk = 256;
+static_assert(kReadChunk < kMaxReplyTelegram);
 }  // namespace
 
 template <class... Args>
@@ -54,7 +58,7 @@ Session::Session(link::Link& link, const SessionConfig& config)
     snapshot_.actuators[a].configured = config_.actuators.test(a);
   keepalive_.purpose = Purpose::keepalive;
   const CyclicRequest rc{0, {}};
-  (void)encode_request(rc, keepalive_.bytes);
+  (void)encode_request(rc, keepalive_.bytes);  // an RC without data always fits its buffer
   keepalive_.shape = reply_shape(rc);
   // Should the process die of a fatal signal, the port gets an F20: every actuator stops at once
   // (link/crash_stop.hpp). The SCU's own communication time-out would stop them too, 0.5 s later.
@@ -96,6 +100,7 @@ void Session::activate(link::TimePoint now) {
   health_.last_good.reset();
   enter(link::Lifecycle::activating, now);
   const auto object = layout_.object_value();
+  // The queues were emptied above: the three fit.
   (void)enqueue(false, OpenRequest{config_.safety_id}, Purpose::open);
   (void)enqueue(false, CyclicRequest{}, Purpose::first_keepalive);
   (void)enqueue(false, TransferRequest{data_id::cyclic_object(1), object}, Purpose::setup_cyclic);
@@ -114,10 +119,13 @@ void Session::deactivate(link::TimePoint) {
     const bool in_flight_execute =
         in_flight_ && in_flight_->purpose == Purpose::execute && in_flight_->function == fnc(f);
     if ((fs.execution_open || in_flight_execute) && !stop_queued_.test(static_cast<std::size_t>(f - 1))) {
-      (void)enqueue(true, StopRequest{fnc(f), kSoftStartStop}, Purpose::stop, fnc(f));
-      stop_queued_.set(static_cast<std::size_t>(f - 1));
+      if (enqueue(true, StopRequest{fnc(f), kSoftStartStop}, Purpose::stop, fnc(f)))
+        stop_queued_.set(static_cast<std::size_t>(f - 1));
     }
   }
+  // Neither fails: the normal queue was emptied above, and the urgent one never fills (see
+  // retry_or_give_up). Should an RS or the release not fit all the same, the RA ends every remote
+  // motion.
   if (snapshot_.emergency_stop_open)
     (void)enqueue(true, StopRequest{kEmergencyStopFnc, kUnusedParam}, Purpose::release_emergency);
   if (snapshot_.remote_open || in_flight_)
@@ -164,7 +172,7 @@ void Session::schedule_status2(link::TimePoint now) {
 }
 
 void Session::read_link(link::TimePoint now) {
-  std::array<std::uint8_t, 256> buf{};
+  std::array<std::uint8_t, kReadChunk> buf{};
   for (;;) {
     const auto r = link_.read(buf);
     if (r.status != link::IoStatus::ok) {
@@ -173,6 +181,8 @@ void Session::read_link(link::TimePoint now) {
       return;
     }
     if (r.count == 0) return;
+    // Takes it all: the events are drained below before the next read, which leaves less than one
+    // reply in a stream that holds two (kReadChunk < kMaxReplyTelegram).
     (void)replies_.feed(std::span(buf).first(r.count));
     for (auto e = replies_.next(); e.kind != ReplyStream::Event::Kind::need_more; e = replies_.next()) {
       if (e.kind == ReplyStream::Event::Kind::reply) {
@@ -249,9 +259,9 @@ void Session::on_ack(const Reply& reply, const Pending& p, link::TimePoint now) 
       break;
     case Purpose::read:
       snapshot_.last_read.data_id = p.data_id;
-      snapshot_.last_read.valid = true;
+      // (The reply's shape keeps its data within kMaxReplyData, the value's capacity.)
+      snapshot_.last_read.valid = snapshot_.last_read.value.assign(reply.data);
       snapshot_.last_read.status = Status::ack;
-      (void)snapshot_.last_read.value.assign(reply.data);
       ++snapshot_.last_read.sequence;
       break;
     case Purpose::status2:
@@ -395,8 +405,10 @@ void Session::retry_or_give_up(link::TimePoint now, const char* why) {
     case Purpose::stop:
     case Purpose::emergency_stop:
     case Purpose::release_emergency:
-      (void)urgent_.push_front(
-          failed);  // a stop is never given up; the link fault ends it if the SCU is gone
+      // A stop is never given up: it goes back first (the urgent queue, kQueueDepth, never fills: it holds
+      // an RS per function and an F20 asked again only after a refusal); the link fault ends it if the
+      // SCU is gone.
+      (void)urgent_.push_front(failed);
       return;
     case Purpose::position:
     case Purpose::speed:
@@ -474,7 +486,7 @@ void Session::send(const Pending& p, link::TimePoint now) {
 }
 
 void Session::drop_queued_moves(std::optional<std::uint8_t> function) {
-  (void)normal_.remove_if([&](const Pending& p) {
+  (void)normal_.remove_if([&](const Pending& p) {  // how many: no matter
     const bool move =
         p.purpose == Purpose::position || p.purpose == Purpose::speed || p.purpose == Purpose::execute;
     return move && (!function || p.function == *function);
@@ -495,30 +507,39 @@ std::uint16_t Session::percent(int function, double speed_mm_s) const noexcept {
   return static_cast<std::uint16_t>(std::clamp(std::lround(100.0 * speed_mm_s / full), 1L, 100L));
 }
 
-bool Session::move_to(int function, std::span<const ActuatorTarget> targets, double speed_mm_s, bool soft) {
-  if (!accepting() || !defined(function) || !(speed_mm_s > 0.0) || snapshot_.emergency_stop_open)
-    return false;
+CommandResult Session::move_to(int function, std::span<const ActuatorTarget> targets, double speed_mm_s,
+                               bool soft) {
+  if (!accepting()) return {CommandStatus::not_active};
+  if (!defined(function)) return {CommandStatus::unknown_function};
+  if (!(speed_mm_s > 0.0)) return {CommandStatus::bad_speed};
+  if (snapshot_.emergency_stop_open) return {CommandStatus::emergency_stop_holds};
   const auto speed_percent = percent(function, speed_mm_s);
   const auto f = static_cast<std::size_t>(function - 1);
   auto& fs = snapshot_.functions[f];
-  if (fs.execution_open || stop_queued_.test(f) || fs.outcome == MoveOutcome::queued) return false;
+  if (fs.execution_open || stop_queued_.test(f) || fs.outcome == MoveOutcome::queued)
+    return {CommandStatus::function_busy};
   const auto& fn = config_.functions[f];
   std::bitset<kActuatorCount> given;
   for (const auto& t : targets) {
-    if (!fn.moves(t.actuator)) return false;
+    if (!fn.moves(t.actuator)) return {CommandStatus::wrong_actuators};
     given.set(static_cast<std::size_t>(t.actuator - 1));
   }
-  if (given != fn.actuators || normal_.free_space() < targets.size() + 2) return false;
+  if (given != fn.actuators) return {CommandStatus::wrong_actuators};
+  if (normal_.free_space() < targets.size() + 2) return {CommandStatus::queue_full};
+  std::array<std::int32_t, kActuatorCount> edges{};
   for (const auto& t : targets) {
     const auto a = static_cast<std::size_t>(t.actuator - 1);
-    const double edges = std::round(t.mm * config_.specs[a].edges_per_mm);
-    if (!std::isfinite(edges) || std::abs(edges) > 2e9) return false;
-    fs.targets[a] = static_cast<std::int32_t>(edges);
+    const double e = std::round(t.mm * config_.specs[a].edges_per_mm);
+    if (!std::isfinite(e) || std::abs(e) > 2e9) return {CommandStatus::target_out_of_range};
+    edges[a] = static_cast<std::int32_t>(e);
   }
+  // Room for every telegram was checked above: none of these pushes fails.
   for (const auto& t : targets) {
+    const auto a = static_cast<std::size_t>(t.actuator - 1);
+    fs.targets[a] = edges[a];
     std::array<std::uint8_t, 4> value{};
     wire::ByteWriter w(value);
-    w.le(fs.targets[static_cast<std::size_t>(t.actuator - 1)]);
+    w.le(edges[a]);
     (void)enqueue(false, TransferRequest{data_id::remote_position(t.actuator), value}, Purpose::position,
                   fnc(function));
   }
@@ -534,11 +555,12 @@ bool Session::move_to(int function, std::span<const ActuatorTarget> targets, dou
   fs.targeted = given;
   fs.speed_percent = speed_percent;
   fs.outcome = MoveOutcome::queued;
-  return true;
+  return {};
 }
 
-bool Session::stop(int function, bool soft) {
-  if (!accepting() || !defined(function)) return false;
+CommandResult Session::stop(int function, bool soft) {
+  if (!accepting()) return {CommandStatus::not_active};
+  if (!defined(function)) return {CommandStatus::unknown_function};
   const auto f = static_cast<std::size_t>(function - 1);
   drop_queued_moves(fnc(function));
   const StopRequest rs{fnc(function), soft ? kSoftStartStop : kFastStartStop};
@@ -546,49 +568,60 @@ bool Session::stop(int function, bool soft) {
   // asked again every cycle must not fall behind what was queued meanwhile, such as a re-sent F20.
   if (auto* queued = urgent_.find_if(
           [&](const Pending& p) { return p.purpose == Purpose::stop && p.function == fnc(function); })) {
+    // An RS always fits its buffer (it fitted when it was queued).
     (void)encode_request(rs, queued->bytes);
     stop_queued_.set(f);
-    return true;
+    return {};
   }
-  if (!enqueue(true, rs, Purpose::stop, fnc(function))) return false;
+  if (!enqueue(true, rs, Purpose::stop, fnc(function))) return {CommandStatus::queue_full};
   stop_queued_.set(f);
-  return true;
+  return {};
 }
 
-bool Session::emergency_stop() {
-  if (lifecycle() != link::Lifecycle::active && lifecycle() != link::Lifecycle::deactivating) return false;
+CommandResult Session::emergency_stop() {
+  if (lifecycle() != link::Lifecycle::active && lifecycle() != link::Lifecycle::deactivating)
+    return {CommandStatus::not_active};
   drop_queued_moves(std::nullopt);
   Pending p;
   const ExecuteRequest f20{kEmergencyStopFnc, kUnusedParam, kUnusedParam};
-  (void)encode_request(f20, p.bytes);
+  (void)encode_request(f20, p.bytes);  // an RE always fits its buffer
   p.shape = reply_shape(f20);
   p.purpose = Purpose::emergency_stop;
   // The first F20 goes ahead of everything. One asked for again after the SCU refused it waits behind
   // the stops queued meanwhile: an SCU that keeps refusing F20 must not starve each axis's own stop.
-  return f20_refused_ ? urgent_.push_back(p) : urgent_.push_front(p);
+  const bool queued = f20_refused_ ? urgent_.push_back(p) : urgent_.push_front(p);
+  return {queued ? CommandStatus::taken : CommandStatus::queue_full};
 }
 
-bool Session::release_emergency_stop() {
-  if (!accepting() || !snapshot_.emergency_stop_open) return false;
-  return enqueue(true, StopRequest{kEmergencyStopFnc, kUnusedParam}, Purpose::release_emergency);
+CommandResult Session::release_emergency_stop() {
+  if (!accepting()) return {CommandStatus::not_active};
+  if (!snapshot_.emergency_stop_open) return {CommandStatus::no_emergency_stop};
+  if (!enqueue(true, StopRequest{kEmergencyStopFnc, kUnusedParam}, Purpose::release_emergency))
+    return {CommandStatus::queue_full};
+  return {};
 }
 
-bool Session::set_speed(int function, double speed_mm_s) {
-  if (!accepting() || !defined(function) || !(speed_mm_s > 0.0)) return false;
+CommandResult Session::set_speed(int function, double speed_mm_s) {
+  if (!accepting()) return {CommandStatus::not_active};
+  if (!defined(function)) return {CommandStatus::unknown_function};
+  if (!(speed_mm_s > 0.0)) return {CommandStatus::bad_speed};
   const auto speed_percent = percent(function, speed_mm_s);
-  if (snapshot_.functions[static_cast<std::size_t>(function - 1)].speed_percent == speed_percent) return true;
+  if (snapshot_.functions[static_cast<std::size_t>(function - 1)].speed_percent == speed_percent) return {};
   std::array<std::uint8_t, 2> speed{};
   wire::ByteWriter w(speed);
   w.le(speed_percent);
   if (!enqueue(false, TransferRequest{data_id::remote_speed(function), speed}, Purpose::speed, fnc(function)))
-    return false;
+    return {CommandStatus::queue_full};
   snapshot_.functions[static_cast<std::size_t>(function - 1)].speed_percent = speed_percent;
-  return true;
+  return {};
 }
 
-bool Session::read(std::uint16_t data_id) {
-  if (!accepting() || value_size(data_id) == 0 || value_size(data_id) > kMaxReplyData) return false;
-  return enqueue(false, GetRequest{data_id}, Purpose::read, 0, data_id);
+CommandResult Session::read(std::uint16_t data_id) {
+  if (!accepting()) return {CommandStatus::not_active};
+  if (value_size(data_id) == 0 || value_size(data_id) > kMaxReplyData)
+    return {CommandStatus::unknown_data_id};
+  if (!enqueue(false, GetRequest{data_id}, Purpose::read, 0, data_id)) return {CommandStatus::queue_full};
+  return {};
 }
 
 }  // namespace cellctl::scu

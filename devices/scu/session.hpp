@@ -30,6 +30,7 @@
 #include "link/link.hpp"
 #include "link/link_health.hpp"
 #include "scu/codec.hpp"
+#include "scu/command_result.hpp"
 #include "scu/cyclic_layout.hpp"
 #include "scu/reply_stream.hpp"
 #include "scu/session_config.hpp"
@@ -55,23 +56,25 @@ class Session final : public link::DeviceSession {
   [[nodiscard]] const link::LinkHealth& health() const noexcept override { return health_; }
   [[nodiscard]] bool awaiting_reply() const noexcept override { return in_flight_.has_value(); }
 
+  // The commands: each is taken into the queue whole, or refused with its cause and nothing queued
+  // (scu/command_result.hpp).
+  //
   // Move function f (1..10) to remote positions: RT 0x3021.. per actuator, RT 0x3011.. speed, RE(f, 9).
   // Every actuator of the function needs a target. The speed is a percentage of the fastest of the
   // function's actuators (none goes faster than asked), at least 1 %. Refused while the function has
   // an RE open or a move queued, during an emergency stop, or when not active.
-  [[nodiscard]] bool move_to(int function, std::span<const ActuatorTarget> targets, double speed_mm_s,
-                             bool soft);
+  CommandResult move_to(int function, std::span<const ActuatorTarget> targets, double speed_mm_s, bool soft);
   // RS for the function, ahead of everything queued; the function's queued move telegrams are dropped.
-  [[nodiscard]] bool stop(int function, bool soft);
+  CommandResult stop(int function, bool soft);
   // F20 ahead of everything (after a refused F20: behind the stops queued); every queued move is
   // dropped. Holds until release_emergency_stop().
-  [[nodiscard]] bool emergency_stop();
-  [[nodiscard]] bool release_emergency_stop();
+  CommandResult emergency_stop();
+  CommandResult release_emergency_stop();
   // RT 0x3011.. while the function moves: the SCU changes speed keeping its ramp. Sends nothing when
-  // the speed rounds to the percentage in force (true: it is in force or on its way).
-  [[nodiscard]] bool set_speed(int function, double speed_mm_s);
+  // the speed rounds to the percentage in force (taken: it is in force or on its way).
+  CommandResult set_speed(int function, double speed_mm_s);
   // RG; the value lands in snapshot().last_read.
-  [[nodiscard]] bool read(std::uint16_t data_id);
+  CommandResult read(std::uint16_t data_id);
 
   [[nodiscard]] const Snapshot& snapshot() const noexcept { return snapshot_; }
   // When the last request went on the line (none yet: the epoch). Any of them may have reached the
