@@ -32,7 +32,7 @@ std::string_view state_colour(supervisor::State s) {
 
 }  // namespace
 
-StatusPrinter::StatusPrinter(const runtime::StatusBoard& board, const config::CellConfig& cell,
+StatusPrinter::StatusPrinter(const status::StatusBoard& board, const config::CellConfig& cell,
                              TerminalScreen& screen, std::vector<std::optional<double>> planned_s)
     : board_(board), cell_(cell), screen_(screen), planned_s_(std::move(planned_s)), thread_([this] {
         run();
@@ -43,7 +43,7 @@ StatusPrinter::~StatusPrinter() {
   thread_.join();
 }
 
-std::string StatusPrinter::line(const runtime::StatusView& v) {
+std::string StatusPrinter::line(const status::StatusView& v) {
   std::string s = fmt::format("[{:7.1f} s] ", v.t);
   if (v.state == supervisor::State::idle && v.steps == 0) {
     // Before the first cycle: the devices are being opened.
@@ -77,7 +77,7 @@ std::string StatusPrinter::line(const runtime::StatusView& v) {
 void StatusPrinter::run() {
   using clock = std::chrono::steady_clock;
   auto last_plain = clock::now();
-  runtime::StatusView last{};
+  status::StatusView last{};
   bool first = true;
   while (!stop_.load()) {
     const auto v = board_.read();

@@ -14,14 +14,14 @@
 
 #include "cli/terminal_screen.hpp"
 #include "config/cell_config.hpp"
-#include "runtime/status_view.hpp"
+#include "status/status_view.hpp"
 
 namespace cellctl::cli {
 
 class StatusPrinter {
  public:
   // `planned_s`: per step (as numbered by the run), its planned time where it is known before.
-  StatusPrinter(const runtime::StatusBoard& board, const config::CellConfig& cell, TerminalScreen& screen,
+  StatusPrinter(const status::StatusBoard& board, const config::CellConfig& cell, TerminalScreen& screen,
                 std::vector<std::optional<double>> planned_s);
   ~StatusPrinter();  // stops and prints the last status
   StatusPrinter(const StatusPrinter&) = delete;
@@ -29,9 +29,9 @@ class StatusPrinter {
 
  private:
   void run();
-  [[nodiscard]] std::string line(const runtime::StatusView& v);
+  [[nodiscard]] std::string line(const status::StatusView& v);
 
-  const runtime::StatusBoard& board_;
+  const status::StatusBoard& board_;
   const config::CellConfig& cell_;
   TerminalScreen& screen_;
   std::vector<std::optional<double>> planned_s_;

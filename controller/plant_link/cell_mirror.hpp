@@ -20,7 +20,7 @@ struct Changed {
   bool admin = false;
 };
 
-// The status the control cycle publishes (runtime::StatusBoard), as far as the plant reads it.
+// The status the control cycle publishes (status::StatusBoard), as far as the plant reads it.
 struct LiveStatus {
   bool known = false;
   double t = 0.0;

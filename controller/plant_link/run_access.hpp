@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "command/arbiter.hpp"
-#include "runtime/status_view.hpp"
+#include "status/status_view.hpp"
 #include "supervisor/packml.hpp"
 
 namespace cellctl::plant_link {
@@ -22,7 +22,7 @@ namespace cellctl::plant_link {
 // The live status of the run in progress, copied out of its board. `view.label` is cleared: the
 // program's label lives only as long as its run; `label` holds a copy.
 struct LiveRun {
-  runtime::StatusView view;
+  status::StatusView view;
   std::string label;
 };
 
@@ -55,10 +55,10 @@ struct RunAccess {
 };
 
 // The access to one run that exists as long as the access is used: its arbiter and its board.
-[[nodiscard]] RunAccess fixed_run(command::Arbiter& arbiter, const runtime::StatusBoard& board,
+[[nodiscard]] RunAccess fixed_run(command::Arbiter& arbiter, const status::StatusBoard& board,
                                   std::string mode);
 
 // The board's view, its label copied.
-[[nodiscard]] LiveRun live_run(const runtime::StatusBoard& board);
+[[nodiscard]] LiveRun live_run(const status::StatusBoard& board);
 
 }  // namespace cellctl::plant_link

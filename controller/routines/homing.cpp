@@ -43,8 +43,7 @@ const char* to_string(HomingPhase p) noexcept {
   return "?";
 }
 
-Homing::Homing(const config::CellCore& cell, journal::EventSink& events, double dt,
-               supervisor::MoveSettings move)
+Homing::Homing(const config::CellCore& cell, journal::EventSink& events, double dt, motion::MoveSettings move)
     : cell_(cell), events_(events), executor_(cell, limits_, dt, move) {
   limits_.axes.resize(cell.axes.size());
   double longest_s = 10.0;
@@ -181,7 +180,7 @@ bool Homing::at_end(const cell::CellState& s, std::size_t i) const noexcept {
 }
 
 bool Homing::start_move(HomingPhase phase, const cell::CellState& s, double t, std::uint32_t& move_id,
-                        supervisor::Reference ref) {
+                        motion::Reference ref) {
   move_.targets.clear();
   move_.speed_mm_s = 0.0;
   for (std::size_t i = 0; i < cell_.axes.size(); ++i) {
@@ -219,11 +218,11 @@ void Homing::begin_group(const cell::CellState& s, double t, std::uint32_t& move
     enter(i, standing_at_end ? HomingPhase::back_off : HomingPhase::to_end, s, t);
   }
   stage_since_ = t;
-  if (start_move(HomingPhase::back_off, s, t, move_id, supervisor::Reference::scu)) {
+  if (start_move(HomingPhase::back_off, s, t, move_id, motion::Reference::scu)) {
     stage_ = Stage::back_off;
-  } else if (start_move(HomingPhase::to_end, s, t, move_id, supervisor::Reference::scu)) {
+  } else if (start_move(HomingPhase::to_end, s, t, move_id, motion::Reference::scu)) {
     stage_ = Stage::to_end;
-  } else if (start_move(HomingPhase::to_home, s, t, move_id, supervisor::Reference::best)) {
+  } else if (start_move(HomingPhase::to_home, s, t, move_id, motion::Reference::best)) {
     stage_ = Stage::to_home;
   } else {
     stage_ = Stage::to_home;  // nothing moves: the group is judged and recorded at once
@@ -269,13 +268,13 @@ HomingStatus Homing::step(const cell::CellState& s, double t, cell::Intents& out
       const auto status = executor_.step(s, t, out, move_id);
       // (A correction in motion on the way home, say.)
       if (!executor_.note().empty()) journal::post_note(events_, t, "homing: {}", executor_.note());
-      if (status == supervisor::MoveStatus::failed) return fail(executor_.reason());
-      if (status == supervisor::MoveStatus::running) return HomingStatus::running;
+      if (status == motion::MoveStatus::failed) return fail(executor_.reason());
+      if (status == motion::MoveStatus::running) return HomingStatus::running;
       stage_since_ = t;
       if (stage_ == Stage::back_off) {
         for (std::size_t i = 0; i < cell_.axes.size(); ++i)
           if (phase_[i] == HomingPhase::back_off) enter(i, HomingPhase::to_end, s, t);
-        (void)start_move(HomingPhase::to_end, s, t, move_id, supervisor::Reference::scu);
+        (void)start_move(HomingPhase::to_end, s, t, move_id, motion::Reference::scu);
         stage_ = Stage::to_end;
       } else if (stage_ == Stage::to_end) {
         for (std::size_t i = 0; i < cell_.axes.size(); ++i)
@@ -322,7 +321,7 @@ HomingStatus Homing::step(const cell::CellState& s, double t, cell::Intents& out
       }
       for (std::size_t i = 0; i < cell_.axes.size(); ++i)
         if (phase_[i] == HomingPhase::at_end) enter(i, HomingPhase::to_home, s, t);
-      if (!start_move(HomingPhase::to_home, s, t, move_id, supervisor::Reference::best))
+      if (!start_move(HomingPhase::to_home, s, t, move_id, motion::Reference::best))
         finish_group(s, t);
       else
         stage_ = Stage::to_home;
@@ -356,7 +355,7 @@ HomingStatus Homing::step(const cell::CellState& s, double t, cell::Intents& out
         if (phase_[k] == HomingPhase::at_end || phase_[k] == HomingPhase::preset)
           enter(k, HomingPhase::to_home, s, t);
       stage_since_ = t;
-      if (!start_move(HomingPhase::to_home, s, t, move_id, supervisor::Reference::best))
+      if (!start_move(HomingPhase::to_home, s, t, move_id, motion::Reference::best))
         finish_group(s, t);
       else
         stage_ = Stage::to_home;

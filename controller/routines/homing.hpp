@@ -11,7 +11,7 @@
 //                     is driven into its retracted end (our reading of the SCU manual, which does not
 //                     say how it initialises: README "Homing", devices/scu/emulator.hpp), and must then
 //                     report it; then to home_mm.
-// Motion goes through the supervisor's MoveExecutor (planner profile, closed on the measurement), so
+// Motion goes through the motion part's MoveExecutor (planner profile, closed on the measurement), so
 // an operator stop, a fault or Ctrl-C stops it like any recipe move: the supervisor's halt stops every
 // axis. Before any motion it refuses, with the reason, when the spindle turns, a device is not ready
 // or a limit is active. Each finished group is written into the HomeRecord; the axes being homed lose
@@ -26,9 +26,9 @@
 #include "cell/intents.hpp"
 #include "config/cell_core.hpp"
 #include "journal/event_sink.hpp"
+#include "motion/move_executor.hpp"
 #include "recipe/recipe.hpp"
 #include "routines/home_record.hpp"
-#include "supervisor/move_executor.hpp"
 
 namespace cellctl::routines {
 
@@ -49,8 +49,7 @@ enum class HomingStatus : std::uint8_t { running, done, failed };
 
 class Homing {
  public:
-  Homing(const config::CellCore& cell, journal::EventSink& events, double dt,
-         supervisor::MoveSettings move = {});
+  Homing(const config::CellCore& cell, journal::EventSink& events, double dt, motion::MoveSettings move = {});
 
   // Begins homing `axes` (cell axis indices, each with a strategy); results go into `record`.
   void start(std::span<const int> axes, double t, HomeRecord& record);
@@ -70,7 +69,7 @@ class Homing {
   void begin_group(const cell::CellState& s, double t, std::uint32_t& move_id);
   // Starts one move of every axis in `phase` to its target, judged on `ref`; false when none is.
   bool start_move(HomingPhase phase, const cell::CellState& s, double t, std::uint32_t& move_id,
-                  supervisor::Reference ref);
+                  motion::Reference ref);
   [[nodiscard]] double end_mm(std::size_t i) const noexcept;
   [[nodiscard]] bool at_end(const cell::CellState& s, std::size_t i) const noexcept;
   void enter(std::size_t i, HomingPhase p, const cell::CellState& s, double t);
@@ -80,7 +79,7 @@ class Homing {
   const config::CellCore& cell_;
   journal::EventSink& events_;
   recipe::Limits limits_;  // the homing moves' tolerances, speeds and time-out, from the cell
-  supervisor::MoveExecutor executor_;
+  motion::MoveExecutor executor_;
   recipe::Move move_;  // reused: its targets are reserved at construction
   HomeRecord* record_ = nullptr;
   std::array<AxisHome, cell::kMaxAxes> previous_{};  // the record as it was when homing began

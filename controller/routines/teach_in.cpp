@@ -111,10 +111,10 @@ void TeachIn::start_move(const cell::CellState& s, double target_mm, double t) {
 
 std::optional<bool> TeachIn::step_move(const cell::CellState& s, double t) {
   const auto status = executor_.step(s, t, intents_, move_id_);
-  if (status == supervisor::MoveStatus::running) return std::nullopt;
+  if (status == motion::MoveStatus::running) return std::nullopt;
   move_active_ = false;
   intents_.axes = {};
-  if (status == supervisor::MoveStatus::done) return true;
+  if (status == motion::MoveStatus::done) return true;
   fail(t, executor_.reason());
   return false;
 }

@@ -6,7 +6,7 @@
 //   checking → to_start → switching → starting → travelling → ending → switching_taught → returning
 //   → verifying → done;  any fault, operator abort or failed check → halting → restoring → failed
 //
-// Moves go through the supervisor's MoveExecutor (one move primitive), closed on the SCU's position:
+// Moves go through the motion part's MoveExecutor (one move primitive), closed on the SCU's position:
 // while the encoder is being taught its reading is unscaled or in its new unit, so the SCU's
 // position is the reference, and the monitor guards the axis on it. The native zero must not be
 // crossed (4.4.2.1): the travel is checked against it before the move and watched during it. The
@@ -21,9 +21,9 @@
 #include "cell/intents.hpp"
 #include "config/cell_core.hpp"
 #include "journal/event.hpp"
+#include "motion/move_executor.hpp"
 #include "recipe/recipe.hpp"
 #include "routines/teach_in_port.hpp"
-#include "supervisor/move_executor.hpp"
 
 namespace cellctl::routines {
 
@@ -100,7 +100,7 @@ class TeachIn {
   TeachInPort& port_;
   TeachInRequest request_;
   recipe::Limits limits_;
-  supervisor::MoveExecutor executor_;
+  motion::MoveExecutor executor_;
   cell::Intents intents_;
   std::uint32_t move_id_ = 0;
   bool move_active_ = false;

@@ -257,7 +257,7 @@ void CellRun::report_safety(RunResult& r, nlohmann::json& extra) const {
 }
 
 void CellRun::publish_status(double t) {
-  StatusView v;
+  status::StatusView v;
   v.t = t;
   v.state = supervisor_->state();
   v.steps = static_cast<std::uint32_t>(supervisor_->step_count());
@@ -281,7 +281,7 @@ void CellRun::publish_status(double t) {
   for (std::size_t b = 0; b < loop::LatencyHistogram::kBins; ++b) {
     const double upper_us =
         std::chrono::duration<double, std::micro>(loop::LatencyHistogram::upper_edge(b)).count();
-    while (bucket < kJitterBucketsUs.size() && upper_us > kJitterBucketsUs[bucket])
+    while (bucket < status::kJitterBucketsUs.size() && upper_us > status::kJitterBucketsUs[bucket])
       v.jitter_le[bucket++] = running;
     running += stats.jitter.bin_count(b);
   }

@@ -38,9 +38,9 @@
 #include "runtime/fault_rehearsal.hpp"
 #include "runtime/fault_spec.hpp"
 #include "runtime/safe_stop.hpp"
-#include "runtime/status_view.hpp"
 #include "runtime/teach_in_encoder.hpp"
 #include "runtime/teach_in_outcome.hpp"
+#include "status/status_view.hpp"
 #include "supervisor/supervisor.hpp"
 
 namespace cellctl::runtime {
@@ -141,7 +141,7 @@ class CellRun {
   [[nodiscard]] const cell::CellState& state() const noexcept { return state_; }
   [[nodiscard]] const supervisor::Supervisor& supervisor() const noexcept { return *supervisor_; }
   [[nodiscard]] const monitor::Monitor& monitor() const noexcept { return monitor_; }
-  [[nodiscard]] const StatusBoard& status() const noexcept { return board_; }
+  [[nodiscard]] const status::StatusBoard& status() const noexcept { return board_; }
   [[nodiscard]] const CellLinks& links() const noexcept { return *parts_.links; }
   [[nodiscard]] const loop::Loop& loop() const noexcept { return *loop_; }
   [[nodiscard]] std::vector<std::string> realtime_warnings() const { return realtime_warnings_; }
@@ -188,7 +188,7 @@ class CellRun {
   std::unique_ptr<loop::Loop> loop_;
 
   cell::CellState state_;
-  StatusBoard board_;
+  status::StatusBoard board_;
   std::atomic<unsigned> requested_{0};  // one bit per supervisor::Command
   struct Requested {
     supervisor::Command command;

@@ -135,11 +135,11 @@ Supervisor::StepStatus Supervisor::run_instruction(const cell::CellState& s, dou
   if (std::holds_alternative<recipe::Move>(ins.action)) {
     const auto status = executor_.step(s, t, intents_, move_counter_);
     if (!executor_.note().empty()) journal::post_note(events_, t, "step {}: {}", pc_ + 1, executor_.note());
-    if (status == MoveStatus::failed) failure_ = executor_.reason();
-    if (status == MoveStatus::done) corrections_ += executor_.corrections();
-    return status == MoveStatus::done     ? StepStatus::done
-           : status == MoveStatus::failed ? StepStatus::failed
-                                          : StepStatus::running;
+    if (status == motion::MoveStatus::failed) failure_ = executor_.reason();
+    if (status == motion::MoveStatus::done) corrections_ += executor_.corrections();
+    return status == motion::MoveStatus::done     ? StepStatus::done
+           : status == motion::MoveStatus::failed ? StepStatus::failed
+                                                  : StepStatus::running;
   }
   if (const auto* sp = std::get_if<recipe::Spindle>(&ins.action)) {
     const double want = sp->direction == recipe::SpindleDirection::cw ? sp->frequency_hz : -sp->frequency_hz;

@@ -12,13 +12,13 @@
 #include "cell/intents.hpp"
 #include "config/cell_core.hpp"
 #include "journal/event_sink.hpp"
+#include "motion/move_executor.hpp"
 #include "recipe/program.hpp"
 #include "recipe/recipe.hpp"
 #include "routines/home_record.hpp"
 #include "routines/homing.hpp"
 #include "routines/teach_in.hpp"
 #include "routines/teach_in_port.hpp"
-#include "supervisor/move_executor.hpp"
 #include "supervisor/packml.hpp"
 
 namespace cellctl::supervisor {
@@ -28,7 +28,7 @@ struct SupervisorSettings {
   double stop_timeout_s = 30.0;            // axes still and spindle at rest after a stop
   double sample_s = 0.02;                  // journal sample period
   std::string_view mode = "virtual-time";  // for the run record: virtual-time, emulated, hardware
-  MoveSettings move;
+  motion::MoveSettings move;
   // What `require: homed` checks and `home` steps write (loaded from the state folder by the runtime);
   // nullptr: an empty record of the supervisor's own (nothing homed before this run).
   routines::HomeRecord* home_record = nullptr;
@@ -111,7 +111,7 @@ class Supervisor {
   journal::EventSink& events_;
   SupervisorSettings settings_;
   double dt_;
-  MoveExecutor executor_;
+  motion::MoveExecutor executor_;
   routines::Homing homing_;
   std::optional<routines::TeachIn> teach_in_;
   routines::TeachInPhase told_phase_ = routines::TeachInPhase::checking;

@@ -284,9 +284,9 @@ std::string OperatorPage::metrics_text() {
   if (const auto r = run_.status()) {
     const auto& v = r->view;
     add("cellctl_loop_jitter_seconds", "histogram", "Control loop wake-up minus deadline.");
-    for (std::size_t b = 0; b < runtime::kJitterBucketsUs.size(); ++b)
+    for (std::size_t b = 0; b < status::kJitterBucketsUs.size(); ++b)
       out += fmt::format("cellctl_loop_jitter_seconds_bucket{{le=\"{:g}\"}} {}\n",
-                         runtime::kJitterBucketsUs[b] * 1e-6, v.jitter_le[b]);
+                         status::kJitterBucketsUs[b] * 1e-6, v.jitter_le[b]);
     out += fmt::format("cellctl_loop_jitter_seconds_bucket{{le=\"+Inf\"}} {}\n", v.jitter_le.back());
     out += fmt::format("cellctl_loop_jitter_seconds_sum {:.9f}\ncellctl_loop_jitter_seconds_count {}\n",
                        v.jitter_sum_s, v.jitter_le.back());

@@ -3,13 +3,13 @@
 // delayed on the line. The delay must not bend the slope, at a steady speed or a changing one; the
 // standard error must say how well the slope is known.
 
-#include "supervisor/offset_slope.hpp"
+#include "motion/offset_slope.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace cellctl::supervisor {
+namespace cellctl::motion {
 namespace {
 
 // An SCU that reads `scale_error` long, with 0.1 mm edges, its reading `delay_s` old at `speed`.
@@ -95,4 +95,4 @@ TEST(OffsetSlope, AnExactLineHasNoError) {
 }
 
 }  // namespace
-}  // namespace cellctl::supervisor
+}  // namespace cellctl::motion

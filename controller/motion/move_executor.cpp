@@ -1,9 +1,9 @@
-#include "supervisor/move_executor.hpp"
+#include "motion/move_executor.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace cellctl::supervisor {
+namespace cellctl::motion {
 
 MoveExecutor::MoveExecutor(const config::CellCore& cell, const recipe::Limits& limits, double dt,
                            MoveSettings settings)
@@ -429,4 +429,4 @@ MoveStatus MoveExecutor::step(const cell::CellState& s, double t, cell::Intents&
   return MoveStatus::running;
 }
 
-}  // namespace cellctl::supervisor
+}  // namespace cellctl::motion

@@ -1,7 +1,7 @@
 #pragma once
-// What the terminal shows while a run goes on, published by the control cycle and read by the
-// status printer on another thread. A sequence lock: the cycle never waits, a reader retries on a
-// torn copy.
+// What the terminal, the page and the plant show while a run goes on, published by the control cycle
+// (runtime) and read on other threads. A sequence lock: the cycle never waits, a reader retries on a
+// torn copy. A part of its own, so that its readers see the board and not the runtime that fills it.
 
 #include <array>
 #include <atomic>
@@ -12,7 +12,7 @@
 #include "monitor/rule.hpp"
 #include "supervisor/packml.hpp"
 
-namespace cellctl::runtime {
+namespace cellctl::status {
 
 // The loop's wake-up jitter as cumulative counts at these upper bounds (µs) and one for all, for the
 // web page's /metrics (Prometheus histogram buckets).
@@ -65,4 +65,4 @@ class StatusBoard {
   StatusView view_;
 };
 
-}  // namespace cellctl::runtime
+}  // namespace cellctl::status

@@ -14,7 +14,7 @@
 #include <cmath>
 #include <cstddef>
 
-namespace cellctl::supervisor {
+namespace cellctl::motion {
 
 class OffsetSlope {
  public:
@@ -96,4 +96,4 @@ class OffsetSlope {
   double highest_ = 0.0;
 };
 
-}  // namespace cellctl::supervisor
+}  // namespace cellctl::motion

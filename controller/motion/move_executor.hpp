@@ -24,11 +24,11 @@
 #include "config/cell_core.hpp"
 #include "journal/event.hpp"
 #include "link/clock.hpp"
+#include "motion/offset_slope.hpp"
 #include "planner/planner.hpp"
 #include "recipe/recipe.hpp"
-#include "supervisor/offset_slope.hpp"
 
-namespace cellctl::supervisor {
+namespace cellctl::motion {
 
 struct MoveSettings {
   int max_corrections = 3;
@@ -160,4 +160,4 @@ class MoveExecutor {
   journal::Text reason_;
 };
 
-}  // namespace cellctl::supervisor
+}  // namespace cellctl::motion
