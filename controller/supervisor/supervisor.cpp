@@ -17,6 +17,20 @@ bool is_running_state(State s) noexcept {
          s == State::completing;
 }
 
+// Every device of the cell, up or down, for a start that timed out: "scu up, spindle down, encoder not
+// ready" (the encoder is up once it is in data exchange and ready).
+Text devices_up(const cell::CellState& s) noexcept {
+  Text out;
+  for (std::size_t d = 0; d < cell::kMaxDevices; ++d) {
+    if (s.devices[d].empty()) continue;
+    const char* how = s.links[d].active ? "up" : "down";
+    if (d == cell::slot(cell::Device::encoder))
+      how = s.encoder.data_exchange ? (s.encoder.ready ? "ready" : "not ready") : "down";
+    out = Text::format("{}{}{} {}", out.view(), out.size ? ", " : "", s.devices[d], how);
+  }
+  return out;
+}
+
 }  // namespace
 
 Supervisor::Supervisor(const config::CellCore& cell, const recipe::Recipe& recipe,
@@ -348,21 +362,18 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
       for (const auto& l : s.links) up = up && l.active;
       // A session that gave up while starting does not try again in this run: waiting for it out
       // to the start time-out would only hide its reason (the run reports it) behind a time.
-      std::optional<cell::Device> failed;
-      for (std::size_t d = 0; d < cell::kDevices && !failed; ++d)
-        if (s.links[d].fault) failed = static_cast<cell::Device>(d);
+      std::string_view failed;
+      for (std::size_t d = 0; d < cell::kMaxDevices && failed.empty(); ++d)
+        if (s.links[d].fault) failed = s.devices[d];
       if (up) {
         cell_up_ = true;
         enter(State::execute, t, Text::format("all devices up, encoder ready"));
-      } else if (failed) {
-        failure_ =
-            Text::format("{} session failed while starting (its reason follows)", cell::to_string(*failed));
+      } else if (!failed.empty()) {
+        failure_ = Text::format("{} session failed while starting (its reason follows)", failed);
         enter(State::aborting, t, failure_);
       } else if (t - state_since_ > settings_.start_timeout_s) {
-        failure_ = Text::format("devices not ready after {:g} s (scu {}, spindle {}, encoder {})",
-                                settings_.start_timeout_s, s.links[0].active ? "up" : "down",
-                                s.links[1].active ? "up" : "down",
-                                s.encoder.data_exchange ? (s.encoder.ready ? "ready" : "not ready") : "down");
+        failure_ = Text::format("devices not ready after {:g} s ({})", settings_.start_timeout_s,
+                                devices_up(s).view());
         enter(State::aborting, t, failure_);
       }
       break;

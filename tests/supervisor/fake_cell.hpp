@@ -145,6 +145,7 @@ class FakeCell {
     s.spindle.start_refused = spindle_set_ > 0 && spindle_refusal_ != 0;
     s.spindle.error_number = spindle_refusal_;
     for (auto& l : s.links) l.active = true;
+    s.devices = {"scu", "spindle", "encoder"};
     s.scu_remote = true;
     s.scu_status2_known = elapsed_ >= status2_after_;
     if (std::find(move_refused_.begin(), move_refused_.end(), true) != move_refused_.end())
