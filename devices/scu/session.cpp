@@ -126,7 +126,7 @@ void Session::deactivate(link::TimePoint) {
   // Neither fails: the normal queue was emptied above, and the urgent one never fills (see
   // retry_or_give_up). Should an RS or the release not fit all the same, the RA ends every remote
   // motion.
-  if (snapshot_.emergency_stop_open)
+  if (snapshot_.emergency_stop_open && !on_its_way(Purpose::release_emergency))
     (void)enqueue(true, StopRequest{kEmergencyStopFnc, kUnusedParam}, Purpose::release_emergency);
   if (snapshot_.remote_open || in_flight_)
     (void)enqueue(false, AbortRequest{}, Purpose::close);
@@ -507,6 +507,11 @@ std::uint16_t Session::percent(int function, double speed_mm_s) const noexcept {
   return static_cast<std::uint16_t>(std::clamp(std::lround(100.0 * speed_mm_s / full), 1L, 100L));
 }
 
+bool Session::on_its_way(Purpose p) const noexcept {
+  return (in_flight_ && in_flight_->purpose == p) ||
+         urgent_.any([&](const Pending& q) { return q.purpose == p; });
+}
+
 CommandResult Session::move_to(int function, std::span<const ActuatorTarget> targets, double speed_mm_s,
                                bool soft) {
   if (!accepting()) return {CommandStatus::not_active};
@@ -582,6 +587,7 @@ CommandResult Session::emergency_stop() {
   if (lifecycle() != link::Lifecycle::active && lifecycle() != link::Lifecycle::deactivating)
     return {CommandStatus::not_active};
   drop_queued_moves(std::nullopt);
+  if (on_its_way(Purpose::emergency_stop)) return {};  // one F20 until the SCU has answered it
   Pending p;
   const ExecuteRequest f20{kEmergencyStopFnc, kUnusedParam, kUnusedParam};
   (void)encode_request(f20, p.bytes);  // an RE always fits its buffer
@@ -596,6 +602,8 @@ CommandResult Session::emergency_stop() {
 CommandResult Session::release_emergency_stop() {
   if (!accepting()) return {CommandStatus::not_active};
   if (!snapshot_.emergency_stop_open) return {CommandStatus::no_emergency_stop};
+  // Asked every cycle until the SCU has answered: one RS goes out, not one per cycle.
+  if (on_its_way(Purpose::release_emergency)) return {};
   if (!enqueue(true, StopRequest{kEmergencyStopFnc, kUnusedParam}, Purpose::release_emergency))
     return {CommandStatus::queue_full};
   return {};

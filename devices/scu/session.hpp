@@ -67,7 +67,8 @@ class Session final : public link::DeviceSession {
   // RS for the function, ahead of everything queued; the function's queued move telegrams are dropped.
   CommandResult stop(int function, bool soft);
   // F20 ahead of everything (after a refused F20: behind the stops queued); every queued move is
-  // dropped. Holds until release_emergency_stop().
+  // dropped. Holds until release_emergency_stop(). Either, asked again while one is on its way, is
+  // taken without a second telegram.
   CommandResult emergency_stop();
   CommandResult release_emergency_stop();
   // RT 0x3011.. while the function moves: the SCU changes speed keeping its ramp. Sends nothing when
@@ -119,6 +120,8 @@ class Session final : public link::DeviceSession {
   void schedule_status2(link::TimePoint now);
   void retry_or_give_up(link::TimePoint now, const char* why);
   [[nodiscard]] bool defer_for_stop(link::TimePoint now);
+  // A request of this purpose is queued as urgent or waits for its reply.
+  [[nodiscard]] bool on_its_way(Purpose p) const noexcept;
   void send_next(link::TimePoint now);
   void send(const Pending& p, link::TimePoint now);
   void close_finished_executions();

@@ -104,6 +104,31 @@ TEST(ScuSessionCommand, AnEmergencyStopHoldsMovesUntilItIsReleased) {
   EXPECT_TRUE(rig.session.move_to(1, t, 20.0, true).taken());
 }
 
+// The cell asks for the release every cycle until the SCU has answered it: one RS F20 goes out, not
+// one per cycle (on a slow line a few dozen would fill the queue the stops need).
+TEST(ScuSessionCommand, AReleaseAskedEveryCycleGoesOutOnce) {
+  Rig rig(1);
+  ASSERT_TRUE(rig.activate());
+  ASSERT_TRUE(rig.session.emergency_stop().taken());
+  ASSERT_TRUE(rig.run_until(1s, [&] { return rig.session.snapshot().emergency_stop_open; }));
+  // Every request but the keep-alive's RC is counted by the replies it got beside the RCs.
+  const auto others = [&] { return rig.session.health().good_replies - rig.emulator.cyclic_count(); };
+  const auto before = others();
+  int asked = 0;
+  ASSERT_TRUE(rig.run_until(1s, [&] {
+    if (!rig.session.snapshot().emergency_stop_open) return true;
+    EXPECT_TRUE(rig.session.release_emergency_stop().taken());
+    ++asked;
+    return false;
+  }));
+  EXPECT_GT(asked, 3);
+  rig.run_until(500ms, [] { return false; });
+  EXPECT_EQ(others() - before, 1u) << "releases sent for " << asked << " asked";
+  const ActuatorTarget t[] = {{1, 20.0}};
+  EXPECT_TRUE(rig.session.move_to(1, t, 20.0, true).taken());
+  EXPECT_TRUE(rig.session.stop(1, true).taken());
+}
+
 TEST(ScuSessionCommand, AFullQueueRefusesWhatDoesNotFitWhole) {
   Rig rig(1);
   ASSERT_TRUE(rig.activate());
