@@ -20,6 +20,8 @@ void ScuDevice::read(link::TimePoint, cell::CellState& out) {
   out.scu_remote = snap.remote_open && session_.lifecycle() == link::Lifecycle::active;
   out.scu_status2_known = snap.status2_known;
   out.scu_refusal = snap.last_refusal ? scu::describe(snap.last_refusal->status) : std::string_view{};
+  for (std::size_t i = 0; i < cell_.axes.size(); ++i)
+    if (axis_cmd_[i].refused_move != 0) out.scu_refusal = to_string(axis_cmd_[i].refusal);
   for (std::size_t i = 0; i < cell_.axes.size(); ++i) {
     const auto& act = actuator_of(snap, i);
     const auto& fn = snap.functions[static_cast<std::size_t>(cell_.axes[i].function - 1)];
@@ -28,7 +30,7 @@ void ScuDevice::read(link::TimePoint, cell::CellState& out) {
     st.scu_mm = act.position_mm;
     st.moving = act.status.motion_active;
     st.commanded = fn.execution_open || fn.outcome == scu::MoveOutcome::queued;
-    st.move_refused = fn.outcome == scu::MoveOutcome::refused;
+    st.move_refused = fn.outcome == scu::MoveOutcome::refused || axis_cmd_[i].refused_move != 0;
     st.moves_taken = fn.executions;
     st.scu_initialised = act.initialised;
     st.at_retracted_end = act.status.in_position;
@@ -58,6 +60,8 @@ void ScuDevice::apply(const cell::Intents& in) {
     for (const auto& a : in.axes) motion_wanted = motion_wanted || a.move;
     // The emergency stop holds until motion is asked for again, i.e. after a reset.
     if (snap.emergency_stop_open) {
+      // Refused only while the session is not active (it is, above) or the queue is full: asked again
+      // next cycle; one release goes out however often it is asked.
       if (motion_wanted) (void)session_.release_emergency_stop();
       return;
     }
@@ -91,6 +95,8 @@ void ScuDevice::apply_axis(std::size_t i, const cell::Intents& in, const scu::Sn
     return;
   }
   if (intent.move_id != cmd.applied_move) {
+    if (intent.move_id == cmd.refused_move) return;  // refused for good: not asked again every cycle
+    cmd.refused_move = 0;                            // (an earlier move's refusal)
     // A new target while the function's RE is still open (the axis moving, say): the manual wants every
     // RE closed by its RS before the next, so a soft RS goes first. The SCU ramps down until the new RE
     // (RS, two RT and the RE on the line: some 30 ms at 38400 baud, with a keep-alive between them),
@@ -100,13 +106,18 @@ void ScuDevice::apply_axis(std::size_t i, const cell::Intents& in, const scu::Sn
       return;
     }
     const scu::ActuatorTarget target{axis.actuator, intent.target_mm};
-    // Refused while the RS is still on its way: tried again next cycle.
-    if (session_.move_to(axis.function, std::span(&target, 1), intent.speed_mm_s, intent.soft)) {
+    const auto r = session_.move_to(axis.function, std::span(&target, 1), intent.speed_mm_s, intent.soft);
+    if (r) {
       cmd.applied_move = intent.move_id;
       cmd.stop_sent = false;
-    }
+    } else if (!r.worth_retrying()) {
+      cmd.refused_move = intent.move_id;
+      cmd.refusal = r.status;
+    }  // else refused while the RS is still on its way or the queue is full: tried again next cycle
   } else if (busy) {
-    (void)session_.set_speed(axis.function, intent.speed_mm_s);  // sends only a changed percentage
+    // Sends only a changed percentage. Refused while the queue is full (the percentage in force is
+    // compared anew next cycle), or for a speed not above 0, which the move executor never asks for.
+    (void)session_.set_speed(axis.function, intent.speed_mm_s);
   }
 }
 

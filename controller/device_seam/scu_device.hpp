@@ -45,6 +45,10 @@ class ScuDevice final : public CellDevice {
     bool stop_sent = false;           // a stop went out for the motion now ending
     bool stop_soft = false;           // and it was a soft one
     std::uint64_t stop_refusals = 0;  // the SCU's refusal count when it went (a new refusal: send again)
+    // The move the session refused for good (a cause that does not pass by itself: asked again, it
+    // would be refused again) and why; not asked again until the next move, and read as refused.
+    std::uint32_t refused_move = 0;
+    scu::CommandStatus refusal = scu::CommandStatus::taken;
   };
   struct StopWatch {
     link::TimePoint bound_at{};              // communication time-out + stopping time after last_sent
