@@ -286,7 +286,8 @@ void CellRun::publish_status(double t) {
     running += stats.jitter.bin_count(b);
   }
   while (bucket < v.jitter_le.size()) v.jitter_le[bucket++] = running;
-  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+  for (std::size_t d = 0; d < cell::kMaxDevices; ++d) {
+    v.devices[d] = state_.devices[d];
     v.link_fault[d] = state_.links[d].fault;
     v.link_silent_s[d] = link::to_seconds(state_.links[d].silent_for);
     v.link_counts[d] = state_.links[d].counts;

@@ -34,9 +34,11 @@ struct StatusView {
   std::array<std::uint64_t, kJitterBucketsUs.size() + 1> jitter_le{};  // cumulative; the last is every cycle
   double jitter_sum_s = 0.0;
   std::uint64_t overruns = 0;
-  std::array<bool, cell::kDevices> link_fault{};       // a device's session gave up on its link
-  std::array<double, cell::kDevices> link_silent_s{};  // since its last good reply
-  std::array<cell::LinkCounts, cell::kDevices> link_counts{};
+  // Per device slot (cell::CellState::devices): its name ("" for an empty slot) and its link.
+  std::array<std::string_view, cell::kMaxDevices> devices{};
+  std::array<bool, cell::kMaxDevices> link_fault{};       // a device's session gave up on its link
+  std::array<double, cell::kMaxDevices> link_silent_s{};  // since its last good reply
+  std::array<cell::LinkCounts, cell::kMaxDevices> link_counts{};
   bool fault = false;
   monitor::Rule first_fault = monitor::Rule::operator_stop;
 };

@@ -292,27 +292,31 @@ std::string OperatorPage::metrics_text() {
                        v.jitter_sum_s, v.jitter_le.back());
     add("cellctl_loop_overrun_cycles_total", "counter", "Cycles that ran past their next deadline.");
     out += fmt::format("cellctl_loop_overrun_cycles_total {}\n", v.overruns);
-    static constexpr const char* kDevices[] = {"scu", "spindle", "encoder"};
+    // Every device the cell has, by the name its slot carries (an empty slot: no device).
     add("cellctl_device_link_fault", "gauge", "1 when the device's session gave up on its link.");
-    for (std::size_t d = 0; d < v.link_fault.size(); ++d)
-      out += fmt::format("cellctl_device_link_fault{{device=\"{}\"}} {}\n", kDevices[d],
-                         v.link_fault[d] ? 1 : 0);
+    for (std::size_t d = 0; d < v.devices.size(); ++d)
+      if (!v.devices[d].empty())
+        out += fmt::format("cellctl_device_link_fault{{device=\"{}\"}} {}\n", v.devices[d],
+                           v.link_fault[d] ? 1 : 0);
     add("cellctl_device_silent_seconds", "gauge", "Time since the device's last good reply.");
-    for (std::size_t d = 0; d < v.link_silent_s.size(); ++d)
-      out += fmt::format("cellctl_device_silent_seconds{{device=\"{}\"}} {:.6f}\n", kDevices[d],
-                         v.link_silent_s[d]);
+    for (std::size_t d = 0; d < v.devices.size(); ++d)
+      if (!v.devices[d].empty())
+        out += fmt::format("cellctl_device_silent_seconds{{device=\"{}\"}} {:.6f}\n", v.devices[d],
+                           v.link_silent_s[d]);
     add("cellctl_device_exchanges_total", "counter", "Good replies from the device.");
-    for (std::size_t d = 0; d < v.link_counts.size(); ++d)
-      out += fmt::format("cellctl_device_exchanges_total{{device=\"{}\"}} {}\n", kDevices[d],
-                         v.link_counts[d].good_replies);
+    for (std::size_t d = 0; d < v.devices.size(); ++d)
+      if (!v.devices[d].empty())
+        out += fmt::format("cellctl_device_exchanges_total{{device=\"{}\"}} {}\n", v.devices[d],
+                           v.link_counts[d].good_replies);
     add("cellctl_device_errors_total", "counter",
         "Failed exchanges: no answer in time, a bad frame, or a reply in which the device refused.");
-    for (std::size_t d = 0; d < v.link_counts.size(); ++d) {
+    for (std::size_t d = 0; d < v.devices.size(); ++d) {
+      if (v.devices[d].empty()) continue;
       const auto& c = v.link_counts[d];
       for (const auto& [kind, n] : {std::pair{"timeout", c.timeouts}, std::pair{"bad_frame", c.bad_frames},
                                     std::pair{"refused", c.refusals}})
-        out += fmt::format("cellctl_device_errors_total{{device=\"{}\",kind=\"{}\"}} {}\n", kDevices[d], kind,
-                           n);
+        out += fmt::format("cellctl_device_errors_total{{device=\"{}\",kind=\"{}\"}} {}\n", v.devices[d],
+                           kind, n);
     }
     add("cellctl_run_seconds", "gauge", "Time since the run started (the run's clock).");
     out += fmt::format("cellctl_run_seconds {:.6f}\n", v.t);
