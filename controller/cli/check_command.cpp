@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "cli/exit_codes.hpp"
 #include "config/cell_config.hpp"
+#include "exit_codes/exit_codes.hpp"
 #include "recipe/program.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "runtime/emulator_setup.hpp"

@@ -13,10 +13,10 @@
 #include "cli/device_group.hpp"
 #include "cli/device_link.hpp"
 #include "cli/drive.hpp"
-#include "cli/exit_codes.hpp"
 #include "cli/options.hpp"
 #include "cli/terminal_screen.hpp"
 #include "config/line_section.hpp"
+#include "exit_codes/exit_codes.hpp"
 #include "link/clock.hpp"
 #include "link/device_session.hpp"
 

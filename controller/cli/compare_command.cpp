@@ -7,7 +7,7 @@
 #include <fstream>
 #include <memory>
 
-#include "cli/exit_codes.hpp"
+#include "exit_codes/exit_codes.hpp"
 #include "journal/plot_html.hpp"
 #include "journal/plot_svg.hpp"
 #include "journal/run_compare.hpp"

@@ -6,9 +6,9 @@
 #include <thread>
 
 #include "cli/drive.hpp"
-#include "cli/exit_codes.hpp"
 #include "cli/publish_lock.hpp"
 #include "config/cell_config.hpp"
+#include "exit_codes/exit_codes.hpp"
 #include "link/clock.hpp"
 #include "link/pty_pair.hpp"
 #include "link/tracing_link.hpp"

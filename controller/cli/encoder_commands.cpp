@@ -9,11 +9,11 @@
 
 #include "cli/commissioning.hpp"
 #include "cli/encoder_status.hpp"
-#include "cli/exit_codes.hpp"
 #include "config/cell_config.hpp"
 #include "config/config_edit.hpp"
 #include "encoder/commissioning_parameters.hpp"
 #include "encoder/session.hpp"
+#include "exit_codes/exit_codes.hpp"
 #include "runtime/dry_run_state.hpp"
 
 namespace cellctl::cli {

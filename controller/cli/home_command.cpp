@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "cli/confirm.hpp"
-#include "cli/exit_codes.hpp"
 #include "cli/home_job.hpp"
 #include "cli/run_command.hpp"
 #include "cli/run_record_info.hpp"
 #include "config/cell_config.hpp"
+#include "exit_codes/exit_codes.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "routines/home_record_file.hpp"
 

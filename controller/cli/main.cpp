@@ -13,7 +13,6 @@
 #include "cli/drive.hpp"
 #include "cli/emulate_command.hpp"
 #include "cli/encoder_commands.hpp"
-#include "cli/exit_codes.hpp"
 #include "cli/home_command.hpp"
 #include "cli/logging.hpp"
 #include "cli/report_command.hpp"
@@ -24,6 +23,7 @@
 #include "cli/teach_in_command.hpp"
 #include "cli/unknown_command.hpp"
 #include "config/yaml_node.hpp"
+#include "exit_codes/exit_codes.hpp"
 #include "journal/version.hpp"
 #include "link/crash_stop.hpp"
 #include "link/link_error.hpp"
@@ -43,6 +43,7 @@ extern "C" void on_terminate(int) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  using namespace cellctl;
   using namespace cellctl::cli;
   // Before any port opens: a crash writes each open port's stop telegram, then dies (link/crash_stop.hpp).
   cellctl::link::crash_stop::install_handlers();

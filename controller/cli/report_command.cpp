@@ -6,7 +6,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "cli/exit_codes.hpp"
+#include "exit_codes/exit_codes.hpp"
 #include "journal/run_record.hpp"
 #include "journal/run_report.hpp"
 

@@ -10,8 +10,8 @@
 
 #include "cli/commissioning.hpp"
 #include "cli/confirm.hpp"
-#include "cli/exit_codes.hpp"
 #include "config/cell_config.hpp"
+#include "exit_codes/exit_codes.hpp"
 #include "scu/session.hpp"
 
 namespace cellctl::cli {

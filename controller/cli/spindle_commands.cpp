@@ -9,8 +9,8 @@
 #include <thread>
 
 #include "cli/commissioning.hpp"
-#include "cli/exit_codes.hpp"
 #include "config/cell_config.hpp"
+#include "exit_codes/exit_codes.hpp"
 #include "spindle/fault_numbers.hpp"
 #include "spindle/session.hpp"
 

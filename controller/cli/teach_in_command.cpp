@@ -10,12 +10,12 @@
 
 #include "cli/confirm.hpp"
 #include "cli/drive.hpp"
-#include "cli/exit_codes.hpp"
 #include "cli/run_command.hpp"
 #include "cli/run_record_info.hpp"
 #include "cli/teach_in_job.hpp"
 #include "cli/terminal_screen.hpp"
 #include "config/cell_config.hpp"
+#include "exit_codes/exit_codes.hpp"
 #include "runtime/cell_run.hpp"
 #include "runtime/fault_rehearsal.hpp"
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "command/bounded_json.hpp"
+#include "exit_codes/exit_codes.hpp"
 #include "recipe/program.hpp"
 #include "recipe/recipe_loader.hpp"
 
@@ -140,9 +141,9 @@ std::variant<StartRequest, nlohmann::json> CommandDesk::recipe_start(const nlohm
   }
   if (errors.empty()) return StartRecipe{name, path, steps};
   auto a = answer("start", id, false,
-                  fmt::format("recipe '{}' is not valid for cell '{}': {} problem{} (exit 3); nothing moved",
-                              name, cell_.name, errors.size(), errors.size() == 1 ? "" : "s"));
-  a["exit"] = 3;
+                  fmt::format("recipe '{}' is not valid for cell '{}': {} problem{} (exit {}); nothing moved",
+                              name, cell_.name, errors.size(), errors.size() == 1 ? "" : "s", kExitConfig));
+  a["exit"] = kExitConfig;  // as `cellctl check` and `cellctl run` would end
   a["errors"] = errors;
   return a;
 }
