@@ -22,7 +22,8 @@ int run_check(const GlobalOptions& global, const std::vector<std::string>& recip
   config::CellConfig cell;
   try {
     cell = config::load_cell_config(global.config);
-    // The emulators' set-up too: a dry run must not be the first to find a bad emulator section.
+    // The emulators' set-up too, loaded only to be checked: a dry run must not be the first to find a
+    // bad emulator section.
     (void)runtime::load_emulator_setup(cell);
   } catch (const config::ConfigError& e) {
     fmt::print("{}\n", e.what());

@@ -195,7 +195,7 @@ class EncoderCommissioning {
       default:
         break;
     }
-    (void)c_.drive_for(20ms);
+    (void)c_.drive_for(20ms);  // a few exchanges for a fresh status: a fault in them shows in it
     print_status(session_);
     if (action == EncoderAction::diag) print_diag(snapshot());
     if (const auto& d = snapshot().diagnosis; d && d->detail && d->detail->offset != configured_offset_)

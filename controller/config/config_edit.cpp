@@ -152,7 +152,7 @@ std::filesystem::path checked_temp(const std::filesystem::path& path, std::strin
   temp += fmt::format(".new-{}", ::getpid());
   write_synced(temp, text);
   try {
-    (void)load_cell_config(temp);
+    (void)load_cell_config(temp);  // loaded to be checked: a ConfigError names what is wrong
   } catch (...) {
     std::filesystem::remove(temp);
     throw;

@@ -44,7 +44,7 @@ class StructureCheck final : public YAML::EventHandler {
       key(mark, text);
       return;
     }
-    (void)child_field();
+    (void)child_field();  // a scalar value: its parent moves past it, there is nothing to open
   }
   void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
                        YAML::EmitterStyle::value) override {
@@ -87,7 +87,7 @@ class StructureCheck final : public YAML::EventHandler {
   void value(const YAML::Mark& mark, const char* what) {
     if (expecting_key())
       fail(mark, stack_.back().field, fmt::format("a key must be a plain name, not {}", what));
-    (void)child_field();
+    (void)child_field();  // as a scalar value
   }
 
   void open(const YAML::Mark& mark, bool mapping, const char* what) {

@@ -31,6 +31,8 @@ void SpindleDevice::read(link::TimePoint, cell::CellState& out) {
 
 void SpindleDevice::apply(const cell::Intents& in) {
   if (session_.lifecycle() != link::Lifecycle::active) return;
+  // Refused only with the command queue full, which one cycle's intents never fill (a start queues
+  // three); the operator's next reset asks again.
   if (in.spindle.reset) (void)session_.reset();
   const auto& s = session_.snapshot();
   // A controlled hold (category 2) keeps the spindle running; stops take `run` away themselves.
@@ -39,14 +41,17 @@ void SpindleDevice::apply(const cell::Intents& in) {
       in.spindle.clockwise ? spindle::Direction::clockwise : spindle::Direction::counter_clockwise;
   const bool reversing = dir != s.direction;
   if (!run || (s.run_requested && reversing)) {
-    if (s.run_requested) (void)session_.stop();
+    if (s.run_requested) (void)session_.stop();  // taken: the session is active and a stop empties the queue
     return;
   }
   if (!s.run_requested) {
     // After a change of direction the motor runs down to rest before it starts the other way.
     if (reversing && !s.at_rest) return;
+    // Refused with the queue full, or for a frequency beyond 0 … 65535 Hz (a recipe's is inside the
+    // cell's spindle limits): run_requested stays false and the start is asked for again next cycle.
     (void)session_.start(in.spindle.frequency_hz, dir);
   } else if (in.spindle.frequency_hz != s.requested_frequency_hz) {
+    // As the start: refused, the frequency asked for is unchanged and asked again next cycle.
     (void)session_.set_frequency(in.spindle.frequency_hz);
   }
 }

@@ -74,7 +74,8 @@ RealtimeReport apply_realtime(const RealtimeConfig& config) {
 }
 
 RealtimeScope::RealtimeScope(const RealtimeConfig& config) : owner_(pthread_self()) {
-  // What to go back to: read before anything is changed (both calls only read the calling thread).
+  // What to go back to: read before anything is changed (both calls only read the calling thread, which
+  // they cannot fail to do).
   (void)pthread_getschedparam(pthread_self(), &policy_, &param_);
   CPU_ZERO(&cpus_);
   (void)sched_getaffinity(0, sizeof(cpus_), &cpus_);
@@ -83,6 +84,8 @@ RealtimeScope::RealtimeScope(const RealtimeConfig& config) : owner_(pthread_self
 
 RealtimeScope::~RealtimeScope() {
   const bool own_thread = pthread_equal(owner_, pthread_self()) != 0;
+  // Going back asks for less than was obtained: refused all the same, a destructor has nothing better
+  // to do than leave the thread as it is (the process is ending its real-time work).
   if (own_thread && report_.scheduler.outcome == RealtimeOutcome::obtained)
     (void)pthread_setschedparam(pthread_self(), policy_, &param_);
   if (own_thread && report_.affinity.outcome == RealtimeOutcome::obtained)

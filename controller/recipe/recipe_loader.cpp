@@ -243,7 +243,7 @@ class Parser {
       ++conditions;
     }
     if (auto e = n.maybe("encoder")) {
-      (void)e->as_choice({"ready"});
+      (void)e->as_choice({"ready"});  // checked: `ready` is its only value
       w.condition = Wait::Condition::encoder_ready;
       ++conditions;
     }
@@ -262,7 +262,7 @@ class Parser {
       const auto& ca = cell_.axes[static_cast<std::size_t>(w.axis)];
       const auto key =
           w.condition == Wait::Condition::position_above ? "position_above_mm" : "position_below_mm";
-      (void)n.at(key).as_double_in(ca.min_mm, ca.max_mm);
+      w.threshold_mm = n.at(key).as_double_in(ca.min_mm, ca.max_mm);  // inside the axis's travel
     } else if (n.has("axis")) {
       n.at("axis").fail("only position conditions take an axis");
     }

@@ -274,6 +274,7 @@ HomingStatus Homing::step(const cell::CellState& s, double t, cell::Intents& out
       if (stage_ == Stage::back_off) {
         for (std::size_t i = 0; i < cell_.axes.size(); ++i)
           if (phase_[i] == HomingPhase::back_off) enter(i, HomingPhase::to_end, s, t);
+        // (Never without an axis: those that backed off go on into their end.)
         (void)start_move(HomingPhase::to_end, s, t, move_id, motion::Reference::scu);
         stage_ = Stage::to_end;
       } else if (stage_ == Stage::to_end) {

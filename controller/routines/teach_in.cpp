@@ -85,10 +85,8 @@ void TeachIn::abort(double t) {
   fail(t, journal::Text::format("aborted by the operator in phase '{}'", to_string(phase_)));
 }
 
-bool TeachIn::waited_too_long(double t, double limit_s, const char* what) {
-  if (t - phase_since_ <= limit_s) return false;
-  fail(t, journal::Text::format("{} not done within {:g} s", what, limit_s));
-  return true;
+void TeachIn::fail_after(double t, double limit_s, const char* what) {
+  if (t - phase_since_ > limit_s) fail(t, journal::Text::format("{} not done within {:g} s", what, limit_s));
 }
 
 void TeachIn::adjust(cell::CellState& s) const noexcept {
@@ -136,8 +134,7 @@ void TeachIn::step_checking(const cell::CellState& s, double t) {
     return;
   }
   if (!(s.scu_remote && s.axes[a].present && enc.up)) {
-    (void)waited_too_long(t, kDevicesTimeoutS,
-                          "devices up (SCU remote mode, encoder in data exchange and ready)");
+    fail_after(t, kDevicesTimeoutS, "devices up (SCU remote mode, encoder in data exchange and ready)");
     return;
   }
   if (enc.stored_offset != 0) {
@@ -198,7 +195,7 @@ void TeachIn::step(const cell::CellState& s, std::optional<config::StopCategory>
       } else if (!enc.failure.empty() && t > phase_since_) {
         fail(t, journal::Text::format("switching the encoder: {}", enc.failure));
       } else {
-        (void)waited_too_long(t, kSwitchTimeoutS, "the encoder's start-up with the Teach-In parameters");
+        fail_after(t, kSwitchTimeoutS, "the encoder's start-up with the Teach-In parameters");
       }
       break;
     case TeachInPhase::starting: {
@@ -207,7 +204,7 @@ void TeachIn::step(const cell::CellState& s, std::optional<config::StopCategory>
         break;
       }
       if (enc.command != EncoderCommand::done) {
-        (void)waited_too_long(t, kCommandTimeoutS, "the encoder's acknowledge of Teach-In start");
+        fail_after(t, kCommandTimeoutS, "the encoder's acknowledge of Teach-In start");
         break;
       }
       port_.clear_command();
@@ -265,7 +262,7 @@ void TeachIn::step(const cell::CellState& s, std::optional<config::StopCategory>
         port_.switch_to(EncoderSetting::taught, s.now);
         enter(TeachInPhase::switching_taught, t);
       } else {
-        (void)waited_too_long(t, kCommandTimeoutS, "the encoder's total resolution (Teach-In end)");
+        fail_after(t, kCommandTimeoutS, "the encoder's total resolution (Teach-In end)");
       }
       break;
     case TeachInPhase::switching_taught:
@@ -279,7 +276,7 @@ void TeachIn::step(const cell::CellState& s, std::optional<config::StopCategory>
         else
           start_move(s, scu_at_start_, t);
       } else {
-        (void)waited_too_long(t, kSwitchTimeoutS, "the encoder's start-up with the taught resolution");
+        fail_after(t, kSwitchTimeoutS, "the encoder's start-up with the taught resolution");
       }
       break;
     case TeachInPhase::returning:

@@ -93,7 +93,8 @@ class TeachIn {
   void start_move(const cell::CellState& s, double target_mm, double t);
   // running: nullopt; done: true; failed (failure_ set): false.
   [[nodiscard]] std::optional<bool> step_move(const cell::CellState& s, double t);
-  [[nodiscard]] bool waited_too_long(double t, double limit_s, const char* what);
+  // Fails the Teach-In once its phase has waited longer than limit_s for `what`.
+  void fail_after(double t, double limit_s, const char* what);
   void step_checking(const cell::CellState& s, double t);
 
   const config::CellCore& cell_;

@@ -52,6 +52,7 @@ void Emulator::poll(link::TimePoint now) {
   slave_.poll(now);
   if (!config_.state_file.empty() && behaviour_.device.eeprom() != saved_) {
     saved_ = behaviour_.device.eeprom();
+    // A failed save loses only the EEPROM's continuity into the next dry run (it starts from defaults).
     (void)save_eeprom(config_.state_file, saved_);
   }
 }
@@ -98,7 +99,7 @@ profibus::PrmVerdict Emulator::Behaviour::check_prm(std::span<const std::uint8_t
     return {false, prm_reason};
   }
   prm_reason.clear();
-  (void)accepted_prm.assign(user_prm);
+  (void)accepted_prm.assign(user_prm);  // at most 32 octets (its family's length, checked above)
   accepted_family = family;
   return {true, {}};
 }

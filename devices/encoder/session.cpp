@@ -76,7 +76,7 @@ void Session::activate(link::TimePoint now) {
   enter(link::Lifecycle::activating, now);
   if (has_outputs(config_.parameters.functionality)) {
     std::array<std::uint8_t, 4> zero{};
-    (void)master_.set_outputs(zero);
+    (void)master_.set_outputs(zero);  // the 4 output octets the encoder's functionality configures
   }
   master_.activate(now);
   update_lifecycle();
@@ -94,7 +94,7 @@ void Session::transmit(link::TimePoint) {
 
 void Session::receive(link::TimePoint now) {
   if (snapshot_.local_prm_violation) return;
-  (void)master_.poll(now);
+  (void)master_.poll(now);  // its lifecycle is taken below (update_lifecycle)
   const auto& stats = master_.stats();
   if (stats.data_exchanges != seen_exchanges_) {
     seen_exchanges_ = stats.data_exchanges;
@@ -241,7 +241,7 @@ void Session::push_outputs() noexcept {
   const std::uint32_t w = handshake_.output();
   if (w == output_word_) return;
   std::array<std::uint8_t, 4> out{};
-  (void)encode_output(w, out);
+  (void)encode_output(w, out);  // always the 4 octets of `out`
   if (master_.set_outputs(out)) {
     output_word_ = w;
     outputs_changed_at_ = seen_exchanges_;

@@ -76,6 +76,9 @@ void install_handlers() {
     stack_t ss{};
     ss.ss_sp = alt_stack.data();
     ss.ss_size = alt_stack.size();
+    // Best effort, as all of this: should the kernel refuse, a crash leaves the stops to the devices'
+    // own protection where they have one (the SCU's communication time-out, the encoder's watchdog;
+    // the spindle converter has none).
     (void)::sigaltstack(&ss, nullptr);
     struct sigaction sa {};
     sa.sa_handler = on_fatal_signal;

@@ -112,7 +112,7 @@ IoResult FaultInjectingLink::hold_inbound(TimePoint due, bool delaying) {
     const auto r = inner_.read(std::span(scratch_).first(room));
     if (!r.ok()) return r;
     if (r.count == 0) break;
-    for (std::size_t i = 0; i < r.count; ++i) (void)delayed_.push(scratch_[i], due);
+    for (std::size_t i = 0; i < r.count; ++i) (void)delayed_.push(scratch_[i], due);  // room: read no more
     if (delaying) counters_.delayed += r.count;
   }
   return {};

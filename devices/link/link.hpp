@@ -39,7 +39,7 @@ class Link {
   // A stop telegram to write to this port should the process die of a fatal signal (crash_stop.hpp).
   // Only a link to a real port (a serial line, a pseudo-terminal) arms it: an in-memory line dies with
   // the process and the emulator behind it.
-  virtual void arm_crash_stop(std::span<const std::uint8_t> telegram) noexcept { (void)telegram; }
+  virtual void arm_crash_stop(std::span<const std::uint8_t> /*telegram*/) noexcept {}
 };
 
 }  // namespace cellctl::link

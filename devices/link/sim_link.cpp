@@ -23,7 +23,7 @@ std::size_t SimLink::Wire::send(std::span<const std::uint8_t> bytes, TimePoint n
   TimePoint t = std::max(now, line_free_at_);
   while (n < bytes.size() && !bytes_.full()) {
     t += char_time;
-    (void)bytes_.push(bytes[n++], t);
+    (void)bytes_.push(bytes[n++], t);  // room: the loop checks it
   }
   line_free_at_ = t;
   return n;

@@ -144,7 +144,7 @@ link::Duration DpMaster::input_age(link::TimePoint now) const noexcept {
 
 bool DpMaster::set_outputs(std::span<const std::uint8_t> outputs) noexcept {
   if (outputs.size() != setup_.output_length) return false;
-  (void)outputs_.assign(outputs);
+  (void)outputs_.assign(outputs);  // fits: output_length is at most kMaxIo (checked at construction)
   return true;
 }
 
@@ -174,6 +174,8 @@ link::Lifecycle DpMaster::poll(link::TimePoint now) {
     const auto r = link_.read(chunk);
     if (!r.ok() || r.count == 0) break;
     line_idle_from_ = now;  // the line was busy until now: TSYN counts from here
+    // What does not fit (more than two longest frames in one poll, on a bus where one reply answers
+    // one request: noise) is dropped; a reply lost in it comes again on the retry.
     (void)decoder_.push(std::span<const std::uint8_t>(chunk.data(), r.count));
     if (in_flight_ && expect_reply_ && !reply_started_) {
       // The reply has begun within the slot time: give it the time of a longest frame to finish.
@@ -254,6 +256,8 @@ void DpMaster::send(const FdlFrame& frame, bool expect_reply, Pending pending, l
 
 void DpMaster::transmit(link::TimePoint now) {
   decoder_.reset();  // octets from before this request cannot be its reply
+  // A request the port did not take whole goes unanswered: the reply time-out and the retries see to
+  // it, and a port that is gone shows on the next read.
   (void)link_.write(request_bytes_.view());
   sent_at_ = now;
   const link::TimePoint request_end = now + char_time_ * static_cast<int>(request_bytes_.size());
@@ -266,13 +270,13 @@ void DpMaster::transmit(link::TimePoint now) {
 void DpMaster::next_request(link::TimePoint now) {
   if (address_request_) {
     std::array<std::uint8_t, kSetSlaveAddSize> data{};
-    (void)encode(*address_request_, data);
+    (void)encode(*address_request_, data);  // fills `data`, the service's size
     send(sap_request(sap::kSetSlaveAdd, data), true, Pending::set_address, now);
     return;
   }
   if (global_control_ && state_ == DpState::data_exchange) {
     std::array<std::uint8_t, kGlobalControlSize> data{};
-    (void)encode(*global_control_, data);
+    (void)encode(*global_control_, data);  // fills `data`, the service's size
     global_control_.reset();
     send(make_sap_frame(kBroadcastAddress, config_.master_address,
                         static_cast<std::uint8_t>(fc::kRequest | fc::kSdnHigh), sap::kGlobalControl,
@@ -324,7 +328,7 @@ void DpMaster::next_request(link::TimePoint now) {
     case DpState::clearing: {
       const GlobalControl clear{static_cast<std::uint8_t>(GlobalCommand::clear_data), 0};
       std::array<std::uint8_t, kGlobalControlSize> data{};
-      (void)encode(clear, data);
+      (void)encode(clear, data);  // fills `data`, the service's size
       send(make_sap_frame(setup_.station_address, config_.master_address,
                           static_cast<std::uint8_t>(fc::kRequest | fc::kSdnHigh), sap::kGlobalControl,
                           sap::kMaster, data),
@@ -456,7 +460,7 @@ void DpMaster::on_data(const FdlFrame& reply, link::TimePoint now) {
     restart_with_bad_reply(now, "Data_Exchange", reply.data.size(), setup_.input_length, setup_.input_length);
     return;
   }
-  (void)inputs_.assign(reply.data.view());
+  (void)inputs_.assign(reply.data.view());  // input_length octets, checked above
   ++stats_.data_exchanges;
   previous_input_at_ = stats_.last_input_at;
   if (stats_.last_input_at) {

@@ -49,6 +49,8 @@ void DpSlave::poll(link::TimePoint now) {
     const auto r = link_.read(chunk);
     if (!r.ok() || r.count == 0) break;
     if (silent_) continue;
+    // Takes it all: the frames are drained below before the next read, which leaves less than a frame
+    // beside the chunk in a decoder that holds two.
     (void)decoder_.push(std::span<const std::uint8_t>(chunk.data(), r.count));
     while (auto ev = decoder_.next()) {
       if (ev->error != FdlError::none) {
@@ -236,7 +238,7 @@ bool DpSlave::chk_cfg(std::span<const std::uint8_t> data) {
     return true;  // acknowledged; the verdict is Cfg_Fault in the diagnosis
   }
   cfg_fault_ = false;
-  (void)cfg_.assign(data);
+  (void)cfg_.assign(data);  // a data unit: at most kMaxData octets, as cfg_
   outputs_.clear();
   synced_outputs_.clear();
   state_ = DpSlaveState::data_exchange;
@@ -246,7 +248,7 @@ bool DpSlave::chk_cfg(std::span<const std::uint8_t> data) {
 
 FdlFrame DpSlave::data_exchange(const FdlFrame& request) {
   ++counters_.data_exchanges;
-  (void)outputs_.assign(request.data.view());
+  (void)outputs_.assign(request.data.view());  // a data unit: at most kMaxData octets, as outputs_
   // In Sync mode the device keeps the outputs latched at the last Sync command.
   const auto applied = sync_mode_ ? synced_outputs_.view() : outputs_.view();
   inputs_.resize(behaviour_.exchange(applied, inputs_.storage()));
@@ -320,7 +322,7 @@ void DpSlave::check_watchdog(link::TimePoint now) {
 void DpSlave::send_due(link::TimePoint now) {
   if (!reply_due_ || now < *reply_due_) return;
   reply_due_.reset();
-  (void)link_.write(pending_reply_.view());
+  (void)link_.write(pending_reply_.view());  // a reply lost on the line is the master's retry
 }
 
 }  // namespace cellctl::profibus

@@ -50,7 +50,7 @@ FdlFrame make_frame(std::uint8_t da, std::uint8_t sa, std::uint8_t fc,
   f.da = da;
   f.sa = sa;
   f.fc = fc;
-  (void)f.data.assign(data);
+  (void)f.data.assign(data);  // every caller's is a DP data unit: at most kMaxData octets
   return f;
 }
 

@@ -33,10 +33,7 @@ class SlaveBehaviour {
   // The Chk_Cfg identifier bytes; false sets Cfg_Fault and keeps the slave out of data exchange.
   virtual bool check_cfg(std::span<const std::uint8_t> cfg) = 0;
   // The configuration reported by Get_Cfg; 0 (the default) reports the last accepted Chk_Cfg bytes.
-  virtual std::size_t real_cfg(std::span<std::uint8_t> out) {
-    (void)out;
-    return 0;
-  }
+  virtual std::size_t real_cfg(std::span<std::uint8_t> /*out*/) { return 0; }
   // The extended diagnosis (octet 7 onwards); 0 octets when the device has none. Called when the
   // master reads the diagnosis, so a device may clear what diag_pending() reports here.
   virtual std::size_t ext_diag(std::span<std::uint8_t> out) = 0;
@@ -50,15 +47,12 @@ class SlaveBehaviour {
 
   // Lifecycle notifications.
   virtual void on_data_exchange_entered() {}
-  virtual void on_data_exchange_left(LeaveReason reason) { (void)reason; }
+  virtual void on_data_exchange_left(LeaveReason /*reason*/) {}
   // The response watchdog expired (also reported through on_data_exchange_left(watchdog) when the
   // slave was in data exchange). A device puts its outputs in the safe state here.
   virtual void on_watchdog_expired() {}
   // Set_Slave_Add accepted: a real device stores the new address in non-volatile memory.
-  virtual void on_address_changed(std::uint8_t new_address, bool no_add_chg) {
-    (void)new_address;
-    (void)no_add_chg;
-  }
+  virtual void on_address_changed(std::uint8_t /*new_address*/, bool /*no_add_chg*/) {}
   // Global_Control Clear_Data: outputs to the safe state (the next exchange also sees zero outputs).
   virtual void on_clear_data() {}
 };

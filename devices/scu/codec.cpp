@@ -193,7 +193,7 @@ Decoded<Request> decode_request(std::span<const std::uint8_t> frame) noexcept {
   if (len.length == 0 || len.length != frame.size()) return {{}, DecodeError::bad_length};
   if (!crc_ok(frame)) return {{}, DecodeError::bad_crc};
   wire::ByteReader r(frame.first(frame.size() - kCrcSize));
-  (void)r.u8();
+  (void)r.u8();  // the major, checked with the length
   const auto cmd = *command_from_byte(r.u8());
   Request out;
   switch (cmd) {

@@ -126,12 +126,14 @@ void Emulator::run_watchdog(link::TimePoint now) {
 }
 
 void Emulator::receive(link::TimePoint now) {
-  std::array<std::uint8_t, 256> buf{};
+  // A request's length at a time: beside the part of a request it may hold, the stream (two requests)
+  // takes all of it, and the events are drained before the next read.
+  std::array<std::uint8_t, kMaxRequestTelegram> buf{};
   if (requests_.expire(now) > 0) ++discarded_partials_;
   for (;;) {
     const auto r = link_.read(buf);
     if (!r.ok() || r.count == 0) break;
-    (void)requests_.feed(std::span(buf).first(r.count), now);
+    (void)requests_.feed(std::span(buf).first(r.count), now);  // all of it (see buf)
     for (auto e = requests_.next(); e.kind != RequestStream::Event::Kind::need_more; e = requests_.next()) {
       if (e.kind == RequestStream::Event::Kind::request) {
         answer(e.request, now);
@@ -576,7 +578,7 @@ Status Emulator::check_write(std::uint16_t id, std::span<const std::uint8_t> val
     } else if ((e.id & 0xFFF0) == 0x3010) {
       if (r.le<std::uint16_t>() > 100) return Status::parameter_data_error;  // speed in %
     } else {
-      (void)r.bytes(size_of(e.type));
+      (void)r.bytes(size_of(e.type));  // skipped: any other value is taken as it is
     }
   }
   return Status::ack;

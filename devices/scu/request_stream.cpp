@@ -13,6 +13,8 @@ std::size_t RequestStream::expire(link::TimePoint now) noexcept {
 }
 
 std::size_t RequestStream::feed(std::span<const std::uint8_t> bytes, link::TimePoint now) noexcept {
+  // Stale bytes never join new ones. (A caller that counts what expires calls expire() itself
+  // first, as the emulator does; here there is nothing left to count.)
   (void)expire(now);
   if (bytes.empty()) return 0;
   last_byte_at_ = now;

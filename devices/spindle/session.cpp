@@ -99,7 +99,7 @@ void Session::deactivate(link::TimePoint) {
   if (quiet()) return;
   enter(link::Lifecycle::deactivating);
   stop_acked_at_.reset();
-  (void)stop();
+  (void)stop();  // taken: the session is deactivating, and a stop empties the queue first
 }
 
 bool Session::start(double frequency_hz, Direction direction) {
@@ -109,6 +109,7 @@ bool Session::start(double frequency_hz, Direction direction) {
   const bool send_parameters =
       config_.set_start_parameters && (!start_parameters_sent_ || sent_direction_ != direction);
   if (kQueueCapacity - queued_ < (send_parameters ? 3u : 2u)) return false;
+  // Room for every command was checked above: none of these pushes fails.
   if (send_parameters) {
     (void)enqueue(SetStart{Source::sycodrive, Source::sycodrive, direction});
     start_parameters_sent_ = true;
@@ -324,6 +325,8 @@ void Session::send_next(link::TimePoint now) {
 void Session::send(link::TimePoint now, const Outgoing& o) {
   ++tries_;
   sent_at_ = now;
+  // Fits: one request at a time, and the one before left the queue before its reply came (a frame cut
+  // short all the same is retried as a lost request after the reply time-out).
   (void)tx_.push(o.frame.view());
 }
 
