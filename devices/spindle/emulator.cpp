@@ -206,6 +206,8 @@ void Emulator::reply(const Message& m) {
     frame[n - 2] = frame[n - 2] == '0' ? '1' : '0';
     corrupt_next_ = false;
   }
+  // Replies the line has not taken fill the queue (1 KiB) only when nobody reads: one that does not fit
+  // is cut short there, and the master, if it comes back, sees a bad frame.
   (void)tx_.push(std::span(frame).first(n));
 }
 
