@@ -46,6 +46,7 @@
 #include <vector>
 
 #include "config/cell_config.hpp"
+#include "journal/event_listener.hpp"
 #include "plant_link/plant_link.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "runtime/cell_run.hpp"
@@ -288,6 +289,7 @@ void BM_CellVirtualTime(benchmark::State& state) {
     run.on_cycle([&window](double, runtime::CellRun& r) { window.on_cycle(r.supervisor().state()); });
     std::unique_ptr<plant_link::PlantLink> link;
     std::unique_ptr<web::OperatorPage> page;
+    std::unique_ptr<journal::EventListeners> listeners;             // both, on the journal's thread
     command::Arbiter arbiter(std::chrono::milliseconds(2000), {});  // as `cellctl run` has it
     arbiter.attach(run.port());
     (void)arbiter.start({{}, std::chrono::steady_clock::now(), {}}, [] {
@@ -304,14 +306,13 @@ void BM_CellVirtualTime(benchmark::State& state) {
       po.port = 0;
       po.token = "bench-token-of-sixteen-bytes-or-more";
       page = std::make_unique<web::OperatorPage>(po, setup.cell, access);
-      run.on_journal_line([&](const nlohmann::json& j) {
-        link->on_journal_line(j);
-        page->on_journal_line(j);
-      });
+      listeners = std::make_unique<journal::EventListeners>(
+          std::initializer_list<journal::EventListener*>{&link->events(), &page->events()});
+      run.listen(listeners.get());
     }
     std::atomic<bool> interrupt{false};
     result = run.run(interrupt);
-    run.on_journal_line({});
+    run.listen(nullptr);
     end_to_end_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   }
   cellbench_in_window = 0;

@@ -66,17 +66,12 @@ CellStandby::CellStandby(config::CellConfig cell, StandbyOptions options)
 command::Tell CellStandby::arbiter_tell() {
   command::Tell tell;
   tell.command = [this](supervisor::Command c, const command::CommandSource& source) {
-    tell_line({{"event", "command"},
-               {"t", 0.0},
-               {"command", supervisor::to_string(c)},
-               {"source", source.words()}});
+    tell_event(
+        {0.0, journal::Command{supervisor::to_string(c), journal::Text::format("{}", source.words())}});
   };
   tell.state = [this](supervisor::State from, supervisor::State to, const std::string& reason) {
-    tell_line({{"event", "state"},
-               {"t", 0.0},
-               {"from", supervisor::to_string(from)},
-               {"to", supervisor::to_string(to)},
-               {"reason", reason}});
+    tell_event({0.0, journal::StateChanged{supervisor::to_string(from), supervisor::to_string(to),
+                                           journal::Text::format("{}", reason)}});
   };
   tell.note = [this](const std::string& words) {
     // During a recipe's or homing's run the note goes into its journal (one writer at a time).
@@ -84,7 +79,7 @@ command::Tell CellStandby::arbiter_tell() {
     if (busy_ == Busy::run) {
       run_->note_from_operator(words);
     } else if (busy_ == Busy::none) {
-      tell_line({{"event", "note"}, {"t", 0.0}, {"text", words}});
+      tell_note(words);
     } else {
       spdlog::warn("{}", words);  // a Teach-In's journal, or a job between its states: the log only
     }
@@ -181,20 +176,20 @@ Taken CellStandby::start(const plant_link::StartRequest& r) {
   return {Taken::How::done, "started: " + job_};
 }
 
-void CellStandby::tell_line(nlohmann::json line) const {
-  if (listener_) listener_(line);
+void CellStandby::tell_event(const journal::Event& e) const {
+  if (listener_) listener_->on_event(e);
+}
+
+void CellStandby::tell_note(std::string_view words) const {
+  if (listener_) listener_->on_note(0.0, words);
 }
 
 CellStandby::JobEnd CellStandby::not_started(const plant_link::StartRequest& r, const std::string& why,
                                              supervisor::State end) const {
   const auto to = supervisor::to_string(end);
-  tell_line({{"event", "run_started"},
-             {"t", 0.0},
-             {"recipe", short_name(r)},
-             {"mode", to_string(options_.mode)},
-             {"steps", 0}});
-  tell_line(
-      {{"event", "state"}, {"t", 0.0}, {"from", "Starting"}, {"to", to}, {"reason", "not started: " + why}});
+  const auto name = short_name(r);
+  tell_event({0.0, journal::RunStarted{name, {}, to_string(options_.mode), 0}});
+  tell_event({0.0, journal::StateChanged{"Starting", to, journal::Text::format("not started: {}", why)}});
   return {fmt::format("{}: not started: {}", to, why), end, std::nullopt};
 }
 
@@ -245,8 +240,8 @@ int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminat
       busy_ = Busy::none;
       job_.clear();
     }
-    if (end.end_line) tell_line(*end.end_line);  // the standby takes the plant's next command now
-    interrupt.store(false);                      // a Ctrl-C during the job was the job's
+    if (end.end_state) tell_event(end.end_state->event());  // the standby takes the plant's next command now
+    interrupt.store(false);                                 // a Ctrl-C during the job was the job's
   }
   if (!blocked_.empty()) return kExitSafeStateUnknown;
   return terminate.load() ? kExitOk : kExitInterrupted;
@@ -306,7 +301,7 @@ CellStandby::JobEnd CellStandby::run_recipe(const recipe::Recipe& recipe,
       record_info(cell_, options_.config_file, recipe, recipe::unroll(recipe), o.mode));
   runtime::CellRun run(cell_, recipe, o);  // a port that does not open: thrown, reported by run_job
   EndStateGate gate(listener_);
-  run.on_journal_line([&gate](const nlohmann::json& line) { gate(line); });
+  run.listen(&gate);
   runtime::RunResult result;
   {
     const JobSlot slot{*this};
@@ -318,7 +313,7 @@ CellStandby::JobEnd CellStandby::run_recipe(const recipe::Recipe& recipe,
     }
     result = run.run(interrupt, &terminate);
   }
-  run.on_journal_line({});
+  run.listen(nullptr);
   const auto head = fmt::format("{} {}", supervisor::to_string(result.final_state), run_dir.string());
   std::string words = head;
   if (!result.failure.empty()) words += "; failed step: " + result.failure;
@@ -337,7 +332,7 @@ CellStandby::JobEnd CellStandby::run_recipe(const recipe::Recipe& recipe,
   if (after) after(result, end);
   // The end state goes out once the job's work is on disk (the journal closed, the home record and a
   // taught config written) and the standby is free again: serve() tells it.
-  end.end_line =
+  end.end_state =
       gate.take(end.words.size() > head.size() + 2 ? end.words.substr(head.size() + 2) : std::string());
   return end;
 }

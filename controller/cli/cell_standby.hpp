@@ -16,23 +16,24 @@
 // yet taken is cancelled (told as Stopped or Aborted, nothing moved), one being set up is stopped
 // before any motion.
 //
-// Between jobs the standby itself tells the link and the page what it and the arbiter did (a
-// Teach-In's start and end, a job that could not start, a reset) as journal lines: the jobs' journal
-// threads and the standby never write at the same time (a job's journal joins its writer before its
-// run returns, and what the arbiter says during a job goes into that job's journal), so the listener
-// keeps one writer at a time.
+// Between jobs the standby itself tells the link and the page what it and the arbiter did (a job that
+// could not start, a reset) as the run's events would: the jobs' journal threads and the standby never
+// tell at the same time (a job's journal joins its writer before its run returns, and what the arbiter
+// says during a job goes into that job's journal), so the listener hears one teller at a time.
 
 #include <atomic>
 #include <condition_variable>
 #include <filesystem>
 #include <functional>
 #include <mutex>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 
+#include "cli/end_state_gate.hpp"
 #include "command/arbiter.hpp"
 #include "config/cell_config.hpp"
+#include "journal/event_listener.hpp"
 #include "plant_link/run_access.hpp"
 #include "runtime/cell_links.hpp"
 #include "runtime/cell_run.hpp"
@@ -58,10 +59,8 @@ class CellStandby {
   // For the plant link and the operator page; valid as long as the standby.
   [[nodiscard]] plant_link::RunAccess access();
   [[nodiscard]] command::Arbiter& arbiter() noexcept { return arbiter_; }
-  // Every journal line of every job, and the standby's own lines; set before serve().
-  void on_journal_line(std::function<void(const nlohmann::json&)> listener) {
-    listener_ = std::move(listener);
-  }
+  // Every event of every job, and the standby's own; set before serve(), outliving it.
+  void listen(journal::EventListener* listener) { listener_ = listener; }
 
   // Runs the jobs as they are started, saying each one's start and end through `say`, until
   // `terminate` (a job in progress gets its controlled stop first) or an `interrupt` while no job is
@@ -84,9 +83,9 @@ class CellStandby {
   struct JobEnd {
     std::string words;
     supervisor::State state = supervisor::State::aborted;
-    // The run's end state line (its journal's), told only once the job's work is saved and the
-    // standby is free for the command the plant sends on it (a reset on Complete).
-    std::optional<nlohmann::json> end_line;
+    // The run's end state (its journal's), told only once the job's work is saved and the standby is
+    // free for the command the plant sends on it (a reset on Complete).
+    std::optional<HeldEndState> end_state;
   };
 
   // The arbiter's port to the job in progress.
@@ -108,18 +107,19 @@ class CellStandby {
   void after_teach_in(const runtime::RunResult& r, bool manual, JobEnd& end);
   // <runs>/<stem>-<local time>-job<N>: the next job's record.
   [[nodiscard]] std::filesystem::path job_dir(const std::string& stem) const;
-  // A line of the standby's own (between jobs: the jobs' journal threads are not writing).
-  void tell_line(nlohmann::json line) const;
+  // An event of the standby's own (between jobs: the jobs' journal threads are not telling).
+  void tell_event(const journal::Event& e) const;
+  void tell_note(std::string_view words) const;
   // A job that could not start, told as a run of its own that ends in `end` (Aborted: it failed;
   // Stopped or Aborted: a stop or an abort cancelled it) with the reason.
   JobEnd not_started(const plant_link::StartRequest& r, const std::string& why,
                      supervisor::State end = supervisor::State::aborted) const;
-  // The arbiter's own words (between jobs), as journal lines.
+  // The arbiter's own words (between jobs), as the run's events.
   [[nodiscard]] command::Tell arbiter_tell();
 
   config::CellConfig cell_;
   StandbyOptions options_;
-  std::function<void(const nlohmann::json&)> listener_;
+  journal::EventListener* listener_ = nullptr;
 
   std::mutex mutex_;  // everything below, between the serving thread and the link's and page's
   std::condition_variable started_;

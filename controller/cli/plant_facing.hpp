@@ -10,9 +10,11 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "config/cell_config.hpp"
+#include "journal/event_listener.hpp"
 #include "plant_link/link_config.hpp"
 #include "plant_link/plant_link.hpp"
 #include "web/operator_page.hpp"
@@ -47,14 +49,18 @@ struct PageSetup {
 // cannot be read, a token shorter than 16 bytes.
 [[nodiscard]] std::optional<PageSetup> page_setup(const PageArgs& args, std::string& problem);
 
-struct PlantFacing {
+struct PlantFacing final : journal::EventListener {
   std::unique_ptr<plant_link::PlantLink> link;
   std::unique_ptr<web::OperatorPage> page;
 
-  // Every journal line to both (the journal's writer thread).
-  void on_journal_line(const nlohmann::json& line) const {
-    if (link) link->on_journal_line(line);
-    if (page) page->on_journal_line(line);
+  // Every event of the run to both (the journal's writer thread).
+  void on_event(const journal::Event& e) override {
+    if (link) link->events().on_event(e);
+    if (page) page->events().on_event(e);
+  }
+  void on_note(double t, std::string_view text) override {
+    if (link) link->events().on_note(t, text);
+    if (page) page->events().on_note(t, text);
   }
   // The link's last tags and goodbye, then the page closed.
   void close() {

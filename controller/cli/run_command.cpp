@@ -144,11 +144,9 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
     auto facing = open_plant_facing(cell, plant_link, page,
                                     plant_link ? plant_link->recipes : std::filesystem::path("recipes"),
                                     access, [&screen](const std::string& line) { screen.message(line); });
-    EndStateGate gate([&facing](const nlohmann::json& line) { facing.on_journal_line(line); });
-    run.on_journal_line([&narrator, &gate](const nlohmann::json& line) {
-      narrator(line);
-      gate(line);
-    });
+    EndStateGate gate(&facing);
+    journal::EventListeners listeners{&narrator, &gate};
+    run.listen(&listeners);
     fmt::print("  {}\n", ctrl_c_hint(cell.stops.operator_stop));
     std::vector<std::optional<double>> planned;
     for (const auto& st : info.steps) planned.push_back(st.planned_s);
@@ -157,7 +155,7 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
     if (console.active())
       screen.message("  type hold, unhold, stop, abort, reset or clear (h, u, s, a, r, c) and Enter");
     result = run.run(g_interrupted, &g_terminated);
-    run.on_journal_line({});
+    run.listen(nullptr);
     if (after) job = after(result);  // the job's work saved (the run saved its own: home record, journal)
     gate.release(job.words);         // only now the end state goes out
     facing.close();                  // the link's last tags out (the run's end), then a clean goodbye

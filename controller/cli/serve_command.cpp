@@ -76,7 +76,7 @@ int serve(const GlobalOptions& global, const ServeArgs& args) {
   say(fmt::format("cellctl serve: cell '{}' — {}; standing by for the plant and the operator page", cell.name,
                   mode_label(cell, options.mode)));
   auto facing = open_plant_facing(cell, link_config, page, recipes, standby.access(), say);
-  standby.on_journal_line([&facing](const nlohmann::json& line) { facing.on_journal_line(line); });
+  standby.listen(&facing);
   say(fmt::format("  jobs: start (a recipe in {}), home, teach-in; run records under {}/", recipes.string(),
                   args.runs_dir));
   say("  Ctrl-C: the job in progress gets it (as in `cellctl run`); with no job, it ends cellctl serve");

@@ -1,22 +1,26 @@
 #pragma once
 // The run record: a JSON-lines file of every state change, step, command, fault and a periodic
 // sample. The control cycle only posts fixed-size events into a lock-free queue; a writer thread
-// formats, writes and flushes them, so nothing is lost on a fault or Ctrl-C and the cycle never
-// waits on a disk. At the end it adds the summary and draws the plots (plot.svg, plot.html).
+// writes them (their lines made by the schema, schema/journal_line.hpp) and flushes them, so nothing
+// is lost on a fault or Ctrl-C and the cycle never waits on a disk, and hands each, typed, to the
+// run's listener (event_listener.hpp). At the end it adds the summary and draws the plots (plot.svg,
+// plot.html).
 
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
-#include <functional>
 #include <memory>
 #include <mutex>
-#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 
 #include "journal/event.hpp"
+#include "journal/event_listener.hpp"
 #include "journal/event_sink.hpp"
 #include "journal/run_summary.hpp"
+#include "schema/record_header.hpp"
+#include "schema/summary_line.hpp"
 #include "wire/spsc_queue.hpp"
 
 namespace cellctl::journal {
@@ -28,8 +32,9 @@ using WhenFull = wire::WhenFull;
 class Journal final : public EventSink {
  public:
   // Creates `dir` if needed, opens dir/journal.jsonl and writes `header` (record_header.hpp) as its
-  // first line unless it is null; throws std::runtime_error naming the path.
-  Journal(const std::filesystem::path& dir, WhenFull when_full, const nlohmann::json& header = {});
+  // first line when there is one; throws std::runtime_error naming the path.
+  Journal(const std::filesystem::path& dir, WhenFull when_full,
+          const std::optional<schema::RecordHeader>& header = std::nullopt);
   ~Journal() override;
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;
@@ -37,13 +42,16 @@ class Journal final : public EventSink {
   // Cycle side: no allocation, no lock, no I/O.
   void post(double t, const Payload& payload) noexcept override;
 
-  // Drains everything, appends {"event":"summary",…} with `extra` merged in (cycle statistics),
-  // writes plot.svg and plot.html, flushes and closes. Idempotent.
-  void close(const nlohmann::json& extra = {});
+  // Drains everything, appends the summary line with what the run adds to it (its loop, links, safe
+  // states: `run`), writes plot.svg and plot.html, flushes and closes. Idempotent.
+  void close(const std::optional<schema::RunFigures>& run = std::nullopt);
+  // The same for a run that never started: its summary says why.
+  void close_not_started(const std::string& reason);
 
-  // Called on the writer thread with every line as it is written (the terminal answers typed
-  // commands and reports faults from what the run records). Never on the cycle's thread.
-  void on_line(std::function<void(const nlohmann::json&)> listener);
+  // Hears every event as it is written, on the writer thread, never on the cycle's (the terminal
+  // answers typed commands and reports faults from what the run records; the plant link and the page
+  // follow the run). nullptr: nobody. The listener must outlive the journal or be taken away first.
+  void listen(EventListener* listener);
 
   [[nodiscard]] const std::filesystem::path& dir() const noexcept { return dir_; }
   [[nodiscard]] std::uint64_t dropped() const noexcept { return dropped_.load(); }
@@ -53,6 +61,10 @@ class Journal final : public EventSink {
  private:
   void run_writer();
   bool drain();
+  void write_line(const std::string& line);
+  // Drains what is left and ends the writer: the summary line's own part, the journal's figure added.
+  schema::SummaryLine summary_line_after_drain();
+  void finish(schema::SummaryLine line);
 
   std::filesystem::path dir_;
   WhenFull when_full_;
@@ -63,7 +75,7 @@ class Journal final : public EventSink {
   RunSummary summary_;         // writer thread only until close()
   std::string note_parts_;     // writer thread: a long note's parts so far
   std::mutex listener_mutex_;  // writer thread and the thread setting it; the cycle never takes it
-  std::function<void(const nlohmann::json&)> listener_;
+  EventListener* listener_ = nullptr;
   std::thread writer_;
   bool closed_ = false;
 };

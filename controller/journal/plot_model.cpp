@@ -37,9 +37,9 @@ std::string mark_colour(MarkKind k) {
 }
 
 bool is_move(const RunRecord& run, const StepRun& s) {
-  const auto it = run.header().find("steps");
-  if (it == run.header().end() || s.step < 1 || static_cast<std::size_t>(s.step) > it->size()) return true;
-  return (*it)[static_cast<std::size_t>(s.step - 1)].value("kind", "") == "move";
+  const auto& steps = run.header().steps;
+  if (s.step < 1 || static_cast<std::size_t>(s.step) > steps.size()) return true;
+  return steps[static_cast<std::size_t>(s.step - 1)].kind == "move";
 }
 
 // A run of more than twice this many samples (2 h 40 min at 20 ms) is drawn in this many buckets:
@@ -126,8 +126,8 @@ PlotModel plot_model(const std::vector<const RunRecord*>& runs) {
     const auto& h = run.header();
     m.subtitle.push_back(fmt::format("{}{} after {:.2f} s · {} · host {} · cellctl {} · started {}",
                                      runs.size() > 1 ? (r ? "B: " : "A: ") : "", run.outcome(),
-                                     run.duration_s(), h.value("mode", "mode unknown"), h.value("host", "?"),
-                                     h.value("cellctl", "?"), h.value("started_utc", "?")));
+                                     run.duration_s(), h.mode.value_or("mode unknown"), h.host.value_or("?"),
+                                     h.cellctl.value_or("?"), h.started_utc.value_or("?")));
     m.t_hi = std::max(m.t_hi, run.duration_s());
     const auto names = run.axis_names();
     const auto measured = run.measured_axis();

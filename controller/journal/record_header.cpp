@@ -41,37 +41,26 @@ std::string file_sha256(const std::filesystem::path& file) {
   return hex;
 }
 
-nlohmann::json record_header(const RecordInfo& info) {
-  nlohmann::json j;
-  j["t"] = 0.0;
-  j["event"] = "record";
-  j["recipe_file"] = info.recipe_file.string();
-  j["recipe_sha256"] = file_sha256(info.recipe_file);
-  j["recipe"] = info.recipe_name;
-  j["recipe_version"] = info.recipe_version;
-  j["config_file"] = info.config_file.string();
-  j["config_sha256"] = file_sha256(info.config_file);
-  j["cell"] = info.cell;
-  j["cellctl"] = std::string(cellctl_version());
-  j["mode"] = info.mode;
-  j["ports"] = info.ports;
-  j["host"] = host_name();
-  j["started_utc"] =
+schema::RecordHeader record_header(const RecordInfo& info) {
+  schema::RecordHeader h;
+  h.recipe_file = info.recipe_file.string();
+  h.recipe_sha256 = file_sha256(info.recipe_file);
+  h.recipe = info.recipe_name;
+  h.recipe_version = info.recipe_version;
+  h.config_file = info.config_file.string();
+  h.config_sha256 = file_sha256(info.config_file);
+  h.cell = info.cell;
+  h.cellctl = std::string(cellctl_version());
+  h.mode = info.mode;
+  h.ports = info.ports;
+  h.host = host_name();
+  h.started_utc =
       fmt::format("{:%Y-%m-%dT%H:%M:%SZ}",
                   fmt::gmtime(std::chrono::system_clock::to_time_t(std::chrono::system_clock::now())));
-  j["sample_s"] = info.sample_s;
-  j["position_unit"] = "mm";
-  j["spindle_unit"] = "Hz";
-  j["axes"] = nlohmann::json::array();
-  for (const auto& a : info.axes) j["axes"].push_back({{"name", a.name}, {"measured", a.measured}});
-  j["steps"] = nlohmann::json::array();
-  for (std::size_t i = 0; i < info.steps.size(); ++i) {
-    const auto& s = info.steps[i];
-    nlohmann::json step{{"step", i + 1}, {"label", s.label}, {"kind", s.kind}};
-    if (s.planned_s) step["planned_s"] = *s.planned_s;
-    j["steps"].push_back(step);
-  }
-  return j;
+  h.sample_s = info.sample_s;
+  for (const auto& a : info.axes) h.axes.push_back({a.name, a.measured});
+  for (const auto& s : info.steps) h.steps.push_back({s.label, s.kind, s.planned_s});
+  return h;
 }
 
 }  // namespace cellctl::journal

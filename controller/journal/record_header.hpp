@@ -4,10 +4,11 @@
 // the host, when it started (UTC), the axes' names and units, and the steps as the run numbers them.
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "schema/record_header.hpp"
 
 namespace cellctl::journal {
 
@@ -35,8 +36,9 @@ struct RecordInfo {
   double sample_s = 0.02;
 };
 
-// {"t":0,"event":"record",…}. Throws std::runtime_error naming a file it cannot read.
-[[nodiscard]] nlohmann::json record_header(const RecordInfo& info);
+// The header of a run from now on (its line: schema/record_header.hpp): the files' hashes, this
+// cellctl, this host, the time. Throws std::runtime_error naming a file it cannot read.
+[[nodiscard]] schema::RecordHeader record_header(const RecordInfo& info);
 
 // Lower-case hex SHA-256 of a file's bytes, as `sha256sum` prints it.
 [[nodiscard]] std::string file_sha256(const std::filesystem::path& file);

@@ -35,15 +35,15 @@ const StepRun* find_step(const RunRecord& run, int n) {
 }  // namespace
 
 std::optional<std::string> different_recipes(const RunRecord& a, const RunRecord& b) {
-  const auto ha = a.header().value("recipe_sha256", std::string());
-  const auto hb = b.header().value("recipe_sha256", std::string());
+  const auto ha = a.header().recipe_sha256.value_or("");
+  const auto hb = b.header().recipe_sha256.value_or("");
   if (!ha.empty() && !hb.empty()) {
     if (ha == hb) return std::nullopt;
     return fmt::format("the recipes differ: A is {} (sha256 {}…), B is {} (sha256 {}…)", a.recipe_label(),
                        ha.substr(0, 12), b.recipe_label(), hb.substr(0, 12));
   }
-  const auto na = a.header().value("recipe", std::string());
-  const auto nb = b.header().value("recipe", std::string());
+  const auto na = a.header().recipe.value_or("");
+  const auto nb = b.header().recipe.value_or("");
   if (!na.empty() && na == nb) return std::nullopt;
   return fmt::format("cannot tell that both are runs of one recipe (A: {}, B: {})", a.recipe_label(),
                      b.recipe_label());
@@ -51,8 +51,8 @@ std::optional<std::string> different_recipes(const RunRecord& a, const RunRecord
 
 std::string compare_text(const RunRecord& a, const RunRecord& b) {
   std::string out = fmt::format("A: {} — {} after {:.2f} s, {}\nB: {} — {} after {:.2f} s, {}\n\n",
-                                a.recipe_label(), a.outcome(), a.duration_s(), a.header().value("mode", "?"),
-                                b.recipe_label(), b.outcome(), b.duration_s(), b.header().value("mode", "?"));
+                                a.recipe_label(), a.outcome(), a.duration_s(), a.header().mode.value_or("?"),
+                                b.recipe_label(), b.outcome(), b.duration_s(), b.header().mode.value_or("?"));
   const auto names = a.axis_names();
   out += fmt::format("{:>4}  {:<30} {:>7} {:>7} {:>7}", "step", "label", "A s", "B s", "B−A s");
   for (const auto& n : names) out += fmt::format("  {:>15}", n + " end err A/B");

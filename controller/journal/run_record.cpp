@@ -6,37 +6,44 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "schema/read_journal_line.hpp"
+
 namespace cellctl::journal {
 namespace {
-
-using nlohmann::json;
-
-std::vector<double> numbers(const json& j, const char* key) {
-  std::vector<double> v;
-  if (const auto it = j.find(key); it != j.end() && it->is_array())
-    for (const auto& x : *it) v.push_back(x.get<double>());
-  return v;
-}
-
-std::string text_of(const json& j, const char* key) {
-  const auto it = j.find(key);
-  return it != j.end() && it->is_string() ? it->get<std::string>() : std::string();
-}
 
 bool operator_rule(std::string_view rule) {
   return rule == "operator_stop" || rule == "emergency_stop";
 }
 
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
 }  // namespace
 
-std::string describe_event(const json& j) {
-  std::string out;
-  for (const auto& [k, v] : j.items()) {
-    if (k == "t" || k == "event") continue;
-    if (!out.empty()) out += ", ";
-    out += v.is_string() ? v.get<std::string>() : fmt::format("{}={}", k, v.dump());
+// What a record's reader is told of each line it reads back.
+class RecordReader final : public schema::LineReader {
+ public:
+  explicit RecordReader(RunRecord& r) : r_(r) {}
+  void header(const schema::RecordHeader& h) override { r_.set_header(h); }
+  void event(const Event& e) override { r_.add(e); }
+  void sample(const SamplePoint& s) override { r_.add_sample(s); }
+  void note(double t, std::string_view text) override { r_.add_note(t, text); }
+  void summary(const std::optional<schema::LoopFigures>& loop) override { r_.loop_ = loop; }
+  void other(double t, std::string_view event, std::string_view description) override {
+    r_.add_other(t, event, description);
   }
-  return out;
+
+ private:
+  RunRecord& r_;
+};
+
+std::string describe(const InjectedFault& f) {
+  return fmt::format("{}, {}, {}{}, {}", f.device, f.kind, f.spec,
+                     f.still_active ? ", still_active=true" : "", f.what);
 }
 
 std::string_view to_string(MarkKind k) noexcept {
@@ -55,76 +62,97 @@ std::string_view to_string(MarkKind k) noexcept {
   return "?";
 }
 
-void RunRecord::add(const json& j) {
-  const double t = j.value("t", 0.0);
-  const std::string event = text_of(j, "event");
-  if (event != "summary") end_ = std::max(end_, t);
-  if (event == "record") {
-    header_ = j;
-  } else if (event == "run_started") {
-    start_ = t;
-  } else if (event == "sample") {
-    SamplePoint s;
-    s.t = t;
-    s.planned_mm = numbers(j, "planned_mm");
-    s.scu_mm = numbers(j, "scu_mm");
-    s.encoder_mm = j.value("encoder_mm", 0.0);
-    s.spindle_set_hz = j.value("spindle_set_hz", 0.0);
-    s.spindle_hz = j.value("spindle_hz", 0.0);
-    samples_.push_back(std::move(s));
-  } else if (event == "step_started") {
-    const int n = j.value("step", 0);
-    // Started again after a hold: the step keeps its first start, so its time includes the hold.
-    if (!steps_.empty() && steps_.back().step == n && steps_.back().result.empty()) return;
-    close_open_steps(t, "interrupted");
-    steps_.push_back({n, text_of(j, "label"), t, t, 0.0, {}, {}});
-  } else if (event == "step_done" || event == "step_failed") {
-    const int n = j.value("step", 0);
-    if (steps_.empty() || steps_.back().step != n || !steps_.back().result.empty())
-      steps_.push_back({n, text_of(j, "label"), t, t, 0.0, {}, {}});
-    auto& s = steps_.back();
-    s.end = t;
-    s.result = event == "step_done" ? "done" : "failed";
-    s.detail = text_of(j, "detail");
-    if (event == "step_failed") other_failure_ = true;
-  } else if (event == "state") {
-    const auto to = text_of(j, "to");
-    // A stop ends the step it interrupts there and then (not when the cell is at rest, maybe much later).
-    if (to == "Stopping" || to == "Aborting") close_open_steps(t, "interrupted");
-    if ((to == "Holding" || to == "Held") && !held_since_) held_since_ = t;
-    if (to != "Holding" && to != "Held" && held_since_) {
-      if (!steps_.empty() && steps_.back().result.empty()) steps_.back().held_s += t - *held_since_;
-      held_since_.reset();
-    }
-  } else if (event == "command") {
-    const auto name = text_of(j, "command");
-    const auto source = text_of(j, "source");
-    if (name == "start" && source != "operator") return;  // the run's own start
-    if ((name == "stop" || name == "abort") && source != "monitor") operator_stop_ = true;
-    marks_.push_back({t, MarkKind::command, fmt::format("{} ({})", name, source)});
-  } else if (event == "note") {
-    marks_.push_back({t, MarkKind::note, text_of(j, "text")});
-  } else if (event == "run_ended") {
-    outcome_ = text_of(j, "outcome");
-    close_open_steps(t, "interrupted");
-  } else if (event == "summary") {
-    summary_ = j;
-  } else if (event == "fault_cleared") {
-    marks_.push_back({t, MarkKind::fault_cleared, text_of(j, "rule")});
-  } else if (event == "fault") {
-    const auto rule = text_of(j, "rule");
-    if (operator_rule(rule))
-      operator_stop_ = true;
-    else
-      other_failure_ = true;
-    marks_.push_back(
-        {t, MarkKind::fault,
-         fmt::format("{} (category {}): {}", rule, j.value("category", 0), text_of(j, "detail"))});
-  } else if (event.find("inject") != std::string::npos) {
-    marks_.push_back({t, MarkKind::injected_fault, describe_event(j)});
-  } else if (event.find("fault") != std::string::npos) {
+void RunRecord::add(const Event& e) {
+  const double t = e.t;
+  end_ = std::max(end_, t);
+  std::visit(Overloaded{
+                 [&](const RunStarted&) { start_ = t; },
+                 [&](const Sample& smp) { add_sample(schema::sample_point(t, smp)); },
+                 [&](const StepStarted& st) {
+                   const int n = static_cast<int>(st.index + 1);
+                   // Started again after a hold: the step keeps its first start, so its time includes the
+                   // hold.
+                   if (!steps_.empty() && steps_.back().step == n && steps_.back().result.empty()) return;
+                   close_open_steps(t, "interrupted");
+                   steps_.push_back({n, std::string(st.label), t, t, 0.0, {}, {}});
+                 },
+                 [&](const StepEnded& st) {
+                   const int n = static_cast<int>(st.index + 1);
+                   if (steps_.empty() || steps_.back().step != n || !steps_.back().result.empty())
+                     steps_.push_back({n, std::string(st.label), t, t, 0.0, {}, {}});
+                   auto& s = steps_.back();
+                   s.end = t;
+                   s.result = st.ok ? "done" : "failed";
+                   s.detail = std::string(st.detail.view());
+                   if (!st.ok) other_failure_ = true;
+                 },
+                 [&](const StateChanged& sc) {
+                   const auto to = sc.to;
+                   // A stop ends the step it interrupts there and then (not when the cell is at rest, maybe
+                   // much later).
+                   if (to == "Stopping" || to == "Aborting") close_open_steps(t, "interrupted");
+                   if ((to == "Holding" || to == "Held") && !held_since_) held_since_ = t;
+                   if (to != "Holding" && to != "Held" && held_since_) {
+                     if (!steps_.empty() && steps_.back().result.empty())
+                       steps_.back().held_s += t - *held_since_;
+                     held_since_.reset();
+                   }
+                 },
+                 [&](const Command& c) {
+                   const auto source = c.source.view();
+                   if (c.name == "start" && source != "operator") return;  // the run's own start
+                   if ((c.name == "stop" || c.name == "abort") && source != "monitor") operator_stop_ = true;
+                   marks_.push_back({t, MarkKind::command, fmt::format("{} ({})", c.name, source)});
+                 },
+                 [&](const Note& n) {
+                   marks_.push_back({t, MarkKind::note, std::string(n.text.view())});
+                 },
+                 [&](const RunEnded& r) {
+                   outcome_ = std::string(r.outcome);
+                   close_open_steps(t, "interrupted");
+                 },
+                 [&](const FaultCleared& f) {
+                   marks_.push_back({t, MarkKind::fault_cleared, std::string(f.rule)});
+                 },
+                 [&](const Fault& f) {
+                   if (operator_rule(f.rule))
+                     operator_stop_ = true;
+                   else
+                     other_failure_ = true;
+                   marks_.push_back({t, MarkKind::fault,
+                                     fmt::format("{} (category {}): {}", f.rule, static_cast<int>(f.category),
+                                                 f.detail.view())});
+                 },
+                 [&](const InjectedFault& f) {
+                   marks_.push_back({t, MarkKind::injected_fault, describe(f)});
+                 },
+             },
+             e.payload);
+}
+
+void RunRecord::add_note(double t, std::string_view text) {
+  end_ = std::max(end_, t);
+  marks_.push_back({t, MarkKind::note, std::string(text)});
+}
+
+void RunRecord::add_sample(const SamplePoint& s) {
+  end_ = std::max(end_, s.t);
+  samples_.push_back(s);
+}
+
+void RunRecord::set_header(schema::RecordHeader h) {
+  header_ = std::move(h);
+  has_header_ = true;
+}
+
+void RunRecord::add_other(double t, std::string_view event, std::string_view description) {
+  end_ = std::max(end_, t);
+  // Kinds of other versions of cellctl that look like faults are kept as faults.
+  if (event.find("inject") != std::string_view::npos) {
+    marks_.push_back({t, MarkKind::injected_fault, std::string(description)});
+  } else if (event.find("fault") != std::string_view::npos) {
     other_failure_ = true;
-    marks_.push_back({t, MarkKind::fault, describe_event(j)});
+    marks_.push_back({t, MarkKind::fault, std::string(description)});
   }
 }
 
@@ -147,13 +175,14 @@ RunRecord RunRecord::load(const std::filesystem::path& dir_or_file) {
   std::ifstream in(file);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot read the run record", file.string()));
   RunRecord r;
+  RecordReader reader(r);
   int n = 0;
   for (std::string line; std::getline(in, line);) {
     ++n;
     if (line.empty()) continue;
     try {
-      r.add(json::parse(line));
-    } catch (const json::exception& e) {
+      schema::read_journal_line(line, reader);
+    } catch (const schema::BadLine& e) {
       throw std::runtime_error(fmt::format("{}:{}: not a journal line ({})", file.string(), n, e.what()));
     }
   }
@@ -164,8 +193,8 @@ RunRecord RunRecord::load(const std::filesystem::path& dir_or_file) {
 
 std::vector<std::string> RunRecord::axis_names() const {
   std::vector<std::string> names;
-  if (const auto it = header_.find("axes"); it != header_.end())
-    for (const auto& a : *it) names.push_back(a.value("name", fmt::format("axis {}", names.size() + 1)));
+  for (const auto& a : header_.axes)
+    names.push_back(a.name.value_or(fmt::format("axis {}", names.size() + 1)));
   std::size_t sampled = 0;
   for (const auto& s : samples_) sampled = std::max(sampled, s.planned_mm.size());
   while (names.size() < sampled) names.push_back(fmt::format("axis {}", names.size() + 1));
@@ -173,16 +202,15 @@ std::vector<std::string> RunRecord::axis_names() const {
 }
 
 std::optional<std::size_t> RunRecord::measured_axis() const {
-  if (const auto it = header_.find("axes"); it != header_.end())
-    for (std::size_t i = 0; i < it->size(); ++i)
-      if ((*it)[i].value("measured", false)) return i;
+  for (std::size_t i = 0; i < header_.axes.size(); ++i)
+    if (header_.axes[i].measured) return i;
   return std::nullopt;
 }
 
 std::string RunRecord::recipe_label() const {
-  if (header_.empty()) return "(a record without a header)";
-  return fmt::format("{} {} ({})", header_.value("recipe", "?"), header_.value("recipe_version", "?"),
-                     header_.value("recipe_file", "?"));
+  if (!has_header_) return "(a record without a header)";
+  return fmt::format("{} {} ({})", header_.recipe.value_or("?"), header_.recipe_version.value_or("?"),
+                     header_.recipe_file.value_or("?"));
 }
 
 const SamplePoint* RunRecord::sample_at(double t) const noexcept {
@@ -195,11 +223,10 @@ const SamplePoint* RunRecord::sample_at(double t) const noexcept {
 std::optional<double> RunRecord::planned_s(const StepRun& s) const {
   std::string kind;
   std::optional<double> declared;
-  if (const auto it = header_.find("steps");
-      it != header_.end() && s.step >= 1 && static_cast<std::size_t>(s.step) <= it->size()) {
-    const auto& h = (*it)[static_cast<std::size_t>(s.step - 1)];
-    kind = h.value("kind", "");
-    if (const auto p = h.find("planned_s"); p != h.end()) declared = p->get<double>();
+  if (s.step >= 1 && static_cast<std::size_t>(s.step) <= header_.steps.size()) {
+    const auto& h = header_.steps[static_cast<std::size_t>(s.step - 1)];
+    kind = h.kind;
+    declared = h.planned_s;
   }
   if (declared) return declared;
   if (kind != "move") return std::nullopt;

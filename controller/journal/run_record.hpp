@@ -2,25 +2,24 @@
 // A run record read back: the journal's lines turned into what the plot, `cellctl report` and
 // `cellctl compare` need — the header, the samples, each step as it ran (start, end, held time,
 // result), and the marks (faults, injected faults, operator commands, notes) in time order.
-// The journal builds one while it writes (from the very JSON it writes), the commands load one
-// from journal.jsonl: one reading of the format.
+// The journal builds one while it writes, from the typed events as their lines record them; the
+// commands load one from journal.jsonl through the schema's reader (schema/read_journal_line.hpp):
+// one record, whichever way it came.
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include "journal/event.hpp"
+#include "schema/journal_line.hpp"
+#include "schema/record_header.hpp"
+#include "schema/summary_line.hpp"
 
 namespace cellctl::journal {
 
-struct SamplePoint {
-  double t = 0.0;
-  std::vector<double> planned_mm;  // per axis
-  std::vector<double> scu_mm;      // per axis
-  double encoder_mm = 0.0;         // of the measured axis, if there is one
-  double spindle_set_hz = 0.0;
-  double spindle_hz = 0.0;
-};
+using schema::SamplePoint;
 
 struct StepRun {
   int step = 0;  // 1-based, as the run and `cellctl check` number them
@@ -42,22 +41,31 @@ struct Mark {
   std::string text;
 };
 
-// What an event says, for kinds without a reader of their own (an injected fault, say): its text
-// fields in order, "key=value" for the rest; "t" and "event" left out.
-[[nodiscard]] std::string describe_event(const nlohmann::json& line);
+// An injected fault in words, as its line's fields read in order: "scu, silent, scu:silent@2+1, the
+// line carries nothing either way" (", still_active=true" before what it does when the run ended first).
+[[nodiscard]] std::string describe(const InjectedFault& f);
 
 class RunRecord {
  public:
-  // One journal line (any event; unknown kinds are kept only if they look like faults).
-  void add(const nlohmann::json& line);
+  // An event as its line records it (its time recorded_time(), a sample's values recorded_value()):
+  // what the journal writes, as it writes it. A note whole: add_note().
+  void add(const Event& e);
+  void add_note(double t, std::string_view text);
+  void add_sample(const SamplePoint& s);
+  void set_header(schema::RecordHeader h);
+  // A line of a kind the record does not know: kept only when it looks like a fault.
+  void add_other(double t, std::string_view event, std::string_view description);
   // Steps still open end where the run ended, as interrupted. Called by load(); idempotent.
   void finish();
 
   // dir/journal.jsonl (or the file itself). Throws std::runtime_error with file:line on a bad line.
   [[nodiscard]] static RunRecord load(const std::filesystem::path& dir_or_file);
 
-  [[nodiscard]] const nlohmann::json& header() const noexcept { return header_; }    // {} if none
-  [[nodiscard]] const nlohmann::json& summary() const noexcept { return summary_; }  // {} if none
+  // Each of its fields unset when the record has no header line.
+  [[nodiscard]] const schema::RecordHeader& header() const noexcept { return header_; }
+  [[nodiscard]] bool has_header() const noexcept { return has_header_; }
+  // The summary line's loop figures; none without a summary line or when the run did not end normally.
+  [[nodiscard]] const std::optional<schema::LoopFigures>& loop_figures() const noexcept { return loop_; }
   [[nodiscard]] const std::vector<SamplePoint>& samples() const noexcept { return samples_; }
   [[nodiscard]] const std::vector<StepRun>& steps() const noexcept { return steps_; }
   [[nodiscard]] const std::vector<Mark>& marks() const noexcept { return marks_; }
@@ -80,9 +88,11 @@ class RunRecord {
 
  private:
   void close_open_steps(double t, std::string_view result);
+  friend class RecordReader;  // load()'s schema::LineReader
 
-  nlohmann::json header_ = nlohmann::json::object();
-  nlohmann::json summary_ = nlohmann::json::object();
+  schema::RecordHeader header_;
+  bool has_header_ = false;
+  std::optional<schema::LoopFigures> loop_;
   std::vector<SamplePoint> samples_;
   std::vector<StepRun> steps_;
   std::vector<Mark> marks_;

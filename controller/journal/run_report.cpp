@@ -13,9 +13,8 @@ std::string seconds_or_dash(const std::optional<double>& s) {
   return s ? fmt::format("{:8.2f}", *s) : fmt::format("{:>8}", "—");
 }
 
-std::string short_hash(const nlohmann::json& h, const char* key) {
-  const auto v = h.value(key, std::string());
-  return v.empty() ? "?" : v.substr(0, 12);
+std::string short_hash(const std::optional<std::string>& hash) {
+  return !hash || hash->empty() ? "?" : hash->substr(0, 12);
 }
 
 // Per set frequency: how long the spindle took to get within 1 % of it, and how far it strayed after.
@@ -80,11 +79,11 @@ std::vector<MaxFollowingError> max_following_errors(const RunRecord& run) {
 std::string report_text(const RunRecord& run) {
   const auto& h = run.header();
   std::string out = fmt::format("run of {}\n", run.recipe_label());
-  if (!h.empty()) {
-    out += fmt::format("  recipe sha256 {}…, config {} sha256 {}…\n", short_hash(h, "recipe_sha256"),
-                       h.value("config_file", "?"), short_hash(h, "config_sha256"));
-    out += fmt::format("  cellctl {}, {}, host {}, started {}\n", h.value("cellctl", "?"),
-                       h.value("mode", "?"), h.value("host", "?"), h.value("started_utc", "?"));
+  if (run.has_header()) {
+    out += fmt::format("  recipe sha256 {}…, config {} sha256 {}…\n", short_hash(h.recipe_sha256),
+                       h.config_file.value_or("?"), short_hash(h.config_sha256));
+    out += fmt::format("  cellctl {}, {}, host {}, started {}\n", h.cellctl.value_or("?"),
+                       h.mode.value_or("?"), h.host.value_or("?"), h.started_utc.value_or("?"));
   }
   out += fmt::format("outcome: {} after {:.2f} s\n\n", run.outcome(), run.duration_s());
 
@@ -115,13 +114,12 @@ std::string report_text(const RunRecord& run) {
     out += fmt::format("  {:<6} {:+8.3f} mm at {:.2f} s (step {}), against the {}\n", names[a], worst[a].mm,
                        worst[a].t - run.start(), worst[a].step, measured == a ? "encoder" : "SCU");
 
-  const auto& sm = run.summary();
-  if (sm.contains("cycles"))
+  if (const auto& loop = run.loop_figures())
     out += fmt::format(
         "loop: {} cycles, wake-up jitter p99 {:.1f} µs, {} overrun cycles, {} missed deadlines, {} journal "
         "events dropped\n",
-        sm.value("cycles", 0), sm.value("jitter_p99_us", 0.0), sm.value("overrun_cycles", 0),
-        sm.value("missed_deadlines", 0), sm.value("journal_dropped", 0));
+        loop->cycles, loop->jitter_p99_us, loop->overrun_cycles, loop->missed_deadlines,
+        loop->journal_dropped);
   else
     out += "loop: no summary line (the run did not end normally)\n";
   out += spindle_lines(run);

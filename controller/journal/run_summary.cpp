@@ -6,8 +6,6 @@
 #include <cmath>
 #include <map>
 
-#include "journal/event_json.hpp"
-
 namespace cellctl::journal {
 namespace {
 
@@ -34,21 +32,13 @@ std::string summary_label(std::string_view label) {
 
 }  // namespace
 
-double round_ms(double seconds) noexcept {
-  return std::round(seconds * 1e3) / 1e3;
-}
-
-void RunSummary::add(const Event& e) {
-  record_.add(journal::to_json(e));
-}
-
 std::vector<RunSummary::StepTime> RunSummary::steps() const {
   std::vector<StepTime> out;  // in order of first appearance
   std::map<std::string, std::size_t> by_label;
   for (const auto& s : record_.steps()) {
     const auto label = summary_label(s.label);
     const auto [pos, fresh] = by_label.try_emplace(label, out.size());
-    if (fresh) out.push_back({label});
+    if (fresh) out.push_back({label, 0, 0.0, 0, 0, 0.0});
     auto& step = out[pos->second];
     ++step.count;
     step.seconds += s.seconds();
@@ -68,20 +58,13 @@ std::vector<std::string> RunSummary::faults() const {
   return out;
 }
 
-nlohmann::json RunSummary::to_json() const {
-  nlohmann::json j;
-  j["outcome"] = outcome();
-  j["duration_s"] = round_ms(duration_s());
-  j["steps"] = nlohmann::json::array();
-  for (const auto& s : steps()) {
-    nlohmann::json step{
-        {"label", s.label}, {"count", s.count}, {"seconds", round_ms(s.seconds)}, {"failed", s.failed}};
-    if (s.interrupted) step["interrupted"] = s.interrupted;
-    if (s.held_s > 0) step["held_s"] = round_ms(s.held_s);
-    j["steps"].push_back(step);
-  }
-  j["faults"] = faults();
-  return j;
+schema::SummaryLine RunSummary::line() const {
+  schema::SummaryLine s;
+  s.outcome = outcome();
+  s.duration_s = duration_s();
+  s.steps = steps();
+  s.faults = faults();
+  return s;
 }
 
 std::string RunSummary::to_text() const {

@@ -1,15 +1,17 @@
 #pragma once
 // What the plant knows of the cell, kept on the link's thread from the run's events: the PackML state
-// and mode, the step, the admin counters and the last stop reason, the latest sample. It renders the
-// payloads of the state, mode, admin and status tags (packml_tags.hpp). Pure: no network, no clock.
+// and mode, the step, the admin counters and the last stop reason, the latest sample. It gives the
+// state, mode, admin and status tags, typed (their payloads: schema/plant_tags.hpp). Pure: no network,
+// no clock.
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "config/cell_core.hpp"
 #include "plant_link/run_event.hpp"
+#include "schema/plant_tags.hpp"
 
 namespace cellctl::plant_link {
 
@@ -39,11 +41,11 @@ class CellMirror {
   Changed apply(const RunEvent& e);
 
   [[nodiscard]] const std::string& state() const noexcept { return state_; }
-  [[nodiscard]] nlohmann::json state_tag() const;
-  [[nodiscard]] nlohmann::json mode_tag() const;
-  [[nodiscard]] nlohmann::json admin_tag() const;
-  // `link`: the link's own health (connected, reconnects, dropped) — added by the link.
-  [[nodiscard]] nlohmann::json status_tag(const LiveStatus& live) const;
+  [[nodiscard]] schema::StateTag state_tag() const;
+  [[nodiscard]] schema::ModeTag mode_tag() const;
+  [[nodiscard]] const schema::AdminTag& admin_tag() const noexcept { return admin_; }
+  // Without the link's own health: the link adds it.
+  [[nodiscard]] schema::StatusTag status_tag(const LiveStatus& live) const;
 
  private:
   std::vector<std::string> axes_;
@@ -52,16 +54,10 @@ class CellMirror {
   double state_t_ = 0.0;
   std::string state_reason_;
   std::string recipe_;
-  std::uint64_t runs_ = 0;
-  std::uint64_t steps_done_ = 0;
-  std::uint64_t steps_failed_ = 0;
-  std::uint64_t faults_ = 0;
-  std::uint64_t processed_ = 0;  // runs completed (PackML Admin.ProdProcessedCount)
+  schema::AdminTag admin_;
   std::uint32_t step_ = 0;
   std::uint32_t steps_ = 0;
   std::string step_label_;
-  nlohmann::json stop_reason_;  // null until something stopped the cell
-  std::vector<nlohmann::json> active_faults_;
   RunEvent sample_;
   bool has_sample_ = false;
 };

@@ -1,7 +1,7 @@
 #pragma once
 // The cell's PackML tags as the plant reads them (after the PackML companion specification, OPC 30050:
-// StateCurrent, UnitModeCurrent, Status.*, Admin.*), and the command words it may send. Pure: JSON
-// in, JSON out, no network.
+// StateCurrent, UnitModeCurrent, Status.*, Admin.*), and the command words it may send. Pure, no
+// network; the payloads' JSON is the schema's (schema/plant_tags.hpp).
 //
 // Topics under <prefix>/<cell>/:
 //   online   retained, QoS 1: {"online":true,…} at connect (birth); {"online":false,…} as the broker's
@@ -13,7 +13,6 @@
 //   cmd/<hold|unhold|stop|abort|reset|start>   commands (payload: optional JSON {"id":…,"recipe":…})
 //   response QoS 1: {"command":…,"id":…,"ok":true|false,"outcome"|"reason":…} for every command
 
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
 

@@ -8,6 +8,7 @@
 #include "plant_link/cell_mirror.hpp"
 #include "plant_link/command_desk.hpp"
 #include "plant_link/mqtt_client.hpp"
+#include "schema/plant_tags.hpp"
 
 namespace cellctl::plant_link {
 namespace {
@@ -37,10 +38,7 @@ MqttOptions options_of(const LinkConfig& c) {
   o.keepalive_s = c.keepalive_s;
   o.version = c.version;
   o.will_topic = c.topic("online");
-  o.will_payload = nlohmann::json{{"online", false},
-                                  {"client_id", c.client_id},
-                                  {"reason", "connection lost (the broker's last will)"}}
-                       .dump();
+  o.will_payload = schema::offline_payload(c.client_id, "connection lost (the broker's last will)");
   return o;
 }
 
@@ -62,10 +60,6 @@ PlantLink::~PlantLink() {
   if (thread_.joinable()) thread_.join();
 }
 
-void PlantLink::on_journal_line(const nlohmann::json& line) noexcept {
-  events_.push(line);
-}
-
 LinkCounters PlantLink::counters() const noexcept {
   return {connected_.load(),        connects_.load(),         losses_.load(),
           refused_connects_.load(), events_.dropped(),        dropped_status_.load(),
@@ -82,23 +76,23 @@ void PlantLink::run_thread() {
   auto next_status = Clock::now();
   const std::string cmd_prefix = config_.topic("cmd/");
 
-  const auto publish_json = [&](std::string_view tag, const nlohmann::json& j, int qos, bool retain,
-                                std::optional<std::chrono::milliseconds> expiry = std::nullopt) {
-    if (connected_.load()) (void)client.publish(config_.topic(tag), j.dump(), qos, retain, expiry);
+  const auto publish = [&](std::string_view tag, const std::string& payload, int qos, bool retain,
+                           std::optional<std::chrono::milliseconds> expiry = std::nullopt) {
+    if (connected_.load()) (void)client.publish(config_.topic(tag), payload, qos, retain, expiry);
   };
   // The PackML tags a dashboard must see the moment it subscribes, however late: retained.
-  const auto publish_tag = [&](std::string_view tag, const nlohmann::json& j) {
-    publish_json(tag, j, 1, true);
+  const auto publish_tag = [&](std::string_view tag, const std::string& payload) {
+    publish(tag, payload, 1, true);
   };
   const auto publish_retained = [&] {
-    publish_tag("online", {{"online", true}, {"client_id", config_.client_id}, {"cell", cell_.name}});
-    publish_tag("state", mirror.state_tag());
-    publish_tag("mode", mirror.mode_tag());
-    publish_tag("admin", mirror.admin_tag());
+    publish_tag("online", schema::online_payload(config_.client_id, cell_.name));
+    publish_tag("state", schema::state_payload(mirror.state_tag()));
+    publish_tag("mode", schema::mode_payload(mirror.mode_tag()));
+    publish_tag("admin", schema::admin_payload(mirror.admin_tag()));
   };
   const auto respond = [&](const nlohmann::json& a) {
     if (!a.value("ok", false)) refused_commands_.fetch_add(1);
-    publish_json("response", a, 1, false, kAnswerExpiry);
+    publish("response", a.dump(), 1, false, kAnswerExpiry);
   };
   const auto lost = [&](Clock::time_point now) {
     socket = false;
@@ -162,9 +156,9 @@ void PlantLink::run_thread() {
   const auto take_events = [&] {
     while (const auto e = events_.pop()) {
       const auto changed = mirror.apply(*e);
-      if (changed.state) publish_tag("state", mirror.state_tag());
-      if (changed.mode) publish_tag("mode", mirror.mode_tag());
-      if (changed.admin) publish_tag("admin", mirror.admin_tag());
+      if (changed.state) publish_tag("state", schema::state_payload(mirror.state_tag()));
+      if (changed.mode) publish_tag("mode", schema::mode_payload(mirror.mode_tag()));
+      if (changed.admin) publish_tag("admin", schema::admin_payload(mirror.admin_tag()));
       for (const auto& a : desk.on_event(*e)) respond(a);
     }
   };
@@ -172,16 +166,14 @@ void PlantLink::run_thread() {
     LiveStatus live;
     if (const auto r = run_.status())
       live = {true, r->view.t, r->view.step, r->view.steps, r->label, r->view.jitter_max_us};
-    auto j = mirror.status_tag(live);
-    j["link"] = {{"reconnects", connects_.load() > 0 ? connects_.load() - 1 : 0},
-                 {"dropped_status", dropped_status_.load()},
-                 {"dropped_events", events_.dropped()},
-                 {"ignored_retained", ignored_retained_.load()},
-                 {"mqtt", to_string(client.version())}};
-    return j;
+    auto tag = mirror.status_tag(live);
+    tag.link = schema::StatusTag::Link{connects_.load() > 0 ? connects_.load() - 1 : 0,
+                                       dropped_status_.load(), events_.dropped(), ignored_retained_.load(),
+                                       std::string(to_string(client.version()))};
+    return schema::status_payload(tag);
   };
   // A status is stale after its period: the broker never hands an old one on.
-  const auto publish_status = [&] { publish_json("status", status(), 0, false, config_.status_period); };
+  const auto publish_status = [&] { publish("status", status(), 0, false, config_.status_period); };
 
   while (!stop_.load()) {
     const auto now = Clock::now();
@@ -214,7 +206,7 @@ void PlantLink::run_thread() {
   for (const auto& a : desk.expire(Clock::time_point::max())) respond(a);
   if (connected_.load()) {
     publish_status();
-    publish_tag("online", {{"online", false}, {"client_id", config_.client_id}, {"reason", "cellctl ended"}});
+    publish_tag("online", schema::offline_payload(config_.client_id, "cellctl ended"));
     const auto until = Clock::now() + std::chrono::milliseconds(500);
     while (client.want_write() && Clock::now() < until && client.loop(5) == 0) {
     }

@@ -2,7 +2,7 @@
 // The cell on the plant's MQTT broker: PackML tags out, commands in (packml_tags.hpp lists the topics).
 //
 // The control loop never waits on the network. The run's events reach the link from the journal's
-// writer thread through a bounded lock-free queue (on_journal_line: full → dropped and counted); the
+// writer thread through a bounded lock-free queue (events(): full → dropped and counted); the
 // status comes from the run's StatusBoard (a sequence lock the cycle never waits on); the link's own
 // thread does everything else: connecting with back-off, publishing, receiving commands. A lost broker
 // changes nothing in the run: the link reconnects (back-off doubling from reconnect_min_ms to
@@ -54,8 +54,8 @@ class PlantLink {
   PlantLink(const PlantLink&) = delete;
   PlantLink& operator=(const PlantLink&) = delete;
 
-  // The journal's writer thread (one producer): never blocks.
-  void on_journal_line(const nlohmann::json& line) noexcept;
+  // What the run's journal tells (one producer, its writer thread): never blocks.
+  [[nodiscard]] journal::EventListener& events() noexcept { return events_; }
 
   [[nodiscard]] LinkCounters counters() const noexcept;
   [[nodiscard]] const LinkConfig& config() const noexcept { return config_; }

@@ -1,80 +1,112 @@
 #include "plant_link/run_event.hpp"
 
-#include <string>
+#include "schema/journal_line.hpp"
 
 namespace cellctl::plant_link {
 namespace {
 
-journal::Text text_of(const nlohmann::json& j, const char* key) {
-  const auto it = j.find(key);
-  if (it == j.end() || !it->is_string()) return {};
-  return journal::Text::format("{}", it->get_ref<const std::string&>());
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
+journal::Text text(std::string_view s) {
+  return journal::Text::format("{}", s);
 }
 
-void floats_of(const nlohmann::json& j, const char* key, std::array<float, journal::kMaxAxes>& out,
-               std::uint8_t& n) {
-  const auto it = j.find(key);
-  if (it == j.end() || !it->is_array()) return;
-  n = 0;
-  for (const auto& v : *it) {
-    if (n == out.size() || !v.is_number()) break;
-    out[n++] = v.get<float>();
-  }
+// As the journal's line has the value: rounded to its 0.0001, then the plant's float.
+float recorded(float v) {
+  return static_cast<float>(schema::recorded_value(v));
 }
 
 }  // namespace
 
-std::optional<RunEvent> run_event_of(const nlohmann::json& j) {
+std::optional<RunEvent> run_event_of(const journal::Event& event) {
   using Kind = RunEvent::Kind;
-  const auto ev = j.value("event", std::string());
   RunEvent e;
-  e.t = j.value("t", 0.0);
-  if (ev == "run_started") {
-    e.kind = Kind::run_started;
-    e.name = text_of(j, "recipe");
-    e.other = text_of(j, "mode");
-    e.step = j.value("steps", 0u);
-  } else if (ev == "state") {
-    e.kind = Kind::state;
-    e.name = text_of(j, "to");
-    e.other = text_of(j, "from");
-    e.text = text_of(j, "reason");
-  } else if (ev == "step_started" || ev == "step_done" || ev == "step_failed") {
-    e.kind = ev == "step_started" ? Kind::step_started
-             : ev == "step_done"  ? Kind::step_done
-                                  : Kind::step_failed;
-    e.step = j.value("step", 0u);
-    e.name = text_of(j, "label");
-    e.text = text_of(j, "detail");
-  } else if (ev == "command") {
-    e.kind = Kind::command;
-    e.name = text_of(j, "command");
-    e.other = text_of(j, "source");
-  } else if (ev == "fault") {
-    e.kind = Kind::fault;
-    e.name = text_of(j, "rule");
-    e.category = static_cast<std::uint8_t>(j.value("category", 1));
-    e.text = text_of(j, "detail");
-  } else if (ev == "fault_cleared") {
-    e.kind = Kind::fault_cleared;
-    e.name = text_of(j, "rule");
-  } else if (ev == "sample") {
-    e.kind = Kind::sample;
-    floats_of(j, "planned_mm", e.planned_mm, e.axes);
-    std::uint8_t n = 0;
-    floats_of(j, "scu_mm", e.scu_mm, n);
-    e.encoder_mm = j.value("encoder_mm", 0.0f);
-    e.spindle_set_hz = j.value("spindle_set_hz", 0.0f);
-    e.spindle_hz = j.value("spindle_hz", 0.0f);
-  } else if (ev == "note") {
-    e.kind = Kind::note;
-    e.text = text_of(j, "text");
-  } else if (ev == "run_ended") {
-    e.kind = Kind::run_ended;
-    e.name = text_of(j, "outcome");
-  } else {
-    return std::nullopt;
-  }
+  e.t = schema::recorded_time(event.t);
+  const bool read = std::visit(Overloaded{
+                                   [&](const journal::RunStarted& s) {
+                                     e.kind = Kind::run_started;
+                                     e.name = text(s.recipe);
+                                     e.other = text(s.mode);
+                                     e.step = s.steps;
+                                     return true;
+                                   },
+                                   [&](const journal::StateChanged& s) {
+                                     e.kind = Kind::state;
+                                     e.name = text(s.to);
+                                     e.other = text(s.from);
+                                     e.text = s.reason;
+                                     return true;
+                                   },
+                                   [&](const journal::StepStarted& s) {
+                                     e.kind = Kind::step_started;
+                                     e.step = s.index + 1;
+                                     e.name = text(s.label);
+                                     return true;
+                                   },
+                                   [&](const journal::StepEnded& s) {
+                                     e.kind = s.ok ? Kind::step_done : Kind::step_failed;
+                                     e.step = s.index + 1;
+                                     e.name = text(s.label);
+                                     e.text = s.detail;
+                                     return true;
+                                   },
+                                   [&](const journal::Command& c) {
+                                     e.kind = Kind::command;
+                                     e.name = text(c.name);
+                                     e.other = c.source;
+                                     return true;
+                                   },
+                                   [&](const journal::Fault& f) {
+                                     e.kind = Kind::fault;
+                                     e.name = text(f.rule);
+                                     e.category = f.category;
+                                     e.text = f.detail;
+                                     return true;
+                                   },
+                                   [&](const journal::FaultCleared& f) {
+                                     e.kind = Kind::fault_cleared;
+                                     e.name = text(f.rule);
+                                     return true;
+                                   },
+                                   [&](const journal::Sample& s) {
+                                     e.kind = Kind::sample;
+                                     e.axes = s.axes;
+                                     for (std::size_t i = 0; i < s.axes && i < journal::kMaxAxes; ++i) {
+                                       e.planned_mm[i] = recorded(s.planned_mm[i]);
+                                       e.scu_mm[i] = recorded(s.scu_mm[i]);
+                                     }
+                                     e.encoder_mm = recorded(s.encoder_mm);
+                                     e.spindle_set_hz = recorded(s.spindle_set_hz);
+                                     e.spindle_hz = recorded(s.spindle_actual_hz);
+                                     return true;
+                                   },
+                                   [&](const journal::Note& n) {
+                                     e.kind = Kind::note;
+                                     e.text = n.text;
+                                     return true;
+                                   },
+                                   [&](const journal::RunEnded& r) {
+                                     e.kind = Kind::run_ended;
+                                     e.name = text(r.outcome);
+                                     return true;
+                                   },
+                                   [](const journal::InjectedFault&) { return false; },
+                               },
+                               event.payload);
+  if (!read) return std::nullopt;
+  return e;
+}
+
+RunEvent note_event(double t, std::string_view note) {
+  RunEvent e;
+  e.kind = RunEvent::Kind::note;
+  e.t = schema::recorded_time(t);
+  e.text = text(note);
   return e;
 }
 

@@ -1,12 +1,13 @@
 #pragma once
-// One line of the run record as the plant link needs it: fixed size and trivially copyable, so that
-// the journal's writer thread hands it to the link's thread through a lock-free queue
-// (wire::SpscQueue) without allocating and without waiting on the network.
+// One event of the run as the plant link needs it: fixed size and trivially copyable, so that the
+// journal's writer thread hands it to the link's thread through a lock-free queue (wire::SpscQueue)
+// without allocating and without waiting on the network. A copy that owns its texts: the event's own
+// names are views that live only as long as the run.
 
 #include <array>
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <optional>
+#include <string_view>
 
 #include "journal/event.hpp"
 
@@ -41,8 +42,11 @@ struct RunEvent {
   float spindle_hz = 0.0f;
 };
 
-// The event a journal line (journal/event_json.cpp's shape) is, or nullopt for lines the plant does
-// not read (the record header, injected faults, the summary).
-[[nodiscard]] std::optional<RunEvent> run_event_of(const nlohmann::json& line);
+// The plant's copy of a run's event as the journal records it (journal::EventListener), or nullopt for
+// events the plant does not read (injected faults). Times and samples as the journal's line records
+// them (schema/journal_line.hpp), so that the plant reads what the run record holds.
+[[nodiscard]] std::optional<RunEvent> run_event_of(const journal::Event& e);
+// A note, whole (cut to a Text).
+[[nodiscard]] RunEvent note_event(double t, std::string_view text);
 
 }  // namespace cellctl::plant_link

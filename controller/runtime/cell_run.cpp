@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "journal/record_header.hpp"
@@ -32,16 +31,14 @@ supervisor::SupervisorSettings settings_for(const config::CellConfig& cell, cons
 // How each device's link did, from its session's health: the worst round trip and the longest
 // silence between good replies say how close the run came to a link fault (an emulated run
 // beside a load shows whether the emulators kept up).
-std::string link_figures(const CellDevices& devices, nlohmann::json& out) {
+std::string link_figures(const CellDevices& devices, std::vector<schema::LinkFigures>& out) {
   std::string text;
   for (const auto* d : devices.devices()) {
     const std::string name(d->name());
     const link::LinkHealth& h = d->session().health();
     const double round_trip_ms = link::to_milliseconds(h.max_round_trip);
     const double silence_ms = link::to_milliseconds(h.max_silence);
-    out[name] = {{"replies", h.good_replies},    {"max_round_trip_ms", round_trip_ms},
-                 {"max_silence_ms", silence_ms}, {"timeouts", h.timeouts},
-                 {"retries", h.retries},         {"bad_frames", h.bad_frames}};
+    out.push_back({name, h.good_replies, round_trip_ms, silence_ms, h.timeouts, h.retries, h.bad_frames});
     text += fmt::format(
         "link {:<8} {} replies, worst round trip {:.1f} ms, longest silence {:.1f} ms, {} time-outs, {} "
         "retries, {} bad frames\n",
@@ -88,7 +85,7 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
     }
   } catch (const std::exception& e) {
     // A port that did not open (or a device set-up refused): the record says why nothing ran.
-    journal_.close({{"outcome", "not started"}, {"reason", e.what()}});
+    journal_.close_not_started(e.what());
     throw;
   }
   supervisor_ = std::make_unique<supervisor::Supervisor>(
@@ -221,18 +218,18 @@ CellRun::FirstFault CellRun::first_fault(monitor::Rule rule, config::StopCategor
   return f;
 }
 
-void CellRun::report_safety(RunResult& r, nlohmann::json& extra) const {
+void CellRun::report_safety(RunResult& r, schema::RunFigures& figures) const {
   r.safety = safe_stop_->verdicts();
-  nlohmann::json devices = nlohmann::json::object();
   for (const auto* d : parts_.devices->devices()) {
     const auto& verdict = r.safety[d->slot()];
-    devices[std::string(d->name())] = {{"safe", to_string(verdict->safe)}, {"evidence", verdict->evidence}};
+    figures.devices.push_back({std::string(d->name()), to_string(verdict->safe), verdict->evidence});
   }
-  extra["devices"] = devices;
   if (!first_fault_ || supervisor_->state() == supervisor::State::complete) return;
   // A link that failed is named as the link (device, symptom, since when), whatever rule latched.
   const auto& f = *first_fault_;
-  nlohmann::json ended{{"t", journal::round_ms(f.t)}, {"rule", monitor::to_string(f.rule)}};
+  schema::EndedBy ended;
+  ended.t = f.t;
+  ended.rule = monitor::to_string(f.rule);
   if (f.link) {
     // The session's own words when it gave up on the link; else what the monitor saw of it.
     const auto reason = safe_stop_->lost_reason(cell::slot(*f.link));
@@ -240,20 +237,20 @@ void CellRun::report_safety(RunResult& r, nlohmann::json& extra) const {
     if (auto* enc = parts_.devices->encoder();
         *f.link == cell::Device::encoder && enc && !enc->restart_reason().empty())
       symptom += "; DP start-up begun again: " + enc->restart_reason();
-    ended["kind"] = "link";
-    ended["device"] = cell::to_string(*f.link);
-    ended["symptom"] = symptom;
-    ended["since_s"] = journal::round_ms(f.link_since);
+    ended.kind = schema::EndedBy::Kind::link;
+    ended.device = cell::to_string(*f.link);
+    ended.symptom = symptom;
+    ended.since_s = f.link_since;
     r.ended_by = fmt::format("{} link fault, no good reply since {:.3f} s: {}", cell::to_string(*f.link),
                              f.link_since, symptom);
   } else {
     const bool by_operator =
         f.rule == monitor::Rule::operator_stop || f.rule == monitor::Rule::emergency_stop;
-    ended["kind"] = by_operator ? "operator" : "monitor";
-    ended["detail"] = std::string(f.detail.view());
+    ended.kind = by_operator ? schema::EndedBy::Kind::operator_stop : schema::EndedBy::Kind::monitor;
+    ended.detail = std::string(f.detail.view());
     r.ended_by = fmt::format("{} at {:.3f} s: {}", monitor::to_string(f.rule), f.t, f.detail.view());
   }
-  extra["ended_by"] = ended;
+  figures.ended_by = std::move(ended);
 }
 
 void CellRun::publish_status(double t) {
@@ -429,16 +426,16 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   r.cycles = loop_->stats().cycles;
   r.loop_summary = loop_->summary();
-  nlohmann::json extra;
-  r.link_summary = link_figures(*parts_.devices, extra["links"]);
-  extra["cycles"] = r.cycles;
-  extra["overrun_cycles"] = loop_->stats().overrun_cycles;
-  extra["missed_deadlines"] = loop_->stats().missed_deadlines;
-  extra["jitter_p99_us"] =
+  schema::RunFigures figures;
+  r.link_summary = link_figures(*parts_.devices, figures.links);
+  figures.cycles = r.cycles;
+  figures.overrun_cycles = loop_->stats().overrun_cycles;
+  figures.missed_deadlines = loop_->stats().missed_deadlines;
+  figures.jitter_p99_us =
       std::chrono::duration<double, std::micro>(loop_->stats().jitter.percentile(0.99)).count();
-  extra["wall_s"] = r.wall_s;
-  extra["mode"] = to_string(options_.mode);
-  extra["corrections"] = supervisor_->corrections();
+  figures.wall_s = r.wall_s;
+  figures.mode = to_string(options_.mode);
+  figures.corrections = supervisor_->corrections();
   if (const auto* teach = supervisor_->teach_in()) {
     TeachInOutcome o;
     o.done = teach->phase() == routines::TeachInPhase::done;
@@ -447,13 +444,11 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
     o.restored = !teach->switched() || o.done;
     o.units_per_mm = teach_in_encoder_->units_per_mm();
     if (o.done) o.taught = teach_in_encoder_->taught(o.result.total_resolution);
-    extra["teach_in"] = {{"taught", o.done},
-                         {"total_resolution", o.result.total_resolution},
-                         {"encoder_restored", o.restored}};
+    figures.teach_in = schema::TeachInFigures{o.done, o.result.total_resolution, o.restored};
     r.teach_in = std::move(o);
   }
-  report_safety(r, extra);
-  journal_.close(extra);
+  report_safety(r, figures);
+  journal_.close(figures);
   r.faults = journal_.summary().faults();
   r.summary_text = journal_.summary().to_text();
   return r;

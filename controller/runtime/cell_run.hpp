@@ -12,7 +12,6 @@
 #include <functional>
 #include <memory>
 #include <mutex>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <thread>
@@ -21,6 +20,7 @@
 #include "cell/cell_state.hpp"
 #include "command/arbiter.hpp"
 #include "config/cell_config.hpp"
+#include "journal/event_listener.hpp"
 #include "journal/event_sink.hpp"
 #include "journal/journal.hpp"
 #include "link/clock.hpp"
@@ -40,6 +40,8 @@
 #include "runtime/safe_stop.hpp"
 #include "runtime/teach_in_encoder.hpp"
 #include "runtime/teach_in_outcome.hpp"
+#include "schema/record_header.hpp"
+#include "schema/summary_line.hpp"
 #include "status/status_view.hpp"
 #include "supervisor/supervisor.hpp"
 
@@ -48,7 +50,7 @@ namespace cellctl::runtime {
 struct RunOptions {
   RunMode mode = RunMode::emulated;
   std::filesystem::path journal_dir = "runs/latest";
-  nlohmann::json record_header;  // the journal's first line (journal/record_header.hpp); none if null
+  std::optional<schema::RecordHeader> record_header;  // the journal's first line (journal/record_header.hpp)
   bool trace = false;
   supervisor::SupervisorSettings supervisor;  // mode and sample period are filled in from the config
   // How long after the end a stop is sent again to a device that has not confirmed it and has no
@@ -127,10 +129,9 @@ class CellRun {
     journal::NoteWriter notes(w, 0.0);
     for (const char c : text) notes.put(c);
   }
-  // Every journal line as it is written, on the journal's thread (journal::Journal::on_line).
-  void on_journal_line(std::function<void(const nlohmann::json&)> listener) {
-    journal_.on_line(std::move(listener));
-  }
+  // Hears every event as the journal records it, on the journal's thread (journal::Journal::listen);
+  // nullptr: nobody. Taken away (nullptr) before the listener goes.
+  void listen(journal::EventListener* listener) { journal_.listen(listener); }
   // A manual Teach-In step: the operator has moved the axis as its prompt asked (any thread).
   void confirm() noexcept { confirm_.store(true); }
 
@@ -155,8 +156,8 @@ class CellRun {
   // supervisor takes the command (where the run has ended) or the latches alone are cleared.
   void judge_reset(double t, supervisor::Command c, const journal::Text& source);
   void report_devices(double t, RunResult& r);
-  // The summary's "devices" and "ended_by" (journal/README: the summary line).
-  void report_safety(RunResult& r, nlohmann::json& extra) const;
+  // The safe state each device was left in and what ended the run, for the caller and the summary.
+  void report_safety(RunResult& r, schema::RunFigures& figures) const;
   [[nodiscard]] static constexpr unsigned bit(supervisor::Command c) noexcept {
     return 1u << static_cast<unsigned>(c);
   }

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
+#include <tuple>
 #include <variant>
 
+#include "schema/plant_tags.hpp"
 #include "web/answer_status.hpp"
 #include "web/client_watch.hpp"
 #include "web/fault_remedy.hpp"
@@ -20,8 +22,8 @@ namespace {
 
 using namespace std::chrono_literals;
 
-std::string sse(std::string_view event, const nlohmann::json& data) {
-  return fmt::format("event: {}\ndata: {}\n\n", event, data.dump());
+std::string sse(std::string_view event, const std::string& payload) {
+  return fmt::format("event: {}\ndata: {}\n\n", event, payload);
 }
 
 void refuse(httplib::Response& res, const Verdict& v) {
@@ -151,20 +153,20 @@ void OperatorPage::route() {
           if (stop_.load() || (session && !guard_.session_open(*session))) return false;
           std::string out;
           if (*first) {
-            out += sse("cell", {{"cell", cell_.name}});
+            out += sse("cell", schema::cell_payload(cell_.name));
             std::lock_guard lock(mutex_);
-            out += sse("mode", mirror_.mode_tag());
+            out += sse("mode", schema::mode_payload(mirror_.mode_tag()));
             *first = false;
           } else {
             std::this_thread::sleep_for(200ms);  // the page's refresh period; a server thread, never the loop
           }
-          out += sse("status", status_json());
+          out += sse("status", status_payload());
           {
             std::lock_guard lock(mutex_);
             if (*last_admin != admin_version_) {
               *last_admin = admin_version_;
-              out += sse("admin", admin_json());
-              out += sse("mode", mirror_.mode_tag());
+              out += sse("admin", admin_payload());
+              out += sse("mode", schema::mode_payload(mirror_.mode_tag()));
             }
           }
           return sink.write(out.data(), out.size());
@@ -206,10 +208,6 @@ void OperatorPage::route() {
   s.Get("/metrics", [this](const httplib::Request&, httplib::Response& res) {
     res.set_content(metrics_text(), "text/plain; version=0.0.4");
   });
-}
-
-void OperatorPage::on_journal_line(const nlohmann::json& line) noexcept {
-  events_.push(line);
 }
 
 void OperatorPage::pump() {
@@ -262,18 +260,18 @@ nlohmann::json OperatorPage::command(const std::string& word, const std::string&
   return *immediate;
 }
 
-nlohmann::json OperatorPage::status_json() {
+std::string OperatorPage::status_payload() {
   plant_link::LiveStatus live;
   if (const auto r = run_.status())
     live = {true, r->view.t, r->view.step, r->view.steps, r->label, r->view.jitter_max_us};
   std::lock_guard lock(mutex_);
-  return mirror_.status_tag(live);
+  return schema::status_payload(mirror_.status_tag(live));
 }
 
-nlohmann::json OperatorPage::admin_json() {
+std::string OperatorPage::admin_payload() {
   auto a = mirror_.admin_tag();
-  for (auto& f : a["active_faults"]) f["remedy"] = std::string(fault_remedy(f["rule"].get<std::string>()));
-  return a;
+  for (auto& f : a.active_faults) f.remedy = std::string(fault_remedy(f.rule));
+  return schema::admin_payload(a);
 }
 
 std::string OperatorPage::metrics_text() {
@@ -322,20 +320,20 @@ std::string OperatorPage::metrics_text() {
     out += fmt::format("cellctl_run_seconds {:.6f}\n", v.t);
   }
   std::lock_guard lock(mutex_);
-  const auto a = mirror_.admin_tag();
-  for (const auto& [key, help] :
-       {std::pair{"runs", "Runs started."}, std::pair{"steps_done", "Recipe steps completed."},
-        std::pair{"steps_failed", "Recipe steps failed."},
-        std::pair{"faults", "Safety monitor faults latched."},
-        std::pair{"ProdProcessedCount", "Runs completed (PackML Admin.ProdProcessedCount)."}}) {
-    const auto name =
-        fmt::format("cellctl_{}_total", key == std::string_view("ProdProcessedCount") ? "processed" : key);
+  const auto& a = mirror_.admin_tag();
+  for (const auto& [key, help, n] :
+       {std::tuple{"runs", "Runs started.", a.runs},
+        std::tuple{"steps_done", "Recipe steps completed.", a.steps_done},
+        std::tuple{"steps_failed", "Recipe steps failed.", a.steps_failed},
+        std::tuple{"faults", "Safety monitor faults latched.", a.faults},
+        std::tuple{"processed", "Runs completed (PackML Admin.ProdProcessedCount).", a.processed}}) {
+    const auto name = fmt::format("cellctl_{}_total", key);
     add(name, "counter", help);
-    out += fmt::format("{} {}\n", name, a[key].get<std::uint64_t>());
+    out += fmt::format("{} {}\n", name, n);
   }
   add("cellctl_state", "gauge", "PackML StateCurrent of the cell.");
-  out += fmt::format("cellctl_state{{state=\"{}\"}} {}\n", mirror_.state(),
-                     mirror_.state_tag()["StateCurrent"].get<int>());
+  out +=
+      fmt::format("cellctl_state{{state=\"{}\"}} {}\n", mirror_.state(), mirror_.state_tag().state_current);
   add("cellctl_web_commands_total", "counter",
       "Commands received by the page, refused ones, ones without a valid token or session, and ones not "
       "obeyed because their client had gone.");

@@ -15,9 +15,9 @@
 // by the state, 410 expired or abandoned, …), the words in the JSON body.
 //
 // Like the plant link, it never touches the control loop: the run's events come from the journal's
-// writer thread through a bounded lock-free queue, the status from the run's StatusBoard, commands go
-// through the operator's one command path (plant_link::CommandDesk → the arbiter) and are answered
-// with the run's own outcome.
+// writer thread through a bounded lock-free queue (events()), the status from the run's StatusBoard, commands
+// go through the operator's one command path (plant_link::CommandDesk → the arbiter) and are answered with
+// the run's own outcome.
 
 #include <atomic>
 #include <condition_variable>
@@ -51,15 +51,16 @@ class OperatorPage {
   OperatorPage(const OperatorPage&) = delete;
   OperatorPage& operator=(const OperatorPage&) = delete;
 
-  // The journal's writer thread (one producer): never blocks.
-  void on_journal_line(const nlohmann::json& line) noexcept;
+  // What the run's journal tells (one producer, its writer thread): never blocks.
+  [[nodiscard]] journal::EventListener& events() noexcept { return events_; }
   [[nodiscard]] int port() const noexcept { return port_; }
 
  private:
   void route();
   void pump();
-  [[nodiscard]] nlohmann::json status_json();
-  [[nodiscard]] nlohmann::json admin_json();
+  // The live events' payloads: the status, and the admin tag with each active fault's remedy.
+  [[nodiscard]] std::string status_payload();
+  [[nodiscard]] std::string admin_payload();
   [[nodiscard]] std::string metrics_text();
   [[nodiscard]] nlohmann::json command(const std::string& word, const std::string& body,
                                        const command::CommandSource& source, command::SteadyTime received);

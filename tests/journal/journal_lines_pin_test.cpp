@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -104,32 +103,20 @@ TEST(JournalLines, EveryKindOfLineIsPinned) {
     j.post(3.1, InjectedFault{"spindle", "error", "spindle:error@3", "the converter latches fault 31", true,
                               true});
     j.post(3.2, RunEnded{"aborted"});
-    j.close({{"links",
-              {{"scu",
-                {{"replies", 47},
-                 {"max_round_trip_ms", 11.0},
-                 {"max_silence_ms", 100.0},
-                 {"timeouts", 7},
-                 {"retries", 6},
-                 {"bad_frames", 0}}}}},
-             {"cycles", 3217},
-             {"overrun_cycles", 0},
-             {"missed_deadlines", 0},
-             {"jitter_p99_us", 12.5},
-             {"wall_s", 0.25},
-             {"mode", "virtual-time"},
-             {"corrections", 1},
-             {"teach_in", {{"taught", true}, {"total_resolution", 4096.0}, {"encoder_restored", true}}},
-             {"devices",
-              {{"scu", {{"safe", "observed"}, {"evidence", "every actuator reported at rest"}}},
-               {"spindle", {{"safe", "unknown"}, {"evidence", "no answer to CMD System Stopp"}}}}},
-             {"ended_by",
-              {{"t", 2.1},
-               {"rule", "link_silent"},
-               {"kind", "link"},
-               {"device", "scu"},
-               {"symptom", "SCU silent for 1001 ms"},
-               {"since_s", 1.928}}}});
+    // What a run adds to its summary (runtime::CellRun), as a run that a lost SCU link ended has it.
+    schema::RunFigures run;
+    run.links = {{"scu", 47, 11.0, 100.0, 7, 6, 0}};
+    run.cycles = 3217;
+    run.jitter_p99_us = 12.5;
+    run.wall_s = 0.25;
+    run.mode = "virtual-time";
+    run.corrections = 1;
+    run.teach_in = schema::TeachInFigures{true, 4096, true};
+    run.devices = {{"scu", "observed", "every actuator reported at rest"},
+                   {"spindle", "unknown", "no answer to CMD System Stopp"}};
+    run.ended_by = schema::EndedBy{
+        2.1, "link_silent", schema::EndedBy::Kind::link, "scu", "SCU silent for 1001 ms", 1.928, {}};
+    j.close(run);
   }
   const auto lines = lines_of(dir / "journal.jsonl");
   const std::vector<std::string> expected = {
@@ -154,7 +141,7 @@ TEST(JournalLines, EveryKindOfLineIsPinned) {
       R"J({"device":"scu","event":"fault_injection_ended","kind":"silent","spec":"scu:silent@2+1","t":3.0,"what":"the line carries nothing either way"})J",
       R"J({"device":"spindle","event":"fault_injection_ended","kind":"error","spec":"spindle:error@3","still_active":true,"t":3.1,"what":"the converter latches fault 31"})J",
       R"J({"event":"run_ended","outcome":"aborted","t":3.2})J",
-      R"J({"corrections":1,"cycles":3217,"devices":{"scu":{"evidence":"every actuator reported at rest","safe":"observed"},"spindle":{"evidence":"no answer to CMD System Stopp","safe":"unknown"}},"duration_s":3.2,"ended_by":{"device":"scu","kind":"link","rule":"link_silent","since_s":1.928,"symptom":"SCU silent for 1001 ms","t":2.1},"event":"summary","faults":["1.300s operator_stop (category 2): Ctrl-C","2.000s injected: scu, silent, scu:silent@2+1, the line carries nothing either way","2.100s link_silent (category 0): scu silent for 301 ms (limit 300 ms)","3.000s injected: scu, silent, scu:silent@2+1, the line carries nothing either way","3.100s injected: spindle, error, spindle:error@3, still_active=true, the converter latches fault 31"],"jitter_p99_us":12.5,"journal_dropped":0,"links":{"scu":{"bad_frames":0,"max_round_trip_ms":11.0,"max_silence_ms":100.0,"replies":47,"retries":6,"timeouts":7}},"missed_deadlines":0,"mode":"virtual-time","outcome":"aborted","overrun_cycles":0,"steps":[{"count":1,"failed":0,"label":"go (line 3)","seconds":0.8},{"count":1,"failed":1,"label":"wait (line 4)","seconds":1.1}],"teach_in":{"encoder_restored":true,"taught":true,"total_resolution":4096.0},"wall_s":0.25})J",
+      R"J({"corrections":1,"cycles":3217,"devices":{"scu":{"evidence":"every actuator reported at rest","safe":"observed"},"spindle":{"evidence":"no answer to CMD System Stopp","safe":"unknown"}},"duration_s":3.2,"ended_by":{"device":"scu","kind":"link","rule":"link_silent","since_s":1.928,"symptom":"SCU silent for 1001 ms","t":2.1},"event":"summary","faults":["1.300s operator_stop (category 2): Ctrl-C","2.000s injected: scu, silent, scu:silent@2+1, the line carries nothing either way","2.100s link_silent (category 0): scu silent for 301 ms (limit 300 ms)","3.000s injected: scu, silent, scu:silent@2+1, the line carries nothing either way","3.100s injected: spindle, error, spindle:error@3, still_active=true, the converter latches fault 31"],"jitter_p99_us":12.5,"journal_dropped":0,"links":{"scu":{"bad_frames":0,"max_round_trip_ms":11.0,"max_silence_ms":100.0,"replies":47,"retries":6,"timeouts":7}},"missed_deadlines":0,"mode":"virtual-time","outcome":"aborted","overrun_cycles":0,"steps":[{"count":1,"failed":0,"label":"go (line 3)","seconds":0.8},{"count":1,"failed":1,"label":"wait (line 4)","seconds":1.1}],"teach_in":{"encoder_restored":true,"taught":true,"total_resolution":4096},"wall_s":0.25})J",
   };
   ASSERT_EQ(lines.size(), expected.size());
   for (std::size_t i = 0; i < lines.size(); ++i)
@@ -167,7 +154,7 @@ TEST(JournalLines, ARunThatDidNotStart) {
   const auto dir = fresh_dir("not-started");
   {
     Journal j(dir, WhenFull::wait);
-    j.close({{"outcome", "not started"}, {"reason", "cannot open /dev/ttyUSB0: No such file or directory"}});
+    j.close_not_started("cannot open /dev/ttyUSB0: No such file or directory");
   }
   const auto lines = lines_of(dir / "journal.jsonl");
   const std::vector<std::string> expected = {
@@ -186,9 +173,10 @@ TEST(JournalLines, ARunTheMonitorEnded) {
     j.post(0.5, StepStarted{0, "go (line 3)"});
     j.post(0.7, Fault{"emergency_stop", 0, Text::format("Ctrl-C twice")});
     j.post(0.9, RunEnded{"aborted"});
-    j.close({{"devices", nlohmann::json::object()},
-             {"ended_by",
-              {{"t", 0.7}, {"rule", "emergency_stop"}, {"kind", "operator"}, {"detail", "Ctrl-C twice"}}}});
+    schema::RunFigures run;
+    run.ended_by = schema::EndedBy{0.7, "emergency_stop", schema::EndedBy::Kind::operator_stop, {}, {},
+                                   0.0, "Ctrl-C twice"};
+    j.close(run);
   }
   const auto lines = lines_of(dir / "journal.jsonl");
   const std::vector<std::string> expected = {
@@ -196,7 +184,7 @@ TEST(JournalLines, ARunTheMonitorEnded) {
       R"J({"event":"step_started","label":"go (line 3)","step":1,"t":0.5})J",
       R"J({"category":0,"detail":"Ctrl-C twice","event":"fault","rule":"emergency_stop","t":0.7})J",
       R"J({"event":"run_ended","outcome":"aborted","t":0.9})J",
-      R"J({"devices":{},"duration_s":0.9,"ended_by":{"detail":"Ctrl-C twice","kind":"operator","rule":"emergency_stop","t":0.7},"event":"summary","faults":["0.700s emergency_stop (category 0): Ctrl-C twice"],"journal_dropped":0,"outcome":"aborted","steps":[{"count":1,"failed":0,"interrupted":1,"label":"go (line 3)","seconds":0.4}]})J",
+      R"J({"corrections":0,"cycles":0,"devices":{},"duration_s":0.9,"ended_by":{"detail":"Ctrl-C twice","kind":"operator","rule":"emergency_stop","t":0.7},"event":"summary","faults":["0.700s emergency_stop (category 0): Ctrl-C twice"],"jitter_p99_us":0.0,"journal_dropped":0,"links":null,"missed_deadlines":0,"mode":"","outcome":"aborted","overrun_cycles":0,"steps":[{"count":1,"failed":0,"interrupted":1,"label":"go (line 3)","seconds":0.4}],"wall_s":0.0})J",
   };
   EXPECT_EQ(lines, expected);
   std::filesystem::remove_all(dir);

@@ -7,9 +7,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "journal/event_sink.hpp"
+#include "journal/run_record.hpp"
 
 namespace cellctl::journal {
 namespace {
@@ -44,7 +46,9 @@ TEST(Journal, WritesEveryEventAsOneJsonLineThenTheSummary) {
     j.post(0.3, s);
     j.post(1.2, StepEnded{0, "go (line 3)", true, {}});
     j.post(1.3, RunEnded{"complete"});
-    j.close({{"cycles", 1300}});
+    schema::RunFigures run;
+    run.cycles = 1300;
+    j.close(run);
   }
   const auto lines = read_lines(dir / "journal.jsonl");
   ASSERT_EQ(lines.size(), 7u);
@@ -116,6 +120,79 @@ TEST(Journal, WaitModeLosesNothingUnderAFlood) {
   const auto lines = read_lines(dir / "journal.jsonl");
   ASSERT_EQ(lines.size(), static_cast<std::size_t>(kEvents) + 1);
   EXPECT_EQ(lines[kEvents - 1]["text"], "n49999");
+  std::filesystem::remove_all(dir);
+}
+
+// One reading of the record: what the journal kept while it wrote (its plots, its summary) is what
+// `cellctl report` reads back from the file.
+TEST(Journal, TheRecordReadBackIsTheOneItKeptWhileWriting) {
+  const auto dir = fresh_dir("read-back");
+  std::string long_note;
+  while (long_note.size() < 3000) long_note += "a long device note — ";
+  schema::RecordHeader header;
+  header.recipe = "demo";
+  header.recipe_version = "";
+  header.recipe_file = "recipes/demo.yaml";
+  header.axes = {{"x", true}, {"z", false}};
+  header.steps = {{"go (line 3)", "move", std::nullopt}, {"wait (line 4)", "dwell", 0.5}};
+  {
+    Journal j(dir, WhenFull::wait, header);
+    j.post(0.0000004, RunStarted{"demo", "cell", "virtual-time", 2});
+    j.post(0.1, StepStarted{0, "go (line 3)"});
+    for (int i = 0; i < 50; ++i) {
+      Sample s;
+      s.axes = 2;
+      s.planned_mm = {1000.0f / 3.0f + static_cast<float>(i) * 0.123457f, -2.00004f};
+      s.scu_mm = {0.33333f * static_cast<float>(i), 59999.99f};
+      s.encoder_mm = 12.34567f;
+      s.spindle_set_hz = 400.0f;
+      s.spindle_actual_hz = 399.99995f;
+      j.post(0.1 + i * 0.0200000003, s);
+    }
+    j.post(1.2, Command{"hold", Text::format("terminal")});
+    j.post(1.2, StateChanged{"Execute", "Holding", {}});
+    j.post(1.4, StateChanged{"Held", "Unholding", {}});
+    post_note(j, 1.5, long_note);
+    j.post(1.6, InjectedFault{"scu", "silent", "scu:silent@1.6", "the line carries nothing", true, true});
+    j.post(1.7, Fault{"overspeed", 1, Text::format("x at 30 mm/s")});
+    j.post(1.8, StepEnded{0, "go (line 3)", false, Text::format("stopped")});
+    j.post(1.9, RunEnded{"stopped"});
+    j.close();
+    const auto& kept = j.summary().record();
+    const auto read = RunRecord::load(dir);
+    ASSERT_EQ(read.samples().size(), kept.samples().size());
+    for (std::size_t i = 0; i < kept.samples().size(); ++i) {
+      const auto &a = kept.samples()[i], &b = read.samples()[i];
+      EXPECT_EQ(a.t, b.t);
+      EXPECT_EQ(a.planned_mm, b.planned_mm);
+      EXPECT_EQ(a.scu_mm, b.scu_mm);
+      EXPECT_EQ(a.encoder_mm, b.encoder_mm);
+      EXPECT_EQ(a.spindle_set_hz, b.spindle_set_hz);
+      EXPECT_EQ(a.spindle_hz, b.spindle_hz);
+    }
+    ASSERT_EQ(read.steps().size(), kept.steps().size());
+    for (std::size_t i = 0; i < kept.steps().size(); ++i) {
+      const auto &a = kept.steps()[i], &b = read.steps()[i];
+      EXPECT_EQ(std::tie(a.step, a.label, a.start, a.end, a.held_s, a.result, a.detail),
+                std::tie(b.step, b.label, b.start, b.end, b.held_s, b.result, b.detail));
+    }
+    ASSERT_EQ(read.marks().size(), kept.marks().size());
+    for (std::size_t i = 0; i < kept.marks().size(); ++i) {
+      EXPECT_EQ(read.marks()[i].t, kept.marks()[i].t);
+      EXPECT_EQ(read.marks()[i].kind, kept.marks()[i].kind);
+      EXPECT_EQ(read.marks()[i].text, kept.marks()[i].text);
+    }
+    EXPECT_EQ(read.marks()[1].text, long_note);
+    EXPECT_EQ(read.outcome(), kept.outcome());
+    EXPECT_EQ(read.start(), kept.start());
+    EXPECT_EQ(read.end(), kept.end());
+    EXPECT_EQ(read.recipe_label(), kept.recipe_label());
+    EXPECT_EQ(read.recipe_label(), "demo  (recipes/demo.yaml)");
+    EXPECT_EQ(read.axis_names(), kept.axis_names());
+    EXPECT_EQ(read.measured_axis(), kept.measured_axis());
+    EXPECT_EQ(read.planned_s(read.steps()[0]), kept.planned_s(kept.steps()[0]));
+    EXPECT_FALSE(read.loop_figures().has_value());  // no run added its loop figures
+  }
   std::filesystem::remove_all(dir);
 }
 

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <string>
 
-#include "journal/event_json.hpp"
 #include "journal/plot_html.hpp"
 #include "journal/plot_model.hpp"
 #include "journal/plot_scale.hpp"
@@ -41,27 +40,27 @@ TEST(NiceScale, FlatOrEmptyRangeGetsASpan) {
 
 RunRecord two_axis_run() {
   RunRecord r;
-  r.add({{"t", 0.0},
-         {"event", "record"},
-         {"recipe", "r"},
-         {"recipe_file", "r.yaml"},
-         {"axes", {{{"name", "x"}, {"measured", true}}, {{"name", "z"}, {"measured", false}}}},
-         {"steps", {{{"step", 1}, {"kind", "move"}, {"label", "go <in> (line 3)"}}}}});
-  r.add(to_json({0.0, RunStarted{"r", "c", "virtual-time", 1}}));
-  r.add(to_json({0.1, StepStarted{0, "go <in> (line 3)"}}));
+  schema::RecordHeader h;
+  h.recipe = "r";
+  h.recipe_file = "r.yaml";
+  h.axes = {{"x", true}, {"z", false}};
+  h.steps = {{"go <in> (line 3)", "move", std::nullopt}};
+  r.set_header(h);
+  r.add({0.0, RunStarted{"r", "c", "virtual-time", 1}});
+  r.add({0.1, StepStarted{0, "go <in> (line 3)"}});
   for (int i = 0; i <= 10; ++i) {
     Sample s;
     s.axes = 2;
     s.planned_mm = {static_cast<float>(i), 5.0f};
     s.scu_mm = {static_cast<float>(i) - 0.5f, 5.0f};
     s.encoder_mm = static_cast<float>(i) - 0.25f;
-    r.add(to_json({0.1 + i * 0.1, s}));
+    r.add({0.1 + i * 0.1, s});
   }
-  r.add(to_json({0.6, Fault{"overspeed", 1, Text::format("x at 30 mm/s")}}));
-  r.add({{"t", 0.7}, {"event", "fault_injected"}, {"device", "scu"}, {"what", "reply lost"}});
-  r.add(to_json({0.8, Command{"hold", Text::format("terminal")}}));
-  r.add(to_json({1.1, StepEnded{0, "go <in> (line 3)", true, {}}}));
-  r.add(to_json({1.2, RunEnded{"complete"}}));
+  r.add({0.6, Fault{"overspeed", 1, Text::format("x at 30 mm/s")}});
+  r.add({0.7, InjectedFault{"scu", "silent", "scu:silent@0.7", "reply lost", false, false}});
+  r.add({0.8, Command{"hold", Text::format("terminal")}});
+  r.add({1.1, StepEnded{0, "go <in> (line 3)", true, {}}});
+  r.add({1.2, RunEnded{"complete"}});
   r.finish();
   return r;
 }
@@ -78,7 +77,7 @@ TEST(PlotModel, NamesAxesMeasuresFollowingErrorAndMarksFaultsInjectionsAndComman
   EXPECT_NEAR(m.panels[1].series[0].v[3], 0.25, 1e-6);  // against the encoder, x measures
   ASSERT_EQ(m.marks.size(), 3u);
   EXPECT_EQ(m.marks[0].kind, "fault");
-  EXPECT_EQ(m.marks[1].kind, "injected fault");  // an event kind this reader does not know, fault-like
+  EXPECT_EQ(m.marks[1].kind, "injected fault");
   EXPECT_NE(m.marks[1].text.find("reply lost"), std::string::npos);
   EXPECT_EQ(m.marks[2].kind, "command");
   ASSERT_EQ(m.steps.size(), 1u);
@@ -91,10 +90,10 @@ TEST(PlotModel, FollowingErrorOnlyDuringMoves) {
   s.axes = 1;
   s.planned_mm = {0.0f};
   s.scu_mm = {40.0f};  // before any move the plan is not the axis's
-  r.add(to_json({0.0, s}));
-  r.add(to_json({0.1, StepStarted{0, "move"}}));
-  r.add(to_json({0.2, s}));
-  r.add(to_json({0.3, StepEnded{0, "move", true, {}}}));
+  r.add({0.0, s});
+  r.add({0.1, StepStarted{0, "move"}});
+  r.add({0.2, s});
+  r.add({0.3, StepEnded{0, "move", true, {}}});
   r.finish();
   const auto err = following_error(r, 0);
   ASSERT_EQ(err.size(), 2u);
@@ -109,17 +108,17 @@ TEST(PlotModel, ALongRunIsDrawnByEachBucketsExtremesKeepingPeaksAndGaps) {
   constexpr int kSamples = 100000;
   constexpr int kSpike = 54321;
   for (int i = 0; i < kSamples; ++i) {
-    if (i == 40000) r.add(to_json({i * 0.02, StepStarted{0, "move"}}));
+    if (i == 40000) r.add({i * 0.02, StepStarted{0, "move"}});
     Sample s;
     s.axes = 1;
     s.planned_mm = {static_cast<float>(i % 7)};
     s.scu_mm = {0.0f};
     s.spindle_actual_hz = i == kSpike ? 400.0f : 10.0f;
-    r.add(to_json({i * 0.02, s}));
-    if (i == 60000) r.add(to_json({i * 0.02, StepEnded{0, "move", true, {}}}));
+    r.add({i * 0.02, s});
+    if (i == 60000) r.add({i * 0.02, StepEnded{0, "move", true, {}}});
     // A move shorter than a bucket (25 samples each here): gap, values, gap within one bucket.
-    if (i == 80005) r.add(to_json({i * 0.02, StepStarted{1, "move"}}));
-    if (i == 80010) r.add(to_json({i * 0.02, StepEnded{1, "move", true, {}}}));
+    if (i == 80005) r.add({i * 0.02, StepStarted{1, "move"}});
+    if (i == 80010) r.add({i * 0.02, StepEnded{1, "move", true, {}}});
   }
   r.finish();
   const auto m = plot_model({&r});

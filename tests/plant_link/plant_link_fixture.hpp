@@ -50,7 +50,7 @@ class PlantLinkTest : public RunFixture {
     });
     link_ = std::make_unique<plant_link::PlantLink>(
         link_config_, cell_, plant_link::fixed_run(*arbiter_, run.status(), "virtual-time"));
-    run.on_journal_line([this](const nlohmann::json& j) { link_->on_journal_line(j); });
+    run.listen(&link_->events());
     ASSERT_TRUE(wait_until([&] { return link_->counters().connected; }, 10s)) << "the link never connected";
   }
 

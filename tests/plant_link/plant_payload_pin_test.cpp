@@ -17,7 +17,6 @@
 #include "command/arbiter.hpp"
 #include "config/cell_core.hpp"
 #include "journal/event.hpp"
-#include "journal/event_json.hpp"
 #include "plant_link/plant_link.hpp"
 #include "plant_test_support.hpp"
 
@@ -67,8 +66,13 @@ class PlantPayloadPin : public ::testing::Test {
     ASSERT_TRUE(plant_probe_->wait_for([](const Message& m) { return MqttProbe::on(m, "/admin"); }));
   }
 
-  // An event as the run's journal hands it to the link.
-  void feed(double t, const Payload& p) { link_->on_journal_line(to_json({t, p})); }
+  // An event as the run's journal hands it to the link (its notes whole).
+  void feed(double t, const Payload& p) {
+    if (const auto* note = std::get_if<Note>(&p))
+      link_->events().on_note(t, note->text.view());
+    else
+      link_->events().on_event({t, p});
+  }
 
   // A command from the MES, once the link has handed it to the job.
   void command(const std::string& word, const std::string& payload, command::State state) {
