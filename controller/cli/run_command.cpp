@@ -105,7 +105,7 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
   options.trace = global.trace;
   options.faults = args.faults;
   // The plant link's section is read (and so checked) before anything opens: a bad one is exit 3.
-  const auto plant_link = plant_link::load_link_config(cell);
+  const auto plant_link = plant_link::load_link_config(cell.document.value(), cell);
   // The page's options and token likewise: plain HTTP off loopback, a short token: exit 2.
   std::string page_problem;
   const auto page = page_setup(args.page, page_problem);

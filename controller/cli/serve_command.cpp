@@ -32,7 +32,8 @@ struct ServeArgs {
 
 int serve(const GlobalOptions& global, const ServeArgs& args) {
   const auto cell = config::load_cell_config(global.config);
-  auto link_config = plant_link::load_link_config(cell);  // a bad section: exit 3, before anything opens
+  // A bad section: exit 3, before anything opens.
+  auto link_config = plant_link::load_link_config(cell.document.value(), cell);
   std::string page_problem;  // plain HTTP off loopback, a short token: refused before anything opens
   const auto page = page_setup(args.page, page_problem);
   if (!page_problem.empty()) {

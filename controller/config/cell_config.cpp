@@ -11,6 +11,7 @@ CellConfig load_cell_config(const std::filesystem::path& path) {
 CellConfig parse_cell_config(const YamlNode& root, const std::filesystem::path& source) {
   // `plant` is the emulated cell's coupling: read with the emulators' set-up, allowed here;
   // `plant_link` (the MQTT link to the plant) is read by controller/plant_link where the link is built.
+  // Both read them from `document`, this parse of the file.
   root.only_keys({"cell", "axes", "limits", "stops", "loop", "plant", "plant_link", "scu", "spindle",
                   "encoder", "state_dir", "max_command_age_ms"});
   CellConfig cell;
@@ -20,6 +21,7 @@ CellConfig parse_cell_config(const YamlNode& root, const std::filesystem::path& 
   if (auto n = root.maybe("encoder")) cell.encoder = parse_encoder_section(*n);
   if (auto n = root.maybe("scu")) cell.scu = parse_scu_section(*n);
   check_cell(root, cell);
+  cell.document = root;
   return cell;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // The cell as the program that drives it sees it: the core (axes, limits, stops, loop) and, per
 // device, its port and session settings. Loaded and validated completely before anything is opened.
-// The emulators' set-up is not here: runtime/emulator_setup reads it where emulators are built.
+// The emulators' set-up and the plant link are not here: they are read where they are built
+// (runtime/emulator_setup, plant_link/link_config), from the file as parsed here (`document`), so the
+// file is parsed once and their errors still name file:line:column.
 
 #include <filesystem>
 #include <optional>
@@ -22,6 +24,9 @@ struct CellConfig : CellCore {
   // working directory unless the config names a folder (then relative to the config file, as every
   // path in a config: YamlNode::as_path).
   std::filesystem::path state_dir = "state";
+  // The whole file as parsed, for the sections read where their parts are built (their nodes carry
+  // file:line:column); none for a cell made in memory.
+  std::optional<YamlNode> document;
 };
 
 // Throws ConfigError (file:line:column: field: rule) on the first problem.

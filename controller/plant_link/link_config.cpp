@@ -104,9 +104,8 @@ LinkConfig parse_link_config(const config::YamlNode& s, const config::CellCore& 
   return c;
 }
 
-std::optional<LinkConfig> load_link_config(const config::CellCore& cell) {
-  const auto root = config::YamlNode::load_file(cell.source);
-  const auto section = root.maybe("plant_link");
+std::optional<LinkConfig> load_link_config(const config::YamlNode& document, const config::CellCore& cell) {
+  const auto section = document.maybe("plant_link");
   if (!section) return std::nullopt;
   return parse_link_config(*section, cell);
 }

@@ -3,8 +3,8 @@
 // port, client id, credentials, optional TLS), under which topic prefix it publishes the cell's PackML
 // tags, how often it publishes the status, and the folder a `start` command names recipes from.
 // The section is called plant_link because `plant:` is the emulated cell's coupling physics.
-// Read where the link is built (like the emulators' set-up); a bad value is a ConfigError with
-// file:line:column before anything moves.
+// Read where the link is built (like the emulators' set-up), from the cell's file as config/ parsed it;
+// a bad value is a ConfigError with file:line:column before anything moves.
 
 #include <chrono>
 #include <filesystem>
@@ -50,7 +50,9 @@ struct LinkConfig {
 // Throws config::ConfigError (file:line:column: field: rule). Relative paths are read from the
 // config file's folder.
 [[nodiscard]] LinkConfig parse_link_config(const config::YamlNode& section, const config::CellCore& cell);
-// The section from the cell's file (cell.source), or nullopt when it has none.
-[[nodiscard]] std::optional<LinkConfig> load_link_config(const config::CellCore& cell);
+// The section of the cell's file as config/ parsed it (config::CellConfig::document: the file is not
+// read again), or nullopt when it has none.
+[[nodiscard]] std::optional<LinkConfig> load_link_config(const config::YamlNode& document,
+                                                         const config::CellCore& cell);
 
 }  // namespace cellctl::plant_link

@@ -1,6 +1,7 @@
 #include "runtime/emulator_setup.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 namespace cellctl::runtime {
@@ -103,7 +104,10 @@ EmulatorSetup parse_emulator_setup(const YamlNode& root, const config::CellConfi
 }
 
 EmulatorSetup load_emulator_setup(const config::CellConfig& cell) {
-  return parse_emulator_setup(YamlNode::load_file(cell.source), cell);
+  if (!cell.document)
+    throw std::invalid_argument("the cell '" + cell.name +
+                                "' was made in memory: no file sets its emulators up");
+  return parse_emulator_setup(*cell.document, cell);
 }
 
 }  // namespace cellctl::runtime

@@ -1,9 +1,9 @@
 #pragma once
-// The emulated devices' set-up, read from the cell config file only where emulators are built (the
-// controller core and the sessions never see it): each emulator mirrors its device's session settings
-// (actuators and functions, station address, functionality, line) and adds its physics — actuator
-// ramps and scale error, the converter's motor and identification, the encoder's resolution and
-// EEPROM file — and the plant that couples them (the encoder's shaft slip).
+// The emulated devices' set-up, read from the cell config only where emulators are built (the
+// controller core and the sessions never see it), from the file as config/ parsed it: each emulator mirrors
+// its device's session settings (actuators and functions, station address, functionality, line) and adds its
+// physics — actuator ramps and scale error, the converter's motor and identification, the encoder's
+// resolution and EEPROM file — and the plant that couples them (the encoder's shaft slip).
 
 #include <filesystem>
 #include <optional>
@@ -50,7 +50,8 @@ struct EmulatorSetup {
                                                              const encoder::SessionConfig& session);
 [[nodiscard]] EmulatorSetup parse_emulator_setup(const config::YamlNode& root,
                                                  const config::CellConfig& cell);
-// From the file the cell was loaded from (cell.source).
+// From the cell's file as config/ parsed it (cell.document; the file is not read again). Throws
+// std::invalid_argument for a cell made in memory, which has no file.
 [[nodiscard]] EmulatorSetup load_emulator_setup(const config::CellConfig& cell);
 
 }  // namespace cellctl::runtime

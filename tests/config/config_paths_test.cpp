@@ -96,7 +96,7 @@ TEST_F(ConfigPaths, TheExamplePlantLinkSectionWorksPastedIntoTheShippedCell) {
   section.replace(at, section.find(' ', at) - at, password.string());
   write(dir_ / "recipes" / "demo.yaml", "recipe: {}\n");
   const auto cell = load_cell_config(shipped_cell_with("\n" + section));
-  const auto link = plant_link::load_link_config(cell);
+  const auto link = plant_link::load_link_config(cell.document.value(), cell);
   ASSERT_TRUE(link);
   EXPECT_TRUE(fs::is_directory(link->recipes)) << link->recipes;
   EXPECT_EQ(fs::weakly_canonical(link->recipes), fs::weakly_canonical(dir_ / "recipes"));
