@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "cli/confirm.hpp"
-#include "cli/home_job.hpp"
 #include "cli/run_command.hpp"
-#include "cli/run_record_info.hpp"
 #include "config/cell_config.hpp"
 #include "exit_codes/exit_codes.hpp"
+#include "jobs/home_job.hpp"
+#include "jobs/run_record_info.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "routines/home_record_file.hpp"
 
@@ -60,7 +60,7 @@ int home(const GlobalOptions& global, const HomeArgs& args) {
     spdlog::error("{}", problem);
     return kExitUsage;
   }
-  const auto chosen = homing_axes(cell, global.config, args.axes);
+  const auto chosen = jobs::homing_axes(cell, global.config, args.axes);
   if (const auto* why = std::get_if<std::string>(&chosen)) {
     spdlog::error("home: {}", *why);
     return kExitUsage;
@@ -92,11 +92,11 @@ int home(const GlobalOptions& global, const HomeArgs& args) {
       return kExitFailed;
   }
 
-  const auto run_dir =
-      args.run.journal_dir.empty() ? default_run_dir("home") : std::filesystem::path(args.run.journal_dir);
+  const auto run_dir = args.run.journal_dir.empty() ? jobs::default_run_dir("home")
+                                                    : std::filesystem::path(args.run.journal_dir);
   recipe::Recipe recipe;
   try {
-    recipe = write_homing_recipe(cell, axes, run_dir);
+    recipe = jobs::write_homing_recipe(cell, axes, run_dir);
   } catch (const recipe::RecipeErrors& e) {
     for (const auto& err : e.errors()) spdlog::error("{}", err.what());
     return kExitConfig;

@@ -10,15 +10,15 @@
 #include <vector>
 
 #include "cli/drive.hpp"
-#include "cli/end_state_gate.hpp"
-#include "cli/exit_codes.hpp"
 #include "cli/operator_console.hpp"
 #include "cli/plant_facing.hpp"
 #include "cli/run_narrator.hpp"
-#include "cli/run_record_info.hpp"
 #include "cli/status_printer.hpp"
 #include "cli/terminal_screen.hpp"
 #include "config/cell_config.hpp"
+#include "exit_codes/exit_codes.hpp"
+#include "jobs/end_state_gate.hpp"
+#include "jobs/run_record_info.hpp"
 #include "journal/record_header.hpp"
 #include "journal/run_record.hpp"
 #include "plant_link/link_config.hpp"
@@ -61,9 +61,9 @@ int run_recipe(const GlobalOptions& global, const std::string& recipe_file, cons
                   e.errors().size() == 1 ? "" : "s");
     return kExitConfig;
   }
-  return run_loaded_recipe(
-      global, cell, recipe, args,
-      args.journal_dir.empty() ? default_run_dir(recipe_file) : std::filesystem::path(args.journal_dir));
+  return run_loaded_recipe(global, cell, recipe, args,
+                           args.journal_dir.empty() ? jobs::default_run_dir(recipe_file)
+                                                    : std::filesystem::path(args.journal_dir));
 }
 
 }  // namespace
@@ -113,12 +113,12 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
     spdlog::error("{}", page_problem);
     return kExitUsage;
   }
-  const auto info = record_info(cell, global.config, recipe, recipe::unroll(recipe), options.mode);
+  const auto info = jobs::record_info(cell, global.config, recipe, recipe::unroll(recipe), options.mode);
   options.record_header = journal::record_header(info);
 
   runtime::CellRun run(cell, recipe, options);
   fmt::print("cellctl: running '{}' {} ({}) on cell '{}' — {}\n", recipe.name, recipe.version, recipe.source,
-             cell.name, mode_label(cell, options.mode));
+             cell.name, jobs::mode_label(cell, options.mode));
   for (const auto& d : run.links().describe()) fmt::print("  {}\n", d);
   for (const auto& f : options.faults)
     fmt::print("  fault to rehearse: {} — {}\n", f.text, runtime::FaultRehearsal::what(f));
@@ -144,7 +144,7 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
     auto facing = open_plant_facing(cell, plant_link, page,
                                     plant_link ? plant_link->recipes : std::filesystem::path("recipes"),
                                     access, [&screen](const std::string& line) { screen.message(line); });
-    EndStateGate gate(&facing);
+    jobs::EndStateGate gate(&facing);
     journal::EventListeners listeners{&narrator, &gate};
     run.listen(&listeners);
     fmt::print("  {}\n", ctrl_c_hint(cell.stops.operator_stop));

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "cli/cell_standby.hpp"
 #include "cli/drive.hpp"
-#include "cli/exit_codes.hpp"
 #include "cli/plant_facing.hpp"
 #include "cli/run_command.hpp"
-#include "cli/run_record_info.hpp"
 #include "config/cell_config.hpp"
+#include "exit_codes/exit_codes.hpp"
+#include "jobs/job_scheduler.hpp"
+#include "jobs/run_record_info.hpp"
 #include "plant_link/link_config.hpp"
 
 namespace cellctl::cli {
@@ -58,7 +58,7 @@ int serve(const GlobalOptions& global, const ServeArgs& args) {
                                         : link_config         ? link_config->recipes
                                                               : std::filesystem::path("recipes");
   if (link_config) link_config->recipes = recipes;
-  StandbyOptions options;
+  jobs::SchedulerOptions options;
   options.mode = args.virtual_time ? runtime::RunMode::virtual_time
                  : args.emulate    ? runtime::RunMode::emulated
                                    : runtime::RunMode::hardware;
@@ -68,23 +68,23 @@ int serve(const GlobalOptions& global, const ServeArgs& args) {
   options.trace = global.trace;
   options.faults = args.faults;
   options.max_command_age = std::chrono::milliseconds(cell.max_command_age_ms);
-  CellStandby standby(cell, options);
+  jobs::JobScheduler scheduler(cell, options);
 
   const auto say = [](const std::string& line) {
     fmt::print("{}\n", line);
     std::fflush(stdout);
   };
   say(fmt::format("cellctl serve: cell '{}' — {}; standing by for the plant and the operator page", cell.name,
-                  mode_label(cell, options.mode)));
-  auto facing = open_plant_facing(cell, link_config, page, recipes, standby.access(), say);
-  standby.listen(&facing);
+                  jobs::mode_label(cell, options.mode)));
+  auto facing = open_plant_facing(cell, link_config, page, recipes, scheduler.access(), say);
+  scheduler.listen(&facing);
   say(fmt::format("  jobs: start (a recipe in {}), home, teach-in; run records under {}/", recipes.string(),
                   args.runs_dir));
   say("  Ctrl-C: the job in progress gets it (as in `cellctl run`); with no job, it ends cellctl serve");
-  const int status = standby.serve(g_interrupted, g_terminated, say);
+  const int status = scheduler.serve(g_interrupted, g_terminated, say);
   facing.close();
-  say(fmt::format("cellctl serve: ended after {} job{}", standby.jobs_done(),
-                  standby.jobs_done() == 1 ? "" : "s"));
+  say(fmt::format("cellctl serve: ended after {} job{}", scheduler.jobs_done(),
+                  scheduler.jobs_done() == 1 ? "" : "s"));
   if (status == kExitSafeStateUnknown)
     fmt::print(stderr, "WARNING: a device's safe state is UNKNOWN: look at the cell\n");
   return status;

@@ -1,5 +1,5 @@
 #pragma once
-// `cellctl serve`: the controller standing by for the plant and the operator page (cell_standby.hpp).
+// `cellctl serve`: the controller standing by for the plant and the operator page (jobs/job_scheduler.hpp).
 // It keeps the MQTT plant link and the page up between jobs and runs the recipes, homing and
 // Teach-Ins they start, one at a time, each with its own run record.
 

@@ -11,11 +11,11 @@
 #include "cli/confirm.hpp"
 #include "cli/drive.hpp"
 #include "cli/run_command.hpp"
-#include "cli/run_record_info.hpp"
-#include "cli/teach_in_job.hpp"
 #include "cli/terminal_screen.hpp"
 #include "config/cell_config.hpp"
 #include "exit_codes/exit_codes.hpp"
+#include "jobs/run_record_info.hpp"
+#include "jobs/teach_in_job.hpp"
 #include "runtime/cell_run.hpp"
 #include "runtime/fault_rehearsal.hpp"
 
@@ -72,7 +72,7 @@ int teach_in(const GlobalOptions& global, const TeachInArgs& args) {
     spdlog::error("{}", problem);
     return kExitUsage;
   }
-  const auto asked = teach_in_request(
+  const auto asked = jobs::teach_in_request(
       cell, {args.axis, args.distance_mm, args.from_mm, args.manual, args.speed_mm_s, args.tolerance_mm});
   if (const auto* why = std::get_if<std::string>(&asked)) {
     spdlog::error("teach-in: {}", *why);
@@ -81,8 +81,9 @@ int teach_in(const GlobalOptions& global, const TeachInArgs& args) {
   const auto& request = std::get<routines::TeachInRequest>(asked);
   const bool dry_run = run_mode(args.run) != runtime::RunMode::hardware;
   fmt::print(
-      "{}", plan(cell, request,
-                 teach_in_destination(global.config, cell, run_mode(args.run), args.run.state_dir), dry_run));
+      "{}",
+      plan(cell, request,
+           jobs::teach_in_destination(global.config, cell, run_mode(args.run), args.run.state_dir), dry_run));
   switch (confirm("Start the Teach-In now? Keep clear of the cell.", args.yes)) {
     case Confirmation::confirmed:
       break;
@@ -97,11 +98,11 @@ int teach_in(const GlobalOptions& global, const TeachInArgs& args) {
   }
   const auto run_dir =
       args.run.journal_dir.empty() ? default_dir(args.axis) : std::filesystem::path(args.run.journal_dir);
-  const auto recipe = teach_in_recipe(cell, request, run_dir);
+  const auto recipe = jobs::teach_in_recipe(cell, request, run_dir);
   // The same cycle as every job; once it has ended, the verified result goes into the config.
   return run_loaded_recipe(global, cell, recipe, args.run, run_dir, [&](const runtime::RunResult& r) {
     const auto record =
-        record_teach_in(global.config, cell, r, run_mode(args.run), args.run.state_dir, args.manual);
+        jobs::record_teach_in(global.config, cell, r, run_mode(args.run), args.run.state_dir, args.manual);
     return AfterRunEnd{record.words, record.write_failed ? std::optional(kExitFailed)
                                      : record.written    ? std::optional(kExitOk)
                                                          : std::nullopt};

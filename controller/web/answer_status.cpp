@@ -10,7 +10,7 @@ namespace {
 
 // Phrases of the refusals, first match wins; their sources: command/order.cpp (expired),
 // web/hand_over.hpp (client gone), plant_link/command_desk.cpp (payload, answers from the run),
-// command/arbiter.cpp and cli/cell_standby.cpp (the state).
+// command/arbiter.cpp and jobs/job_scheduler.cpp (the state).
 constexpr std::array<std::pair<std::string_view, int>, 14> kPhrases{{
     {"expired:", 410},
     {"its age is unknown", 410},

@@ -1,7 +1,7 @@
 #!/bin/sh
 # usage: exits_with.sh <expected exit code> [--says <text>] <command> [arguments…]
 # Passes only when the command exits with exactly that code: WILL_FAIL would also pass on a crash,
-# an abort or the wrong code, and scripts rely on the codes of controller/cli/exit_codes.hpp.
+# an abort or the wrong code, and scripts rely on the codes of controller/exit_codes/exit_codes.hpp.
 # With --says, its output (stdout and stderr) must also contain <text>: the reason, not only the code.
 expected=$1
 shift

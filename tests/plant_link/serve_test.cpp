@@ -274,10 +274,14 @@ TEST_F(ServeTest, AStopRightAfterAStartIsNeverRefusedAndNothingIsTaught) {
   ASSERT_EQ(a["ok"], true) << a.dump();
   const auto outcome = a["outcome"].get<std::string>();
   if (outcome.find("cancelled before it started") == std::string::npos) {
-    // Taken before the run existed (stopped before any motion) or by the Teach-In's run itself.
+    // Taken before the run existed (stopped before any motion) or by the Teach-In's run itself: once
+    // its step had begun (Execute), the end says the config is not changed; a run stopped while its
+    // devices still started taught nothing and says nothing of it (on a loaded machine the stop can
+    // find the run there).
     const auto ended = state_after(from, "Stopped");
     ASSERT_TRUE(ended) << output();
-    if (outcome.find("it is stopped before any motion") == std::string::npos) {
+    if (outcome.find("it is stopped before any motion") == std::string::npos &&
+        state_after(from, "Execute", 0s)) {
       EXPECT_TRUE(has(*ended, "reason", "is not changed")) << ended->dump();
     }
   }

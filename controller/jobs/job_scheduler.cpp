@@ -1,4 +1,4 @@
-#include "cli/cell_standby.hpp"
+#include "jobs/job_scheduler.hpp"
 
 #include <fmt/chrono.h>
 #include <fmt/format.h>
@@ -8,17 +8,17 @@
 #include <chrono>
 #include <memory>
 
-#include "cli/end_state_gate.hpp"
-#include "cli/exit_codes.hpp"
-#include "cli/home_job.hpp"
-#include "cli/run_record_info.hpp"
-#include "cli/teach_in_job.hpp"
+#include "exit_codes/exit_codes.hpp"
+#include "jobs/end_state_gate.hpp"
+#include "jobs/home_job.hpp"
+#include "jobs/run_record_info.hpp"
+#include "jobs/teach_in_job.hpp"
 #include "journal/record_header.hpp"
 #include "recipe/program.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "runtime/dry_run_state.hpp"
 
-namespace cellctl::cli {
+namespace cellctl::jobs {
 namespace {
 
 using namespace std::chrono_literals;
@@ -54,7 +54,7 @@ TeachInAsk ask_of(const plant_link::StartTeachIn& t) {
 
 }  // namespace
 
-CellStandby::CellStandby(config::CellConfig cell, StandbyOptions options)
+JobScheduler::JobScheduler(config::CellConfig cell, SchedulerOptions options)
     : cell_(std::move(cell)),
       options_(std::move(options)),
       arbiter_(options_.max_command_age, arbiter_tell()) {
@@ -63,7 +63,7 @@ CellStandby::CellStandby(config::CellConfig cell, StandbyOptions options)
        [this](supervisor::Command c, const command::CommandSource& source) { return request(c, source); }});
 }
 
-command::Tell CellStandby::arbiter_tell() {
+command::Tell JobScheduler::arbiter_tell() {
   command::Tell tell;
   tell.command = [this](supervisor::Command c, const command::CommandSource& source) {
     tell_event(
@@ -87,7 +87,7 @@ command::Tell CellStandby::arbiter_tell() {
   return tell;
 }
 
-plant_link::RunAccess CellStandby::access() {
+plant_link::RunAccess JobScheduler::access() {
   plant_link::RunAccess a;
   a.arbiter = &arbiter_;
   a.status = [this] { return status(); };
@@ -96,16 +96,16 @@ plant_link::RunAccess CellStandby::access() {
   return a;
 }
 
-struct CellStandby::JobSlot {
-  CellStandby& standby;
+struct JobScheduler::JobSlot {
+  JobScheduler& scheduler;
   ~JobSlot() {
-    std::lock_guard lock(standby.mutex_);
-    standby.run_ = nullptr;
-    standby.busy_ = Busy::ending;  // no command reaches a run that is gone
+    std::lock_guard lock(scheduler.mutex_);
+    scheduler.run_ = nullptr;
+    scheduler.busy_ = Busy::ending;  // no command reaches a run that is gone
   }
 };
 
-supervisor::State CellStandby::job_state() {
+supervisor::State JobScheduler::job_state() {
   std::lock_guard lock(mutex_);
   switch (busy_) {
     case Busy::run:
@@ -119,7 +119,7 @@ supervisor::State CellStandby::job_state() {
   return supervisor::State::starting;
 }
 
-Taken CellStandby::request(supervisor::Command c, const command::CommandSource& source) {
+Taken JobScheduler::request(supervisor::Command c, const command::CommandSource& source) {
   const auto word = supervisor::to_string(c);
   std::lock_guard lock(mutex_);
   switch (busy_) {
@@ -148,13 +148,13 @@ Taken CellStandby::request(supervisor::Command c, const command::CommandSource& 
   return {Taken::How::refused, fmt::format("{} is not possible now", word)};
 }
 
-std::optional<plant_link::LiveRun> CellStandby::status() {
+std::optional<plant_link::LiveRun> JobScheduler::status() {
   std::lock_guard lock(mutex_);
   if (busy_ != Busy::run) return std::nullopt;
   return plant_link::live_run(run_->status());
 }
 
-Taken CellStandby::start(const plant_link::StartRequest& r) {
+Taken JobScheduler::start(const plant_link::StartRequest& r) {
   std::lock_guard lock(mutex_);
   if (!blocked_.empty()) return {Taken::How::refused, blocked_};
   if (busy_ != Busy::none)  // the arbiter allows a start only in Idle: a job still ending is not Idle
@@ -176,16 +176,16 @@ Taken CellStandby::start(const plant_link::StartRequest& r) {
   return {Taken::How::done, "started: " + job_};
 }
 
-void CellStandby::tell_event(const journal::Event& e) const {
+void JobScheduler::tell_event(const journal::Event& e) const {
   if (listener_) listener_->on_event(e);
 }
 
-void CellStandby::tell_note(std::string_view words) const {
+void JobScheduler::tell_note(std::string_view words) const {
   if (listener_) listener_->on_note(0.0, words);
 }
 
-CellStandby::JobEnd CellStandby::not_started(const plant_link::StartRequest& r, const std::string& why,
-                                             supervisor::State end) const {
+JobScheduler::JobEnd JobScheduler::not_started(const plant_link::StartRequest& r, const std::string& why,
+                                               supervisor::State end) const {
   const auto to = supervisor::to_string(end);
   const auto name = short_name(r);
   tell_event({0.0, journal::RunStarted{name, {}, to_string(options_.mode), 0}});
@@ -193,8 +193,8 @@ CellStandby::JobEnd CellStandby::not_started(const plant_link::StartRequest& r, 
   return {fmt::format("{}: not started: {}", to, why), end, std::nullopt};
 }
 
-int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminate,
-                       const std::function<void(const std::string&)>& say) {
+int JobScheduler::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminate,
+                        const std::function<void(const std::string&)>& say) {
   for (;;) {
     std::optional<plant_link::StartRequest> job;
     std::optional<supervisor::Command> cancelled;
@@ -231,7 +231,7 @@ int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminat
                                        *cancelled == supervisor::Command::abort ? supervisor::State::aborted
                                                                                 : supervisor::State::stopped)
                          : run_job(*job, interrupt, terminate);
-    // Told to the arbiter before the standby is free again: from here on the cell is in the job's end
+    // Told to the arbiter before the scheduler is free again: from here on the cell is in the job's end
     // state, and only a reset (a clear and a reset after Aborted) brings it back to Idle.
     arbiter_.job_ended(end.state);
     say(fmt::format("job {}: {}", ++jobs_done_, end.words));
@@ -240,22 +240,23 @@ int CellStandby::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminat
       busy_ = Busy::none;
       job_.clear();
     }
-    if (end.end_state) tell_event(end.end_state->event());  // the standby takes the plant's next command now
-    interrupt.store(false);                                 // a Ctrl-C during the job was the job's
+    if (end.end_state)
+      tell_event(end.end_state->event());  // the scheduler takes the plant's next command now
+    interrupt.store(false);                // a Ctrl-C during the job was the job's
   }
   if (!blocked_.empty()) return kExitSafeStateUnknown;
   return terminate.load() ? kExitOk : kExitInterrupted;
 }
 
-std::filesystem::path CellStandby::job_dir(const std::string& stem) const {
+std::filesystem::path JobScheduler::job_dir(const std::string& stem) const {
   const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   // Each job its own folder, even two in one second (a virtual-time run takes a fraction of one).
   return options_.runs_dir /
          fmt::format("{}-{:%Y%m%d-%H%M%S}-job{}", stem, fmt::localtime(now), jobs_done_.load() + 1);
 }
 
-CellStandby::JobEnd CellStandby::run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt,
-                                         std::atomic<bool>& terminate) {
+JobScheduler::JobEnd JobScheduler::run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt,
+                                           std::atomic<bool>& terminate) {
   try {
     if (const auto* t = std::get_if<plant_link::StartTeachIn>(&r)) {
       const auto request =
@@ -283,10 +284,10 @@ CellStandby::JobEnd CellStandby::run_job(const plant_link::StartRequest& r, std:
   }
 }
 
-CellStandby::JobEnd CellStandby::run_recipe(const recipe::Recipe& recipe,
-                                            const std::filesystem::path& run_dir,
-                                            std::atomic<bool>& interrupt, std::atomic<bool>& terminate,
-                                            const AfterRun& after) {
+JobScheduler::JobEnd JobScheduler::run_recipe(const recipe::Recipe& recipe,
+                                              const std::filesystem::path& run_dir,
+                                              std::atomic<bool>& interrupt, std::atomic<bool>& terminate,
+                                              const AfterRun& after) {
   runtime::RunOptions o;
   o.mode = options_.mode;
   o.journal_dir = run_dir;
@@ -331,13 +332,13 @@ CellStandby::JobEnd CellStandby::run_recipe(const recipe::Recipe& recipe,
   JobEnd end{words, result.final_state, std::nullopt};
   if (after) after(result, end);
   // The end state goes out once the job's work is on disk (the journal closed, the home record and a
-  // taught config written) and the standby is free again: serve() tells it.
+  // taught config written) and the scheduler is free again: serve() tells it.
   end.end_state =
       gate.take(end.words.size() > head.size() + 2 ? end.words.substr(head.size() + 2) : std::string());
   return end;
 }
 
-void CellStandby::after_teach_in(const runtime::RunResult& r, bool manual, JobEnd& end) {
+void JobScheduler::after_teach_in(const runtime::RunResult& r, bool manual, JobEnd& end) {
   if (!r.teach_in) return;
   if (!r.teach_in->restored) {
     std::lock_guard lock(mutex_);
@@ -362,4 +363,4 @@ void CellStandby::after_teach_in(const runtime::RunResult& r, bool manual, JobEn
   }
 }
 
-}  // namespace cellctl::cli
+}  // namespace cellctl::jobs

@@ -1,4 +1,4 @@
-#include "cli/teach_in_job.hpp"
+#include "jobs/teach_in_job.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -10,7 +10,7 @@
 
 #include "runtime/dry_run_state.hpp"
 
-namespace cellctl::cli {
+namespace cellctl::jobs {
 namespace {
 
 std::string number(double v) {
@@ -129,4 +129,4 @@ TeachInRecord record_teach_in(const std::filesystem::path& config_file, const co
   return out;
 }
 
-}  // namespace cellctl::cli
+}  // namespace cellctl::jobs

@@ -1,4 +1,4 @@
-#include "cli/home_job.hpp"
+#include "jobs/home_job.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -9,7 +9,7 @@
 
 #include "recipe/recipe_loader.hpp"
 
-namespace cellctl::cli {
+namespace cellctl::jobs {
 
 std::variant<std::vector<std::size_t>, std::string> homing_axes(const config::CellConfig& cell,
                                                                 const std::filesystem::path& config_file,
@@ -55,4 +55,4 @@ recipe::Recipe write_homing_recipe(const config::CellConfig& cell, const std::ve
   return recipe::load_recipe(file, cell);
 }
 
-}  // namespace cellctl::cli
+}  // namespace cellctl::jobs

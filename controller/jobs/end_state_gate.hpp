@@ -13,7 +13,7 @@
 
 #include "journal/event_listener.hpp"
 
-namespace cellctl::cli {
+namespace cellctl::jobs {
 
 // The end state held back, a copy of its own: told after the run, whose names it no longer sees.
 struct HeldEndState {
@@ -68,4 +68,4 @@ class EndStateGate final : public journal::EventListener {
   std::optional<HeldEndState> held_;
 };
 
-}  // namespace cellctl::cli
+}  // namespace cellctl::jobs

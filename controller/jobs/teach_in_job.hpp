@@ -4,7 +4,6 @@
 // asks.
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <variant>
@@ -15,7 +14,7 @@
 #include "routines/teach_in.hpp"
 #include "runtime/cell_run.hpp"
 
-namespace cellctl::cli {
+namespace cellctl::jobs {
 
 struct TeachInAsk {
   std::string axis;
@@ -61,4 +60,4 @@ struct TeachInRecord {
                                             runtime::RunMode mode, const std::filesystem::path& state_dir,
                                             bool manual);
 
-}  // namespace cellctl::cli
+}  // namespace cellctl::jobs

@@ -11,7 +11,7 @@
 #include "recipe/recipe.hpp"
 #include "runtime/cell_links.hpp"
 
-namespace cellctl::cli {
+namespace cellctl::jobs {
 
 // "emulated (every device on its emulator, in this process)", "hardware", "hardware (spindle
 // emulated in-process)", "virtual time": what the banner and the record say the run was.
@@ -25,4 +25,4 @@ namespace cellctl::cli {
 // runs/<recipe file's stem>-<local start time>, e.g. runs/demo-20261124-091502.
 [[nodiscard]] std::filesystem::path default_run_dir(const std::filesystem::path& recipe_file);
 
-}  // namespace cellctl::cli
+}  // namespace cellctl::jobs

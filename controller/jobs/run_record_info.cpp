@@ -1,4 +1,4 @@
-#include "cli/run_record_info.hpp"
+#include "jobs/run_record_info.hpp"
 
 #include <fmt/chrono.h>
 #include <fmt/format.h>
@@ -6,7 +6,7 @@
 #include <chrono>
 #include <variant>
 
-namespace cellctl::cli {
+namespace cellctl::jobs {
 namespace {
 
 struct Device {
@@ -76,4 +76,4 @@ std::filesystem::path default_run_dir(const std::filesystem::path& recipe_file) 
          fmt::format("{}-{:%Y%m%d-%H%M%S}", recipe_file.stem().string(), fmt::localtime(now));
 }
 
-}  // namespace cellctl::cli
+}  // namespace cellctl::jobs

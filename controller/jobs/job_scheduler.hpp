@@ -1,13 +1,13 @@
 #pragma once
-// The controller standing by between jobs (`cellctl serve`): the plant link and the operator page
-// stay up (their RunAccess is access()), and the jobs they start run one at a time on the serving
+// The job scheduler of a standing controller (`cellctl serve`): while the plant link and the operator
+// page stay up (their RunAccess is access()), the jobs they start run one at a time on the serving
 // thread — a recipe from the recipe folder, homing (the one-step recipe `cellctl home` runs) or a
 // Teach-In whose verified result is written into the cell config (as `cellctl teach-in` writes it,
 // after which the config is read again). Each job gets its own run record under the runs folder.
 //
 // Whether a command or a start is taken is the arbiter's to decide (command/arbiter.hpp: age, PackML
 // interlocks — a start only in Idle, so after a job's Complete or Stopped a Reset, after Aborted a
-// Clear and a Reset); the standby is the arbiter's JobPort for the job in progress. A start is never
+// Clear and a Reset); the scheduler is the arbiter's JobPort for the job in progress. A start is never
 // taken after a job left a device's safe state unknown (a spindle that may still turn) or the
 // encoder's parameters unconfirmed: someone must look at the cell and start cellctl again. Commands go
 // to the job in progress: a recipe's or homing's run takes them as the terminal's (its journaled
@@ -16,8 +16,8 @@
 // yet taken is cancelled (told as Stopped or Aborted, nothing moved), one being set up is stopped
 // before any motion.
 //
-// Between jobs the standby itself tells the link and the page what it and the arbiter did (a job that
-// could not start, a reset) as the run's events would: the jobs' journal threads and the standby never
+// Between jobs the scheduler itself tells the link and the page what it and the arbiter did (a job that
+// could not start, a reset) as the run's events would: the jobs' journal threads and the scheduler never
 // tell at the same time (a job's journal joins its writer before its run returns, and what the arbiter
 // says during a job goes into that job's journal), so the listener hears one teller at a time.
 
@@ -30,17 +30,17 @@
 #include <string>
 #include <string_view>
 
-#include "cli/end_state_gate.hpp"
 #include "command/arbiter.hpp"
 #include "config/cell_config.hpp"
+#include "jobs/end_state_gate.hpp"
 #include "journal/event_listener.hpp"
 #include "plant_link/run_access.hpp"
 #include "runtime/cell_links.hpp"
 #include "runtime/cell_run.hpp"
 
-namespace cellctl::cli {
+namespace cellctl::jobs {
 
-struct StandbyOptions {
+struct SchedulerOptions {
   runtime::RunMode mode = runtime::RunMode::emulated;
   std::filesystem::path config_file;        // read again after a Teach-In wrote it
   std::filesystem::path runs_dir = "runs";  // each job's record: <runs>/<job>-<time>
@@ -50,22 +50,22 @@ struct StandbyOptions {
   std::chrono::milliseconds max_command_age = command::kDefaultMaxCommandAge;
 };
 
-class CellStandby {
+class JobScheduler {
  public:
-  CellStandby(config::CellConfig cell, StandbyOptions options);
-  CellStandby(const CellStandby&) = delete;
-  CellStandby& operator=(const CellStandby&) = delete;
+  JobScheduler(config::CellConfig cell, SchedulerOptions options);
+  JobScheduler(const JobScheduler&) = delete;
+  JobScheduler& operator=(const JobScheduler&) = delete;
 
-  // For the plant link and the operator page; valid as long as the standby.
+  // For the plant link and the operator page; valid as long as the scheduler.
   [[nodiscard]] plant_link::RunAccess access();
   [[nodiscard]] command::Arbiter& arbiter() noexcept { return arbiter_; }
-  // Every event of every job, and the standby's own; set before serve(), outliving it.
+  // Every event of every job, and the scheduler's own; set before serve(), outliving it.
   void listen(journal::EventListener* listener) { listener_ = listener; }
 
   // Runs the jobs as they are started, saying each one's start and end through `say`, until
   // `terminate` (a job in progress gets its controlled stop first) or an `interrupt` while no job is
   // in progress; an interrupt during a job is that job's Ctrl-C. A job started but not yet taken then
-  // never starts (told as not started). Returns the exit status (cli/exit_codes.hpp): ended by
+  // never starts (told as not started). Returns the exit status (exit_codes/exit_codes.hpp): ended by
   // SIGTERM, by Ctrl-C, or a job left a device's safe state unknown or the encoder's parameters
   // unconfirmed.
   int serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminate,
@@ -83,7 +83,7 @@ class CellStandby {
   struct JobEnd {
     std::string words;
     supervisor::State state = supervisor::State::aborted;
-    // The run's end state (its journal's), told only once the job's work is saved and the standby is
+    // The run's end state (its journal's), told only once the job's work is saved and the scheduler is
     // free for the command the plant sends on it (a reset on Complete).
     std::optional<HeldEndState> end_state;
   };
@@ -107,7 +107,7 @@ class CellStandby {
   void after_teach_in(const runtime::RunResult& r, bool manual, JobEnd& end);
   // <runs>/<stem>-<local time>-job<N>: the next job's record.
   [[nodiscard]] std::filesystem::path job_dir(const std::string& stem) const;
-  // An event of the standby's own (between jobs: the jobs' journal threads are not telling).
+  // An event of the scheduler's own (between jobs: the jobs' journal threads are not telling).
   void tell_event(const journal::Event& e) const;
   void tell_note(std::string_view words) const;
   // A job that could not start, told as a run of its own that ends in `end` (Aborted: it failed;
@@ -118,7 +118,7 @@ class CellStandby {
   [[nodiscard]] command::Tell arbiter_tell();
 
   config::CellConfig cell_;
-  StandbyOptions options_;
+  SchedulerOptions options_;
   journal::EventListener* listener_ = nullptr;
 
   std::mutex mutex_;  // everything below, between the serving thread and the link's and page's
@@ -134,4 +134,4 @@ class CellStandby {
   command::Arbiter arbiter_;  // last: its Tell reaches the members above
 };
 
-}  // namespace cellctl::cli
+}  // namespace cellctl::jobs

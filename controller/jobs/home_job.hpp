@@ -10,7 +10,7 @@
 #include "config/cell_config.hpp"
 #include "recipe/recipe.hpp"
 
-namespace cellctl::cli {
+namespace cellctl::jobs {
 
 // The axes to home in the order of homing.sequence: the named ones (each must exist and have homing)
 // or, none named, every axis that has homing. The indexes into cell.axes, or why not.
@@ -25,4 +25,4 @@ namespace cellctl::cli {
                                                  const std::vector<std::size_t>& axes,
                                                  const std::filesystem::path& run_dir);
 
-}  // namespace cellctl::cli
+}  // namespace cellctl::jobs
