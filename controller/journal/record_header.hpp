@@ -1,7 +1,7 @@
 #pragma once
-// The first line of every run record: what is needed to reproduce the run and to read its samples —
-// the recipe file and its SHA-256, the config file and its SHA-256, which cellctl wrote it, the mode,
-// the host, when it started (UTC), the axes' names and units, and the steps as the run numbers them.
+// What a run's record header is made from (the caller's RecordInfo) and what this process adds to it —
+// the files' SHA-256, this cellctl, this host, the start time (UTC). The header itself and its line are
+// the schema's (schema/record_header.hpp).
 
 #include <filesystem>
 #include <optional>
