@@ -114,7 +114,7 @@ struct CellState {
   std::array<AxisState, kMaxAxes> axes{};
   EncoderState encoder;
   SpindleState spindle;
-  std::array<LinkState, kMaxDevices> links{};      // by slot; a slot without a device: active, no rule
+  std::array<LinkState, kMaxDevices> links{};           // by slot; a slot without a device: active, no rule
   std::array<std::string_view, kMaxDevices> devices{};  // each slot's device by name, "" for none
   ScuErrors scu_errors;
   // Since the RC whose reply brought the SCU's positions was sent (every keep-alive): the line's

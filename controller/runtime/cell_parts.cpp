@@ -25,9 +25,10 @@ CellParts open_cell_parts(const config::CellConfig& cell, RunMode mode, const li
     if (!emulators) emulators = load_emulator_setup(cell);
     p.emulated = std::make_unique<EmulatedCell>(cell, *emulators, p.links->device());
   }
-  p.devices = std::make_unique<CellDevices>(cell, p.links->master(), [links = p.links.get()](std::size_t slot) {
-    return slot < cell::kDevices && links->reopen(static_cast<cell::Device>(slot)).ok();
-  });
+  p.devices =
+      std::make_unique<CellDevices>(cell, p.links->master(), [links = p.links.get()](std::size_t slot) {
+        return slot < cell::kDevices && links->reopen(static_cast<cell::Device>(slot)).ok();
+      });
   return p;
 }
 
