@@ -131,7 +131,8 @@ int run_loaded_recipe(const GlobalOptions& global, const config::CellConfig& cel
     TerminalScreen screen;
     RunNarrator narrator(screen);
     // The terminal, the plant link and the web page command through one arbiter. This cellctl drives
-    // one run: its start is the terminal's, and the run is the arbiter's job until the process ends.
+    // one run: its start is the terminal's, and the run is the arbiter's job until the process ends
+    // (a start in Idle, which the arbiter takes).
     command::Tell tell;
     tell.note = [&run](const std::string& words) { run.note_from_operator(words); };
     command::Arbiter arbiter(std::chrono::milliseconds(cell.max_command_age_ms), std::move(tell));

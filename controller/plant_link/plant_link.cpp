@@ -78,6 +78,8 @@ void PlantLink::run_thread() {
 
   const auto publish = [&](std::string_view tag, const std::string& payload, int qos, bool retain,
                            std::optional<std::chrono::milliseconds> expiry = std::nullopt) {
+    // Refused only when the connection has just gone: the next connect publishes the retained tags
+    // anew and the status goes every period; an answer is lost as it would be with the broker.
     if (connected_.load()) (void)client.publish(config_.topic(tag), payload, qos, retain, expiry);
   };
   // The PackML tags a dashboard must see the moment it subscribes, however late: retained.
@@ -117,6 +119,8 @@ void PlantLink::run_thread() {
     connected_.store(true);
     connects_.fetch_add(1);
     backoff = config_.reconnect_min;
+    // Refused only without a connection, and every connect subscribes again (the broker's own refusal
+    // comes in its SUBACK).
     (void)client.subscribe_live(config_.topic("cmd/+"), 1);
     publish_retained();
   };
@@ -211,7 +215,7 @@ void PlantLink::run_thread() {
     while (client.want_write() && Clock::now() < until && client.loop(5) == 0) {
     }
     client.disconnect();
-    (void)client.loop(5);
+    (void)client.loop(5);  // the DISCONNECT on its way; the link ends whatever the broker does
   }
   connected_.store(false);
 }
