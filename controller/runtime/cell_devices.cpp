@@ -32,7 +32,6 @@ CellDevices::CellDevices(const config::CellConfig& cell, std::span<link::Link* c
     auto device =
         kinds[slot].make(slot, cell, *links[slot], [reopen, slot] { return reopen && reopen(slot); });
     if (!device) continue;
-    sessions_[slot] = &device->session();
     present_.push_back(device.get());
     owned_.push_back(std::move(device));
   }
@@ -51,22 +50,12 @@ void CellDevices::activate(link::TimePoint now) {
   for (auto* d : present_) d->session().activate(now);
 }
 
-void CellDevices::deactivate(link::TimePoint now) {
-  for (auto* d : present_) d->session().deactivate(now);
-}
-
 void CellDevices::receive(link::TimePoint now) {
   for (auto* d : present_) d->session().receive(now);
 }
 
 void CellDevices::transmit(link::TimePoint now) {
   for (auto* d : present_) d->session().transmit(now);
-}
-
-bool CellDevices::all_inactive() const noexcept {
-  for (const auto* d : present_)
-    if (!d->session().quiet()) return false;
-  return true;
 }
 
 void CellDevices::read(link::TimePoint now, cell::CellState& out) {

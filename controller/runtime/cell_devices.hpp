@@ -39,11 +39,8 @@ class CellDevices {
   CellDevices(const config::CellConfig& cell, DeviceLinks links, Reopen reopen = {});
 
   void activate(link::TimePoint now);
-  // Orderly shutdown: axes stopped and remote mode closed (RA), spindle stopped.
-  void deactivate(link::TimePoint now);
   void receive(link::TimePoint now);
   void transmit(link::TimePoint now);
-  [[nodiscard]] bool all_inactive() const noexcept;
 
   // The snapshot of the cell now (after receive()).
   void read(link::TimePoint now, cell::CellState& out);
@@ -55,19 +52,11 @@ class CellDevices {
   [[nodiscard]] scu::Session* scu() noexcept { return scu_ ? &scu_->scu() : nullptr; }
   [[nodiscard]] spindle::Session* spindle() noexcept { return spindle_ ? &spindle_->spindle() : nullptr; }
   [[nodiscard]] encoder::Session* encoder() noexcept { return encoder_ ? &encoder_->encoder() : nullptr; }
-  [[nodiscard]] const encoder::Session* encoder() const noexcept {
-    return encoder_ ? &encoder_->encoder() : nullptr;
-  }
-  // The sessions there are, by slot (nullptr for a device the cell lacks).
-  [[nodiscard]] const std::array<link::DeviceSession*, cell::kMaxDevices>& sessions() const noexcept {
-    return sessions_;
-  }
 
  private:
   std::uint8_t axis_count_;
   std::vector<std::unique_ptr<device_seam::CellDevice>> owned_;
   std::vector<device_seam::CellDevice*> present_;
-  std::array<link::DeviceSession*, cell::kMaxDevices> sessions_{};
   device_seam::ScuDevice* scu_ = nullptr;
   device_seam::SpindleDevice* spindle_ = nullptr;
   device_seam::EncoderDevice* encoder_ = nullptr;

@@ -46,11 +46,6 @@ const device_seam::CellDevice* SafeStop::at(std::size_t slot) const noexcept {
   return nullptr;
 }
 
-std::optional<double> SafeStop::lost_at_s(std::size_t slot) const noexcept {
-  const auto* d = at(slot);
-  return d && d->lost_at() ? std::optional(context_.t_of(*d->lost_at())) : std::nullopt;
-}
-
 std::string SafeStop::lost_reason(std::size_t slot) const {
   const auto* d = at(slot);
   return d ? d->lost_reason() : std::string();

@@ -49,8 +49,7 @@ class SafeStop {
   // Every device present is resolved.
   [[nodiscard]] bool done() const noexcept;
 
-  // When a device's session lost it (since its last good reply, in s from the start) and why.
-  [[nodiscard]] std::optional<double> lost_at_s(std::size_t slot) const noexcept;
+  // Why a device's session gave up on it ("" if it never did).
   [[nodiscard]] std::string lost_reason(std::size_t slot) const;
 
   // After the loop: per device slot.

@@ -114,7 +114,7 @@ TEST_F(FourthDevice, IsInTheCycleWithItsLinkItsIntentsAndItsName) {
   start_up();
   EXPECT_EQ(state_.devices[kDioSlot], "dio");
   ASSERT_EQ(devices_.devices().size(), 4u);
-  EXPECT_EQ(devices_.sessions()[kDioSlot], &devices_.devices()[3]->session());
+  EXPECT_EQ(devices_.devices()[3]->slot(), kDioSlot);
 
   // Its part of the intents: the coolant valve opens with the spindle and closes when it stops.
   intents_.spindle = {.run = true, .frequency_hz = 500.0, .clockwise = true, .reset = false};
