@@ -16,11 +16,12 @@ build=(
   libmosquitto-dev libcpp-httplib-dev
 )
 # The test suite and the benchmarks: the frameworks, and the real programs the tests drive (a
-# broker, a browser, an SVG renderer, socat; openssl makes the broker's test certificates).
+# broker, a browser, an SVG renderer, socat; openssl makes the broker's test certificates; prometheus
+# scrapes the many-cells test's cells).
 tests=(
   libgtest-dev libgmock-dev libbenchmark-dev
   socat python3 librsvg2-bin
-  mosquitto openssl chromium chromium-driver python3-selenium
+  mosquitto openssl chromium chromium-driver python3-selenium prometheus
 )
 case "${1:-}" in
   "") packages=("${build[@]}" "${tests[@]}") ;;
