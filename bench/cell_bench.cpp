@@ -117,14 +117,14 @@ class ScratchDir {
 
 struct Setup {
   config::CellConfig cell;
-  runtime::EmulatorSetup emulators;
+  emulation::EmulatorSetup emulators;
   recipe::Recipe recipe;
 };
 
 Setup load(const ScratchDir& dir) {
   Setup s;
   s.cell = config::load_cell_config(g_options.cell);
-  s.emulators = runtime::load_emulator_setup(s.cell);
+  s.emulators = emulation::load_emulator_setup(s.cell);
   if (s.emulators.encoder) s.emulators.encoder->state_file = dir.path() / "encoder.eeprom";
   s.cell.loop.realtime = g_options.fifo && s.cell.loop.realtime;
   s.recipe = recipe::load_recipe(g_options.recipe, s.cell);

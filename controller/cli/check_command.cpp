@@ -8,10 +8,11 @@
 #include <vector>
 
 #include "config/cell_config.hpp"
+#include "device_seam/device_registry.hpp"
+#include "emulation/emulator_setup.hpp"
 #include "exit_codes/exit_codes.hpp"
 #include "recipe/program.hpp"
 #include "recipe/recipe_loader.hpp"
-#include "runtime/emulator_setup.hpp"
 
 namespace cellctl::cli {
 namespace {
@@ -21,10 +22,10 @@ int run_check(const GlobalOptions& global, const std::vector<std::string>& recip
   // editors and CI can jump to them.
   config::CellConfig cell;
   try {
-    cell = config::load_cell_config(global.config);
+    cell = device_seam::load_cell_config(global.config);
     // The emulators' set-up too, loaded only to be checked: a dry run must not be the first to find a
     // bad emulator section.
-    (void)runtime::load_emulator_setup(cell);
+    (void)emulation::load_emulator_setup(cell);
   } catch (const config::ConfigError& e) {
     fmt::print("{}\n", e.what());
     return kExitConfig;

@@ -7,7 +7,7 @@
 
 #include "cli/drive.hpp"
 #include "cli/publish_lock.hpp"
-#include "config/cell_config.hpp"
+#include "device_seam/device_registry.hpp"
 #include "exit_codes/exit_codes.hpp"
 #include "link/clock.hpp"
 #include "link/pty_pair.hpp"
@@ -19,20 +19,21 @@ namespace cellctl::cli {
 namespace {
 
 int run_emulate(const GlobalOptions& global, bool power_cycle) {
-  const auto cell = config::load_cell_config(global.config);
+  const auto cell = device_seam::load_cell_config(global.config);
   // Every path is locked before any link is published, so a refused emulation publishes nothing;
   // declared before the pseudo-terminals, each lock is held until its link has been removed.
   std::vector<std::unique_ptr<PublishLock>> locks;
-  for (const auto* port : {cell.scu ? &cell.scu->port : nullptr, cell.spindle ? &cell.spindle->port : nullptr,
-                           cell.encoder ? &cell.encoder->port : nullptr})
-    if (port) locks.push_back(std::make_unique<PublishLock>(port->publish_as));
+  const auto kinds = device_seam::cell_device_kinds();
+  for (const auto& kind : kinds)
+    if (const auto port = kind.port(cell)) locks.push_back(std::make_unique<PublishLock>(port->publish_as));
   std::vector<std::unique_ptr<link::PtyPair>> ptys;
   link::MonotonicClock clock;
   // --trace: every telegram the emulators receive (RX) and send (TX), seen from the devices' side.
   link::LogTraceSink trace_sink;
   std::vector<std::unique_ptr<link::TracingLink>> traced;
-  runtime::DeviceLinks links;
-  const auto publish = [&](const char* name, const config::PortConfig& port, link::Link*& side) {
+  runtime::DeviceLinks links{};
+  const auto publish = [&](std::string_view kind, const config::PortConfig& port, link::Link*& side) {
+    const std::string name(kind);
     auto& pty = *ptys.emplace_back(std::make_unique<link::PtyPair>(name, port.publish_as));
     side = &pty.device();
     if (global.trace)
@@ -40,9 +41,8 @@ int run_emulate(const GlobalOptions& global, bool power_cycle) {
     fmt::print("{:<8} {} (also {}), {}\n", name, pty.peer_path(), port.publish_as, port.line.describe());
   };
   fmt::print("cellctl: emulating cell '{}' from {}\n", cell.name, global.config);
-  if (cell.scu) publish("scu", cell.scu->port, links.scu);
-  if (cell.spindle) publish("spindle", cell.spindle->port, links.spindle);
-  if (cell.encoder) publish("encoder", cell.encoder->port, links.encoder);
+  for (std::size_t slot = 0; slot < kinds.size(); ++slot)
+    if (const auto port = kinds[slot].port(cell)) publish(kinds[slot].name, *port, links[slot]);
   // The emulated cell stays powered between emulations, as the dry runs' plant (one per state folder).
   const auto setup = runtime::dry_run_emulator_setup(cell, cell.state_dir, power_cycle);
   fmt::print("plant    {}{}\n", setup.plant_state_file.string(),

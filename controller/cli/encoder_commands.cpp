@@ -11,6 +11,7 @@
 #include "cli/encoder_status.hpp"
 #include "config/cell_config.hpp"
 #include "config/config_edit.hpp"
+#include "device_seam/device_registry.hpp"
 #include "encoder/commissioning_parameters.hpp"
 #include "encoder/session.hpp"
 #include "exit_codes/exit_codes.hpp"
@@ -316,7 +317,7 @@ class EncoderCommissioning {
 };
 
 int run_encoder(const GlobalOptions& global, const EncoderOptions& options, EncoderAction action) {
-  const auto cell = config::load_cell_config(global.config);
+  const auto cell = device_seam::load_cell_config(global.config);
   if (!cell.encoder) {
     spdlog::error("{} has no encoder: section (the parameters and scaling come from there)", global.config);
     return kExitConfig;

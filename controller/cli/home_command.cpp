@@ -13,6 +13,7 @@
 #include "cli/confirm.hpp"
 #include "cli/run_command.hpp"
 #include "config/cell_config.hpp"
+#include "device_seam/device_registry.hpp"
 #include "exit_codes/exit_codes.hpp"
 #include "jobs/home_job.hpp"
 #include "jobs/run_record_info.hpp"
@@ -55,7 +56,7 @@ std::string plan(const config::AxisConfig& a) {
 }
 
 int home(const GlobalOptions& global, const HomeArgs& args) {
-  const auto cell = config::load_cell_config(global.config);
+  const auto cell = device_seam::load_cell_config(global.config);
   if (const auto problem = run_args_problem(args.run, cell); !problem.empty()) {
     spdlog::error("{}", problem);
     return kExitUsage;

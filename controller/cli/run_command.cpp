@@ -16,6 +16,7 @@
 #include "cli/status_printer.hpp"
 #include "cli/terminal_screen.hpp"
 #include "config/cell_config.hpp"
+#include "device_seam/device_registry.hpp"
 #include "exit_codes/exit_codes.hpp"
 #include "jobs/end_state_gate.hpp"
 #include "jobs/run_record_info.hpp"
@@ -47,7 +48,7 @@ std::string ctrl_c_hint(config::StopCategory operator_stop) {
 }
 
 int run_recipe(const GlobalOptions& global, const std::string& recipe_file, const RunArgs& args) {
-  const auto cell = config::load_cell_config(global.config);
+  const auto cell = device_seam::load_cell_config(global.config);
   if (const auto problem = run_args_problem(args, cell); !problem.empty()) {
     spdlog::error("{}", problem);
     return kExitUsage;

@@ -11,6 +11,7 @@
 #include "cli/commissioning.hpp"
 #include "cli/confirm.hpp"
 #include "config/cell_config.hpp"
+#include "device_seam/device_registry.hpp"
 #include "exit_codes/exit_codes.hpp"
 #include "scu/session.hpp"
 
@@ -199,7 +200,7 @@ class ScuCommissioning {
 };
 
 int run_scu(const GlobalOptions& global, const ScuOptions& options, ScuAction action) {
-  const auto cell = config::load_cell_config(global.config);
+  const auto cell = device_seam::load_cell_config(global.config);
   if (!cell.scu) {
     spdlog::error("{} has no scu: section; add one (port, actuators, functions)", global.config);
     return kExitConfig;

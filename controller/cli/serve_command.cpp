@@ -11,6 +11,7 @@
 #include "cli/plant_facing.hpp"
 #include "cli/run_command.hpp"
 #include "config/cell_config.hpp"
+#include "device_seam/device_registry.hpp"
 #include "exit_codes/exit_codes.hpp"
 #include "jobs/job_scheduler.hpp"
 #include "jobs/run_record_info.hpp"
@@ -31,11 +32,11 @@ struct ServeArgs {
 };
 
 int serve(const GlobalOptions& global, const ServeArgs& args) {
-  const auto cell = config::load_cell_config(global.config);
+  const auto cell = device_seam::load_cell_config(global.config);
   // A bad section: exit 3, before anything opens.
   auto link_config = plant_link::load_link_config(cell.document.value(), cell);
   std::string page_problem;  // plain HTTP off loopback, a short token: refused before anything opens
-  const auto page = page_setup(args.page, page_problem);
+  auto page = page_setup(args.page, page_problem);
   if (!page_problem.empty()) {
     spdlog::error("serve: {}", page_problem);
     return kExitUsage;
@@ -76,6 +77,7 @@ int serve(const GlobalOptions& global, const ServeArgs& args) {
   };
   say(fmt::format("cellctl serve: cell '{}' — {}; standing by for the plant and the operator page", cell.name,
                   jobs::mode_label(cell, options.mode)));
+  if (page) page->options.runs = args.runs_dir;  // the page's run history
   auto facing = open_plant_facing(cell, link_config, page, recipes, scheduler.access(), say);
   scheduler.listen(&facing);
   say(fmt::format("  jobs: start (a recipe in {}), home, teach-in; run records under {}/", recipes.string(),

@@ -10,6 +10,7 @@
 
 #include "cli/commissioning.hpp"
 #include "config/cell_config.hpp"
+#include "device_seam/device_registry.hpp"
 #include "exit_codes/exit_codes.hpp"
 #include "spindle/fault_numbers.hpp"
 #include "spindle/session.hpp"
@@ -148,7 +149,7 @@ class SpindleCommissioning {
 };
 
 int run_spindle(const GlobalOptions& global, const SpindleOptions& options, SpindleAction action) {
-  const auto cell = config::load_cell_config(global.config);
+  const auto cell = device_seam::load_cell_config(global.config);
   if (!cell.spindle && !options.port) {
     spdlog::error("{} has no spindle: section; add one or give --port", global.config);
     return kExitConfig;

@@ -13,6 +13,7 @@
 #include "cli/run_command.hpp"
 #include "cli/terminal_screen.hpp"
 #include "config/cell_config.hpp"
+#include "device_seam/device_registry.hpp"
 #include "exit_codes/exit_codes.hpp"
 #include "jobs/run_record_info.hpp"
 #include "jobs/teach_in_job.hpp"
@@ -67,7 +68,7 @@ std::string plan(const config::CellConfig& cell, const routines::TeachInRequest&
 }
 
 int teach_in(const GlobalOptions& global, const TeachInArgs& args) {
-  const auto cell = config::load_cell_config(global.config);
+  const auto cell = device_seam::load_cell_config(global.config);
   if (const auto problem = run_args_problem(args.run, cell); !problem.empty()) {
     spdlog::error("{}", problem);
     return kExitUsage;

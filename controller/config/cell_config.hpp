@@ -5,8 +5,11 @@
 // (runtime/emulator_setup, plant_link/link_config), from the file as parsed here (`document`), so the
 // file is parsed once and their errors still name file:line:column.
 
+#include <array>
 #include <filesystem>
 #include <optional>
+#include <span>
+#include <string_view>
 
 #include "config/cell_core.hpp"
 #include "config/encoder_section.hpp"
@@ -29,8 +32,17 @@ struct CellConfig : CellCore {
   std::optional<YamlNode> document;
 };
 
-// Throws ConfigError (file:line:column: field: rule) on the first problem.
-[[nodiscard]] CellConfig load_cell_config(const std::filesystem::path& path);
-[[nodiscard]] CellConfig parse_cell_config(const YamlNode& root, const std::filesystem::path& source);
+// The sections a cell's devices may have: the three of the cell. A device registered beyond them
+// (device_seam/device_registry.hpp) has its section read where it is made, from `document`.
+inline constexpr std::array<std::string_view, 3> kCellDeviceSections = {"scu", "spindle", "encoder"};
+
+// Throws ConfigError (file:line:column: field: rule) on the first problem. `device_sections`: the
+// top-level keys that name a device (device_seam::load_cell_config passes the registry's).
+[[nodiscard]] CellConfig load_cell_config(
+    const std::filesystem::path& path,
+    std::span<const std::string_view> device_sections = kCellDeviceSections);
+[[nodiscard]] CellConfig parse_cell_config(
+    const YamlNode& root, const std::filesystem::path& source,
+    std::span<const std::string_view> device_sections = kCellDeviceSections);
 
 }  // namespace cellctl::config

@@ -1,10 +1,10 @@
-#include "runtime/emulator_setup.hpp"
+#include "emulation/emulator_setup.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 
-namespace cellctl::runtime {
+namespace cellctl::emulation {
 namespace {
 
 using config::YamlNode;
@@ -110,4 +110,4 @@ EmulatorSetup load_emulator_setup(const config::CellConfig& cell) {
   return parse_emulator_setup(*cell.document, cell);
 }
 
-}  // namespace cellctl::runtime
+}  // namespace cellctl::emulation

@@ -14,7 +14,7 @@
 #include "scu/emulator_config.hpp"
 #include "spindle/emulator.hpp"
 
-namespace cellctl::runtime {
+namespace cellctl::emulation {
 
 // The emulated cell's physics beyond each device's own (what couples them): the encoder's shaft
 // turns once per encoder_mm_per_revolution of the axis's true travel (its lead: mechanics, which no
@@ -54,4 +54,4 @@ struct EmulatorSetup {
 // std::invalid_argument for a cell made in memory, which has no file.
 [[nodiscard]] EmulatorSetup load_emulator_setup(const config::CellConfig& cell);
 
-}  // namespace cellctl::runtime
+}  // namespace cellctl::emulation

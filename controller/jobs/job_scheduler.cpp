@@ -8,6 +8,7 @@
 #include <chrono>
 #include <memory>
 
+#include "device_seam/device_registry.hpp"
 #include "exit_codes/exit_codes.hpp"
 #include "jobs/end_state_gate.hpp"
 #include "jobs/home_job.hpp"
@@ -352,7 +353,7 @@ void JobScheduler::after_teach_in(const runtime::RunResult& r, bool manual, JobE
   if (record.write_failed) end.state = supervisor::State::aborted;
   if (!record.written || record.file != options_.config_file) return;
   try {
-    auto fresh = config::load_cell_config(options_.config_file);
+    auto fresh = device_seam::load_cell_config(options_.config_file);
     std::lock_guard lock(mutex_);
     cell_ = std::move(fresh);  // the next jobs count in what was taught
   } catch (const std::exception& e) {

@@ -16,19 +16,15 @@ cell::LinkState link_state(const link::DeviceSession& s, link::TimePoint now) {
                      .refusals = h.error_replies}};
 }
 
-std::array<link::Link*, cell::kDevices> by_slot(const DeviceLinks& l) {
-  return {l.scu, l.spindle, l.encoder};
-}
-
 }  // namespace
 
 CellDevices::CellDevices(const config::CellConfig& cell, std::span<link::Link* const> links, Reopen reopen,
                          std::span<const device_seam::DeviceKind> kinds)
     : axis_count_(static_cast<std::uint8_t>(cell.axes.size())) {
-  if (kinds.size() > cell::kMaxDevices || links.size() > kinds.size())
-    throw std::invalid_argument("more devices than a cell has slots for");
+  if (kinds.size() > cell::kMaxDevices) throw std::invalid_argument("more devices than a cell has slots for");
   for (std::size_t slot = 0; slot < links.size(); ++slot) {
     if (!links[slot]) continue;
+    if (slot >= kinds.size()) throw std::invalid_argument("a link in a slot no kind of device has");
     auto device =
         kinds[slot].make(slot, cell, *links[slot], [reopen, slot] { return reopen && reopen(slot); });
     if (!device) continue;
@@ -42,9 +38,6 @@ CellDevices::CellDevices(const config::CellConfig& cell, std::span<link::Link* c
     if (auto* s = dynamic_cast<device_seam::EncoderDevice*>(d)) encoder_ = s;
   }
 }
-
-CellDevices::CellDevices(const config::CellConfig& cell, DeviceLinks links, Reopen reopen)
-    : CellDevices(cell, by_slot(links), std::move(reopen)) {}
 
 void CellDevices::activate(link::TimePoint now) {
   for (auto* d : present_) d->session().activate(now);

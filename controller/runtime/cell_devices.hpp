@@ -22,7 +22,6 @@
 #include "device_seam/spindle_device.hpp"
 #include "link/device_session.hpp"
 #include "link/link.hpp"
-#include "runtime/device_links.hpp"
 
 namespace cellctl::runtime {
 
@@ -36,7 +35,6 @@ class CellDevices {
   // config) — at construction only.
   CellDevices(const config::CellConfig& cell, std::span<link::Link* const> links, Reopen reopen,
               std::span<const device_seam::DeviceKind> kinds = device_seam::cell_device_kinds());
-  CellDevices(const config::CellConfig& cell, DeviceLinks links, Reopen reopen = {});
 
   void activate(link::TimePoint now);
   void receive(link::TimePoint now);

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 #include "link/link_error.hpp"
 
 namespace cellctl::runtime {
@@ -19,15 +21,17 @@ std::unique_ptr<link::SerialLink> open_serial(const std::string& device, const s
 }  // namespace
 
 CellLinks::CellLinks(const config::CellConfig& cell, RunMode mode, const link::Clock& clock, bool trace,
-                     std::bitset<cell::kDevices> fault_lines)
+                     std::bitset<cell::kMaxDevices> fault_lines,
+                     std::span<const device_seam::DeviceKind> kinds)
     : clock_(clock), mode_(mode), trace_(trace), fault_lines_(fault_lines), sink_(when_writer_full(mode)) {
-  if (cell.scu) master_.scu = open(cell::Device::scu, cell.scu->port, device_.scu);
-  if (cell.spindle) master_.spindle = open(cell::Device::spindle, cell.spindle->port, device_.spindle);
-  if (cell.encoder) master_.encoder = open(cell::Device::encoder, cell.encoder->port, device_.encoder);
+  if (kinds.size() > cell::kMaxDevices) throw std::invalid_argument("more devices than a cell has slots for");
+  for (std::size_t slot = 0; slot < kinds.size(); ++slot)
+    if (const auto port = kinds[slot].port(cell)) master_[slot] = open(slot, kinds[slot].name, *port);
 }
 
-link::Link* CellLinks::open(cell::Device device, const config::PortConfig& port, link::Link*& device_side) {
-  const std::string name = cell::to_string(device);
+link::Link* CellLinks::open(std::size_t slot, std::string_view device_name, const config::PortConfig& port) {
+  const std::string name(device_name);
+  link::Link*& device_side = device_[slot];
   link::Link* master = nullptr;
   if (mode_ == RunMode::virtual_time) {
     auto& sim = *sims_.emplace_back(std::make_unique<link::SimLink>(clock_, port.line, name));
@@ -46,11 +50,11 @@ link::Link* CellLinks::open(cell::Device device, const config::PortConfig& port,
     master = owned_.emplace_back(open_serial(name, port.port, port.line)).get();
     descriptions_.push_back(fmt::format("{}: {}", name, master->describe()));
   }
-  if (const auto d = static_cast<std::size_t>(device); fault_lines_.test(d)) {
+  if (fault_lines_.test(slot)) {
     // Seeded per device: the same rehearsal corrupts the same bits every time.
     auto faulty =
-        std::make_unique<link::FaultInjectingLink>(*master, clock_, static_cast<std::uint32_t>(d + 1));
-    fault_links_[d] = faulty.get();
+        std::make_unique<link::FaultInjectingLink>(*master, clock_, static_cast<std::uint32_t>(slot + 1));
+    fault_links_[slot] = faulty.get();
     master = owned_.emplace_back(std::move(faulty)).get();
   }
   if (trace_)
@@ -58,10 +62,8 @@ link::Link* CellLinks::open(cell::Device device, const config::PortConfig& port,
   return master;
 }
 
-link::IoResult CellLinks::reopen(cell::Device device) {
-  link::Link* l = device == cell::Device::scu       ? master_.scu
-                  : device == cell::Device::spindle ? master_.spindle
-                                                    : master_.encoder;
+link::IoResult CellLinks::reopen(std::size_t slot) {
+  link::Link* l = slot < master_.size() ? master_[slot] : nullptr;
   if (l == nullptr) return {0, link::IoStatus::failed, 0};
   return l->reopen();
 }

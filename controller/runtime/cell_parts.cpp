@@ -8,7 +8,8 @@ namespace cellctl::runtime {
 
 CellParts open_cell_parts(const config::CellConfig& cell, RunMode mode, const link::Clock& clock,
                           link::VirtualClock& virtual_clock, bool trace, const std::vector<FaultSpec>& faults,
-                          std::optional<EmulatorSetup>& emulators) {
+                          std::optional<emulation::EmulatorSetup>& emulators,
+                          std::span<const device_seam::DeviceKind> kinds) {
   CellParts p;
   if (mode == RunMode::virtual_time)
     p.waiter = std::make_unique<loop::VirtualWaiter>(virtual_clock);
@@ -17,18 +18,17 @@ CellParts open_cell_parts(const config::CellConfig& cell, RunMode mode, const li
   if (!faults.empty()) {
     if (mode == RunMode::hardware)
       throw std::invalid_argument("faults are rehearsed on emulators only (--emulate or --virtual-time)");
-    p.rehearsal = std::make_unique<FaultRehearsal>(faults, cell);
+    p.rehearsal = std::make_unique<FaultRehearsal>(faults, cell, kinds);
   }
-  p.links = std::make_unique<CellLinks>(cell, mode, clock, trace,
-                                        p.rehearsal ? p.rehearsal->lines() : std::bitset<cell::kDevices>{});
+  p.links = std::make_unique<CellLinks>(
+      cell, mode, clock, trace, p.rehearsal ? p.rehearsal->lines() : std::bitset<cell::kMaxDevices>{}, kinds);
   if (p.links->any_emulated()) {
-    if (!emulators) emulators = load_emulator_setup(cell);
-    p.emulated = std::make_unique<EmulatedCell>(cell, *emulators, p.links->device());
+    if (!emulators) emulators = emulation::load_emulator_setup(cell);
+    p.emulated = std::make_unique<EmulatedCell>(cell, *emulators, p.links->device(), kinds);
   }
-  p.devices =
-      std::make_unique<CellDevices>(cell, p.links->master(), [links = p.links.get()](std::size_t slot) {
-        return slot < cell::kDevices && links->reopen(static_cast<cell::Device>(slot)).ok();
-      });
+  const auto master = p.links->master();
+  p.devices = std::make_unique<CellDevices>(
+      cell, master, [links = p.links.get()](std::size_t slot) { return links->reopen(slot).ok(); }, kinds);
   return p;
 }
 

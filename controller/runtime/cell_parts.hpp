@@ -6,15 +6,17 @@
 #include <atomic>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "config/cell_config.hpp"
+#include "device_seam/device_registry.hpp"
+#include "emulation/emulator_setup.hpp"
 #include "link/clock.hpp"
 #include "loop/cycle_waiter.hpp"
 #include "runtime/cell_devices.hpp"
 #include "runtime/cell_links.hpp"
 #include "runtime/emulated_cell.hpp"
-#include "runtime/emulator_setup.hpp"
 #include "runtime/fault_rehearsal.hpp"
 #include "runtime/fault_spec.hpp"
 
@@ -29,12 +31,14 @@ struct CellParts {
 };
 
 // `clock` is `virtual_clock` in virtual time. `emulators` is read from the cell's file when needed and
-// not given. Throws std::invalid_argument (faults on hardware, a device the cell lacks), link::LinkError
-// (a port), config::ConfigError / std::runtime_error (an emulator's set-up).
+// not given. `kinds`: the kinds of device the cell may have (the registry's, unless a test adds one). Throws
+// std::invalid_argument (faults on hardware, a device the cell lacks), link::LinkError (a port),
+// config::ConfigError / std::runtime_error (an emulator's set-up).
 [[nodiscard]] CellParts open_cell_parts(const config::CellConfig& cell, RunMode mode,
                                         const link::Clock& clock, link::VirtualClock& virtual_clock,
                                         bool trace, const std::vector<FaultSpec>& faults,
-                                        std::optional<EmulatorSetup>& emulators);
+                                        std::optional<emulation::EmulatorSetup>& emulators,
+                                        std::span<const device_seam::DeviceKind> kinds);
 
 // The emulators' thread in real time: they answer like hardware, on their own time, until `stop`.
 void serve_emulators(const std::atomic<bool>& stop, const link::Clock& clock, FaultRehearsal* rehearsal,

@@ -73,7 +73,7 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
   options_.supervisor.home_record = &home_record_;
   try {
     parts_ = open_cell_parts(cell, options_.mode, clock_, virtual_clock_, options_.trace, options_.faults,
-                             options_.emulators);
+                             options_.emulators, options_.device_kinds);
     const bool teaches =
         std::any_of(program_.instructions.begin(), program_.instructions.end(),
                     [](const auto& i) { return std::holds_alternative<recipe::TeachIn>(i.action); });

@@ -13,6 +13,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "cell/cell_state.hpp"
 #include "command/arbiter.hpp"
 #include "config/cell_config.hpp"
+#include "emulation/emulator_setup.hpp"
 #include "journal/event_listener.hpp"
 #include "journal/event_sink.hpp"
 #include "journal/journal.hpp"
@@ -34,7 +36,6 @@
 #include "runtime/cell_links.hpp"
 #include "runtime/cell_parts.hpp"
 #include "runtime/emulated_cell.hpp"
-#include "runtime/emulator_setup.hpp"
 #include "runtime/fault_rehearsal.hpp"
 #include "runtime/fault_spec.hpp"
 #include "runtime/safe_stop.hpp"
@@ -60,9 +61,11 @@ struct RunOptions {
   std::vector<FaultSpec> faults;  // to rehearse (emulated and virtual-time runs only)
   // The emulated devices' set-up; read from the cell's file (cell.source) when emulators are needed
   // and none is given here.
-  std::optional<EmulatorSetup> emulators;
+  std::optional<emulation::EmulatorSetup> emulators;
   // The folder of the home record (home.json); empty: the cell config's state_dir.
   std::filesystem::path state_dir;
+  // The kinds of device the cell may have, in slot order: the registry's, unless a test adds one.
+  std::span<const device_seam::DeviceKind> device_kinds = device_seam::cell_device_kinds();
 };
 
 struct RunResult {

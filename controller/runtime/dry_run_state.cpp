@@ -10,9 +10,9 @@ std::filesystem::path dry_run_config_file(const std::filesystem::path& state_dir
   return state_dir / "config.dry-run.yaml";
 }
 
-EmulatorSetup dry_run_emulator_setup(const config::CellConfig& cell, const std::filesystem::path& state_dir,
-                                     bool power_cycle) {
-  auto setup = load_emulator_setup(cell);
+emulation::EmulatorSetup dry_run_emulator_setup(const config::CellConfig& cell,
+                                                const std::filesystem::path& state_dir, bool power_cycle) {
+  auto setup = emulation::load_emulator_setup(cell);
   std::error_code ignored;  // a folder that cannot be made: the saves fail, the dry run goes on
   std::filesystem::create_directories(state_dir, ignored);
   setup.plant_state_file = dry_run_plant_file(state_dir);

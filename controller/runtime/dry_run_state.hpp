@@ -13,7 +13,7 @@
 #include <filesystem>
 
 #include "config/cell_config.hpp"
-#include "runtime/emulator_setup.hpp"
+#include "emulation/emulator_setup.hpp"
 
 namespace cellctl::runtime {
 
@@ -23,8 +23,8 @@ namespace cellctl::runtime {
 // The emulators of `cell` (load_emulator_setup) keeping their state in `state_dir` between dry runs;
 // `power_cycle`: they start as after a power loss (rods where they were, no actuator initialised).
 // Throws as load_emulator_setup.
-[[nodiscard]] EmulatorSetup dry_run_emulator_setup(const config::CellConfig& cell,
-                                                   const std::filesystem::path& state_dir,
-                                                   bool power_cycle = false);
+[[nodiscard]] emulation::EmulatorSetup dry_run_emulator_setup(const config::CellConfig& cell,
+                                                              const std::filesystem::path& state_dir,
+                                                              bool power_cycle = false);
 
 }  // namespace cellctl::runtime

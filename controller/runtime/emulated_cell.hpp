@@ -1,21 +1,22 @@
 #pragma once
-// The cell's devices as emulators, built from the cell config over whatever links they are given
-// (pseudo-terminals for `cellctl emulate` and `run --emulate`, SimLinks in virtual time), sharing one
-// plant: the encoder's shaft turns with the true position of the SCU actuator of the measured axis,
-// so a dry run is physically consistent (a scale error in the actuator shows up at the encoder).
+// The cell's devices as emulators, made from the registry (device_seam/device_registry.hpp) for every
+// device whose line it is given (pseudo-terminals for `cellctl emulate`, socket pairs for `run
+// --emulate`, SimLinks in virtual time), in slot order, sharing one plant: the encoder's shaft turns
+// with the true position of the SCU actuator of the measured axis, so a dry run is physically
+// consistent (a scale error in the actuator shows up at the encoder).
 
+#include <array>
+#include <filesystem>
 #include <memory>
-#include <optional>
+#include <span>
 
 #include "config/cell_config.hpp"
-#include "encoder/emulator.hpp"
+#include "device_seam/device_registry.hpp"
+#include "emulation/device_emulators.hpp"
+#include "emulation/emulated_device.hpp"
+#include "emulation/emulator_setup.hpp"
 #include "link/clock.hpp"
-#include "link/link.hpp"
-#include "plant/shaft.hpp"
 #include "runtime/device_links.hpp"
-#include "runtime/emulator_setup.hpp"
-#include "scu/emulator.hpp"
-#include "spindle/emulator.hpp"
 
 namespace cellctl::runtime {
 
@@ -23,7 +24,9 @@ class EmulatedCell {
  public:
   // Throws std::invalid_argument / std::runtime_error from an emulator's set-up (config time).
   // With setup.plant_state_file, the emulators start from the state kept there (runtime/plant_state).
-  EmulatedCell(const config::CellConfig& cell, const EmulatorSetup& setup, DeviceLinks links);
+  EmulatedCell(const config::CellConfig& cell, const emulation::EmulatorSetup& setup,
+               const DeviceLinks& links,
+               std::span<const device_seam::DeviceKind> kinds = device_seam::cell_device_kinds());
   // Keeps the plant's state in setup.plant_state_file, if any, for the next dry run.
   ~EmulatedCell();
   EmulatedCell(const EmulatedCell&) = delete;
@@ -31,18 +34,25 @@ class EmulatedCell {
 
   // Steps every emulator (and so the plant) to `now` and answers what has arrived.
   void poll(link::TimePoint now);
+  // The emulator in `slot` (nullptr: that device is not emulated).
+  [[nodiscard]] emulation::EmulatedDevice* device(std::size_t slot) noexcept {
+    return slot < made_.size() ? made_[slot] : nullptr;
+  }
+  // The emulator of type E (a device's own: scu::Emulator, …), nullptr when none is emulated.
+  template <class E>
+  [[nodiscard]] E* find() noexcept {
+    return emulation::find_emulator<E>(made_);
+  }
 
-  // Fault hooks and inspection, nullptr where the device is not emulated.
-  [[nodiscard]] scu::Emulator* scu() noexcept { return scu_.get(); }
-  [[nodiscard]] spindle::Emulator* spindle() noexcept { return spindle_.get(); }
-  [[nodiscard]] encoder::Emulator* encoder() noexcept { return encoder_.get(); }
-  [[nodiscard]] plant::Shaft* shaft() noexcept { return shaft_ ? &*shaft_ : nullptr; }
+  // Fault hooks and inspection of the cell's three, nullptr where the device is not emulated.
+  [[nodiscard]] scu::Emulator* scu() noexcept { return find<scu::Emulator>(); }
+  [[nodiscard]] spindle::Emulator* spindle() noexcept { return find<spindle::Emulator>(); }
+  [[nodiscard]] encoder::Emulator* encoder() noexcept { return find<encoder::Emulator>(); }
+  [[nodiscard]] plant::Shaft* shaft() noexcept;
 
  private:
-  std::unique_ptr<scu::Emulator> scu_;
-  std::unique_ptr<spindle::Emulator> spindle_;
-  std::optional<plant::Shaft> shaft_;
-  std::unique_ptr<encoder::Emulator> encoder_;
+  std::array<std::unique_ptr<emulation::EmulatedDevice>, cell::kMaxDevices> owned_;
+  std::array<emulation::EmulatedDevice*, cell::kMaxDevices> made_{};  // by slot, as they are made
   std::filesystem::path plant_state_file_;
 };
 

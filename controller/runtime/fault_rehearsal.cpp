@@ -4,75 +4,55 @@
 
 #include <stdexcept>
 
-#include "encoder/diagnosis.hpp"
-
 namespace cellctl::runtime {
 namespace {
 
-std::size_t index(cell::Device d) noexcept {
-  return static_cast<std::size_t>(d);
-}
-
-bool cell_has(const config::CellConfig& cell, cell::Device d) noexcept {
-  switch (d) {
-    case cell::Device::scu:
-      return cell.scu.has_value();
-    case cell::Device::spindle:
-      return cell.spindle.has_value();
-    case cell::Device::encoder:
-      return cell.encoder.has_value();
-  }
-  return false;
-}
-
-void set_device_error(cell::Device d, bool on, EmulatedCell& emulators) {
-  switch (d) {
-    case cell::Device::scu:
-      if (auto* scu = emulators.scu())
-        for (int a = 1; a <= scu::kActuatorCount; ++a)
-          if (scu->has_actuator(a)) scu->set_actuator_fault(a, on);
-      return;
-    case cell::Device::spindle:
-      if (auto* spindle = emulators.spindle()) spindle->set_over_temperature(on);
-      return;
-    case cell::Device::encoder:
-      if (auto* encoder = emulators.encoder()) encoder->set_alarm(encoder::alarm::position_error, on);
-      return;
-  }
+// The slot of the kind named `name`, kinds.size() when none is.
+std::size_t slot_of(std::span<const device_seam::DeviceKind> kinds, std::string_view name) noexcept {
+  const auto* kind = device_seam::find_kind(kinds, name);
+  return kind ? static_cast<std::size_t>(kind - kinds.data()) : kinds.size();
 }
 
 }  // namespace
 
 std::optional<std::string> FaultRehearsal::problem(const std::vector<FaultSpec>& faults,
-                                                   const config::CellConfig& cell) {
-  std::array<std::size_t, cell::kDevices> line_faults{};
+                                                   const config::CellConfig& cell,
+                                                   std::span<const device_seam::DeviceKind> kinds) {
+  std::array<std::size_t, cell::kMaxDevices> line_faults{};
   for (const auto& f : faults) {
-    if (!cell_has(cell, f.device))
-      return fmt::format("--fault {}: the cell '{}' has no {}", f.text, cell.name, cell::to_string(f.device));
-    if (f.line && ++line_faults[index(f.device)] > link::FaultInjectingLink::kMaxWindows)
+    const auto slot = slot_of(kinds, f.device);
+    if (slot == kinds.size() || !kinds[slot].port(cell))
+      return fmt::format("--fault {}: the cell '{}' has no {}", f.text, cell.name, f.device);
+    if (f.line && ++line_faults[slot] > link::FaultInjectingLink::kMaxWindows)
       return fmt::format("--fault {}: at most {} line faults per device", f.text,
                          link::FaultInjectingLink::kMaxWindows);
   }
   return std::nullopt;
 }
 
-FaultRehearsal::FaultRehearsal(std::vector<FaultSpec> faults, const config::CellConfig& cell)
-    : faults_(std::move(faults)), began_(faults_.size(), false), ended_(faults_.size(), false) {
-  if (auto p = problem(faults_, cell)) throw std::invalid_argument(*p);
+FaultRehearsal::FaultRehearsal(std::vector<FaultSpec> faults, const config::CellConfig& cell,
+                               std::span<const device_seam::DeviceKind> kinds)
+    : kinds_(kinds),
+      faults_(std::move(faults)),
+      began_(faults_.size(), false),
+      ended_(faults_.size(), false) {
+  if (auto p = problem(faults_, cell, kinds_)) throw std::invalid_argument(*p);
+  for (const auto& f : faults_) slots_.push_back(slot_of(kinds_, f.device));
 }
 
-std::bitset<cell::kDevices> FaultRehearsal::lines() const noexcept {
-  std::bitset<cell::kDevices> out;
-  for (const auto& f : faults_)
-    if (f.line) out.set(index(f.device));
+std::bitset<cell::kMaxDevices> FaultRehearsal::lines() const noexcept {
+  std::bitset<cell::kMaxDevices> out;
+  for (std::size_t i = 0; i < faults_.size(); ++i)
+    if (faults_[i].line) out.set(slots_[i]);
   return out;
 }
 
 void FaultRehearsal::start(link::TimePoint start, const FaultLinks& links) {
   start_ = start;
-  for (const auto& f : faults_) {
+  for (std::size_t i = 0; i < faults_.size(); ++i) {
+    const auto& f = faults_[i];
     if (!f.line) continue;
-    auto* l = links[index(f.device)];
+    auto* l = links[slots_[i]];
     if (l == nullptr) throw std::logic_error("fault rehearsal: no fault-injecting link for " + f.text);
     const auto until = f.lasting ? std::optional(start + f.at + *f.lasting) : std::nullopt;
     if (!l->schedule(*f.line, start + f.at, until))
@@ -90,13 +70,13 @@ bool FaultRehearsal::over_at(std::size_t i, link::TimePoint now) const noexcept 
 }
 
 void FaultRehearsal::drive_emulators(link::TimePoint now, EmulatedCell& emulators) {
-  std::array<bool, cell::kDevices> wanted{};
+  std::array<bool, cell::kMaxDevices> wanted{};
   for (std::size_t i = 0; i < faults_.size(); ++i)
-    if (!faults_[i].line && open_at(i, now)) wanted[index(faults_[i].device)] = true;
-  for (const auto d : {cell::Device::scu, cell::Device::spindle, cell::Device::encoder}) {
-    if (wanted[index(d)] == device_error_on_[index(d)]) continue;
-    device_error_on_[index(d)] = wanted[index(d)];
-    set_device_error(d, wanted[index(d)], emulators);
+    if (!faults_[i].line && open_at(i, now)) wanted[slots_[i]] = true;
+  for (std::size_t slot = 0; slot < kinds_.size(); ++slot) {
+    if (wanted[slot] == device_error_on_[slot]) continue;
+    device_error_on_[slot] = wanted[slot];
+    if (auto* emulator = emulators.device(slot)) emulator->set_own_error(wanted[slot]);
   }
 }
 
@@ -104,7 +84,7 @@ void FaultRehearsal::post_journal(link::TimePoint now, double t, journal::EventS
   for (std::size_t i = 0; i < faults_.size(); ++i) {
     const auto& f = faults_[i];
     const auto event = [&](bool ended) {
-      return journal::InjectedFault{cell::to_string(f.device), f.kind_name(), f.text, what(f), ended};
+      return journal::InjectedFault{kinds_[slots_[i]].name, f.kind_name(), f.text, what(f, kinds_), ended};
     };
     if (!began_[i] && now >= start_ + f.at) {
       began_[i] = true;
@@ -125,13 +105,14 @@ void FaultRehearsal::post_run_end(double t, journal::EventSink& journal) {
           t, journal::Note{journal::Text::format("fault {} was not injected: the run ended first", f.text)});
     } else if (!ended_[i]) {
       ended_[i] = true;
-      journal.post(
-          t, journal::InjectedFault{cell::to_string(f.device), f.kind_name(), f.text, what(f), true, true});
+      journal.post(t, journal::InjectedFault{kinds_[slots_[i]].name, f.kind_name(), f.text, what(f, kinds_),
+                                             true, true});
     }
   }
 }
 
-std::string_view FaultRehearsal::what(const FaultSpec& f) noexcept {
+std::string_view FaultRehearsal::what(const FaultSpec& f,
+                                      std::span<const device_seam::DeviceKind> kinds) noexcept {
   if (f.line) {
     switch (f.line->kind) {
       case link::LinkFaultKind::silent:
@@ -146,15 +127,8 @@ std::string_view FaultRehearsal::what(const FaultSpec& f) noexcept {
         return "the device's replies arrive late";
     }
   }
-  switch (f.device) {
-    case cell::Device::scu:
-      return "every actuator reports an actuator fault (error code bits 15..20) and is fast-stopped";
-    case cell::Device::spindle:
-      return "the converter latches fault 31, motor over-temperature, and runs the motor down";
-    case cell::Device::encoder:
-      return "the encoder reports the position error alarm in its diagnosis";
-  }
-  return "?";
+  const auto* kind = device_seam::find_kind(kinds, f.device);
+  return kind ? kind->own_error : std::string_view("?");
 }
 
 }  // namespace cellctl::runtime

@@ -4,7 +4,8 @@
 // link::FaultInjectingLink on the session's end of the device's link, the device's own error through
 // its emulator's fault hooks, and each fault's start and end in the journal.
 //
-// The device's own error, as its manual describes it:
+// The device's own error is its emulator's (emulation::EmulatedDevice::set_own_error), as its manual
+// describes it and its kind (device_seam/device_registry.hpp) says in words:
 //  - SCU: a lasting actuator fault on every actuator (error code bits 15..20: the actuator is fast-
 //    stopped; the bit is reset with the next motion and, while the fault lasts, set again at once).
 //    The manual has no error reply for an actuator fault — CSE/PDE/PCE/ICE/PE answer telegram and
@@ -19,11 +20,13 @@
 #include <array>
 #include <bitset>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "cell/cell_state.hpp"
 #include "config/cell_config.hpp"
+#include "device_seam/device_registry.hpp"
 #include "journal/event_sink.hpp"
 #include "link/clock.hpp"
 #include "link/fault_injecting_link.hpp"
@@ -33,20 +36,22 @@
 namespace cellctl::runtime {
 
 // The fault-injecting link on each device's line (nullptr: no line fault for that device).
-using FaultLinks = std::array<link::FaultInjectingLink*, cell::kDevices>;
+using FaultLinks = std::array<link::FaultInjectingLink*, cell::kMaxDevices>;
 
 class FaultRehearsal {
  public:
   // Throws std::invalid_argument with problem()'s text.
-  FaultRehearsal(std::vector<FaultSpec> faults, const config::CellConfig& cell);
+  FaultRehearsal(std::vector<FaultSpec> faults, const config::CellConfig& cell,
+                 std::span<const device_seam::DeviceKind> kinds = device_seam::cell_device_kinds());
 
   // Why these faults cannot be rehearsed on this cell (a device it does not have, too many line faults
   // for one device), or nullopt.
-  [[nodiscard]] static std::optional<std::string> problem(const std::vector<FaultSpec>& faults,
-                                                          const config::CellConfig& cell);
+  [[nodiscard]] static std::optional<std::string> problem(
+      const std::vector<FaultSpec>& faults, const config::CellConfig& cell,
+      std::span<const device_seam::DeviceKind> kinds = device_seam::cell_device_kinds());
 
-  // The devices whose line needs a FaultInjectingLink.
-  [[nodiscard]] std::bitset<cell::kDevices> lines() const noexcept;
+  // The devices (by slot) whose line needs a FaultInjectingLink.
+  [[nodiscard]] std::bitset<cell::kMaxDevices> lines() const noexcept;
   [[nodiscard]] const std::vector<FaultSpec>& faults() const noexcept { return faults_; }
 
   // The run starts: each line fault is scheduled on its device's link, from `start` on.
@@ -59,17 +64,21 @@ class FaultRehearsal {
   // is said to have not been injected.
   void post_run_end(double t, journal::EventSink& journal);
 
-  // What a fault does, in words (static text).
-  [[nodiscard]] static std::string_view what(const FaultSpec& f) noexcept;
+  // What a fault does, in words (static text; "?" for a device none of `kinds` is).
+  [[nodiscard]] static std::string_view what(
+      const FaultSpec& f,
+      std::span<const device_seam::DeviceKind> kinds = device_seam::cell_device_kinds()) noexcept;
 
  private:
   [[nodiscard]] bool open_at(std::size_t i, link::TimePoint now) const noexcept;
   [[nodiscard]] bool over_at(std::size_t i, link::TimePoint now) const noexcept;
 
+  std::span<const device_seam::DeviceKind> kinds_;
   std::vector<FaultSpec> faults_;
+  std::vector<std::size_t> slots_;  // each fault's device
   link::TimePoint start_{};
-  std::vector<bool> began_, ended_;                     // loop side
-  std::array<bool, cell::kDevices> device_error_on_{};  // emulator side
+  std::vector<bool> began_, ended_;                        // loop side
+  std::array<bool, cell::kMaxDevices> device_error_on_{};  // emulator side
 };
 
 }  // namespace cellctl::runtime

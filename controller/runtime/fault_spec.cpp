@@ -25,10 +25,10 @@ link::Duration seconds(double s) {
   return std::chrono::round<link::Duration>(std::chrono::duration<double>(s));
 }
 
-std::optional<cell::Device> device_named(std::string_view s) {
-  for (const auto d : {cell::Device::scu, cell::Device::spindle, cell::Device::encoder})
-    if (s == cell::to_string(d)) return d;
-  return std::nullopt;
+std::string names_of(std::span<const device_seam::DeviceKind> kinds) {
+  std::string out;
+  for (const auto& k : kinds) out += fmt::format("{}{}", out.empty() ? "" : ", ", k.name);
+  return out;
 }
 
 // KIND: the line fault, nullopt for `error`; an error text when it is neither.
@@ -53,7 +53,8 @@ std::variant<std::optional<link::LinkFault>, FaultSpecError> kind_named(std::str
 
 }  // namespace
 
-std::variant<FaultSpec, FaultSpecError> parse_fault_spec(std::string_view text) {
+std::variant<FaultSpec, FaultSpecError> parse_fault_spec(std::string_view text,
+                                                         std::span<const device_seam::DeviceKind> kinds) {
   const auto colon = text.find(':');
   const auto at = text.find('@');
   if (colon == std::string_view::npos || at == std::string_view::npos || at < colon)
@@ -62,9 +63,9 @@ std::variant<FaultSpec, FaultSpecError> parse_fault_spec(std::string_view text) 
   FaultSpec spec;
   spec.text = std::string(text);
   const auto device_text = text.substr(0, colon);
-  const auto device = device_named(device_text);
-  if (!device) return FaultSpecError{fmt::format("unknown device '{}' (scu, spindle, encoder)", device_text)};
-  spec.device = *device;
+  if (!device_seam::find_kind(kinds, device_text))
+    return FaultSpecError{fmt::format("unknown device '{}' ({})", device_text, names_of(kinds))};
+  spec.device = std::string(device_text);
 
   auto kind = kind_named(text.substr(colon + 1, at - colon - 1));
   if (auto* e = std::get_if<FaultSpecError>(&kind)) return std::move(*e);

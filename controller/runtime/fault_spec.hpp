@@ -5,18 +5,19 @@
 // reports a fault of its own as its manual describes it (see FaultRehearsal).
 
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <variant>
 
-#include "cell/cell_state.hpp"
+#include "device_seam/device_registry.hpp"
 #include "link/clock.hpp"
 #include "link/link_fault.hpp"
 
 namespace cellctl::runtime {
 
 struct FaultSpec {
-  cell::Device device = cell::Device::scu;
+  std::string device;                   // its kind's name (device_seam/device_registry.hpp)
   std::optional<link::LinkFault> line;  // nullopt: the device's own error
   link::Duration at{};                  // after the run starts
   std::optional<link::Duration> lasting;
@@ -32,9 +33,10 @@ struct FaultSpecError {
   std::string reason;  // what is wrong and what is expected, without the text itself
 };
 
-// The grammar and its limits: DEVICE ∈ {scu, spindle, encoder}; KIND ∈ {silent, disconnect, corrupt,
-// garbage, delay=MS (0 < MS ≤ 60000), error}; T ≥ 0 and 0 < D, in seconds (decimals allowed, at most
-// a day).
-[[nodiscard]] std::variant<FaultSpec, FaultSpecError> parse_fault_spec(std::string_view text);
+// The grammar and its limits: DEVICE is a kind of `kinds` (scu, spindle, encoder); KIND ∈ {silent,
+// disconnect, corrupt, garbage, delay=MS (0 < MS ≤ 60000), error}; T ≥ 0 and 0 < D, in seconds (decimals
+// allowed, at most a day).
+[[nodiscard]] std::variant<FaultSpec, FaultSpecError> parse_fault_spec(
+    std::string_view text, std::span<const device_seam::DeviceKind> kinds = device_seam::cell_device_kinds());
 
 }  // namespace cellctl::runtime

@@ -76,7 +76,7 @@ PlantState power_cycled(PlantState state) {
   return state;
 }
 
-void start_from(EmulatorSetup& setup, const PlantState& state) {
+void start_from(emulation::EmulatorSetup& setup, const PlantState& state) {
   if (setup.scu)
     for (std::size_t i = 0; i < state.actuators.size(); ++i) {
       auto& act = setup.scu->actuators[i];

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "runtime/emulator_setup.hpp"
+#include "emulation/emulator_setup.hpp"
 #include "scu/functions.hpp"
 
 namespace cellctl::runtime {
@@ -37,6 +37,6 @@ struct PlantState {
 // The state after a power loss and return: positions kept, nothing initialised.
 [[nodiscard]] PlantState power_cycled(PlantState state);
 // `setup` with the emulators starting from `state` (actuators the SCU set-up does not have are left out).
-void start_from(EmulatorSetup& setup, const PlantState& state);
+void start_from(emulation::EmulatorSetup& setup, const PlantState& state);
 
 }  // namespace cellctl::runtime

@@ -16,8 +16,10 @@
 #include <optional>
 #include <string>
 
+#include "config/line_section.hpp"
 #include "device_seam/cell_device.hpp"
 #include "device_seam/device_registry.hpp"
+#include "emulation/emulated_device.hpp"
 #include "link/device_session.hpp"
 #include "link/link.hpp"
 
@@ -163,5 +165,33 @@ inline std::unique_ptr<device_seam::CellDevice> make(std::size_t slot, const con
                                                      device_seam::CellDevice::Reopen reopen) {
   return std::make_unique<Device>(slot, link, std::move(reopen));
 }
+
+// The module's end of the line in the emulated cell; its own error: it stops answering.
+class Emulated final : public emulation::EmulatorOf<Emulator> {
+ public:
+  explicit Emulated(link::Link& link) : emulator_(link) {}
+  Emulator& emulator() noexcept override { return emulator_; }
+  void poll(link::TimePoint) override { emulator_.poll(); }
+  void set_own_error(bool on) override { emulator_.set_silent(on); }
+
+ private:
+  Emulator emulator_;
+};
+
+inline std::unique_ptr<emulation::EmulatedDevice> make_emulator(const emulation::EmulatorContext& context) {
+  return std::make_unique<Emulated>(context.link);
+}
+
+// Its section of the cell config, `dio:`, holds its port and nothing else (38400 8N1 unless it says).
+inline std::optional<config::PortConfig> port(const config::CellConfig& cell) {
+  const auto section = cell.document ? cell.document->maybe("dio") : std::nullopt;
+  if (!section) return std::nullopt;
+  section->only_keys({}, config::kPortKeys);
+  return config::parse_port(*section, "dio", link::line_8n1(38400));
+}
+
+// Its one registration.
+inline constexpr device_seam::DeviceKind kKind{"dio", "the module stops answering (its watchdog tripped)",
+                                               &port, &make, &make_emulator};
 
 }  // namespace cellctl::testing::dio

@@ -1,21 +1,25 @@
-// A fourth kind of device, a made-up digital I/O module (dio_module.hpp), added through the registry's
-// kinds alone: the cycle reads its link and hands it its intents, the monitor judges its link by its
-// name, and the safe-stop stops it and gives its verdict beside the three devices of the cell.
+// A fourth kind of device, a made-up digital I/O module (dio_module.hpp), added through one
+// registration (its DeviceKind) and a section of the cell config: its line is opened and its emulator
+// made with the cell's, the cycle reads its link and hands it its intents, the monitor judges its link
+// by its name, and the safe-stop stops it and gives its verdict beside the three devices of the cell.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "config/cell_config.hpp"
 #include "device_seam/device_registry.hpp"
 #include "dio_module.hpp"
-#include "link/sim_link.hpp"
 #include "monitor/monitor.hpp"
-#include "runtime/cell_devices.hpp"
-#include "runtime/emulated_cell.hpp"
-#include "runtime/emulator_setup.hpp"
 #include "runtime/safe_stop.hpp"
+#include "support/cell_rig.hpp"
+#include "support/expect_config_error.hpp"
 
 namespace cellctl::testing {
 namespace {
@@ -23,48 +27,47 @@ namespace {
 using namespace std::chrono_literals;
 
 constexpr std::size_t kDioSlot = cell::kDevices;  // the first slot after the cell's own three
+constexpr const char* kCellFile = CELLCTL_SOURCE_DIR "/config/cell.yaml";
 
 // The registry's kinds and the module's, in slot order.
 std::vector<device_seam::DeviceKind> kinds_with_dio() {
   std::vector<device_seam::DeviceKind> kinds(device_seam::cell_device_kinds().begin(),
                                              device_seam::cell_device_kinds().end());
-  kinds.push_back({"dio", &dio::make});
+  kinds.push_back(dio::kKind);
   return kinds;
 }
+
+// The demo cell with the module's section after it (read as if it were in config/cell.yaml).
+config::CellConfig cell_with(const std::string& dio_section, std::span<const device_seam::DeviceKind> kinds) {
+  std::ifstream in(kCellFile);
+  std::stringstream text;
+  text << in.rdbuf() << dio_section;
+  return device_seam::parse_cell_config(config::YamlNode::load_string(text.str(), kCellFile), kCellFile,
+                                        kinds);
+}
+const std::string kDioSection = "dio:\n  port: emulated\n  baud: 38400\n";
 
 class FourthDevice : public ::testing::Test {
  protected:
   FourthDevice()
-      : cell_(config::load_cell_config(CELLCTL_SOURCE_DIR "/config/cell.yaml")),
-        setup_(runtime::load_emulator_setup(cell_)),
-        scu_line_(clock_, cell_.scu->port.line, "scu"),
-        spindle_line_(clock_, cell_.spindle->port.line, "spindle"),
-        encoder_line_(clock_, cell_.encoder->port.line, "encoder"),
-        dio_line_(clock_, link::line_8n1(38400), "dio"),
-        emulated_(cell_, setup_,
-                  {.scu = &scu_line_.device(),
-                   .spindle = &spindle_line_.device(),
-                   .encoder = &encoder_line_.device()}),
-        module_(dio_line_.device()),
-        kinds_(kinds_with_dio()),
-        links_{&scu_line_.master(), &spindle_line_.master(), &encoder_line_.master(), &dio_line_.master()},
-        devices_(
-            cell_, links_, [](std::size_t) { return true; }, kinds_),
-        monitor_(cell_) {}
+      : kinds_(kinds_with_dio()),
+        rig_(cell_with(kDioSection, kinds_), kinds_),
+        module_(*rig_.emulated.find<dio::Emulator>()),
+        monitor_(rig_.cell) {}
 
   // One control cycle as CellRun runs it.
   void cycle() {
-    const auto now = clock_.now();
-    emulated_.poll(now);
-    module_.poll();
-    devices_.receive(now);
-    devices_.read(now, state_);
-    if (safe_) safe_->observe(now, state_);
-    fresh_ |= monitor_.evaluate(state_, {}, link::to_seconds(now - start_));
-    if (safe_ && safe_->begun()) safe_->step(now, false);
-    if (!safe_ || !safe_->begun()) devices_.apply(intents_);
-    devices_.transmit(now);
-    clock_.advance(1ms);
+    const auto now = rig_.clock.now();
+    rig_.receive();
+    if (safe_) safe_->observe(now, rig_.state);
+    fresh_ |= monitor_.evaluate(rig_.state, {}, link::to_seconds(now - start_));
+    if (safe_ && safe_->begun()) {
+      safe_->step(now, false);
+      rig_.devices.transmit(now);
+      rig_.clock.advance(1ms);
+    } else {
+      rig_.transmit(intents_);
+    }
   }
   template <class Done>
   bool cycle_until(Done&& done, int limit = 20000) {
@@ -75,46 +78,52 @@ class FourthDevice : public ::testing::Test {
     return false;
   }
   void start_up() {
-    start_ = clock_.now();
-    safe_ = std::make_unique<runtime::SafeStop>(devices_, 5s, start_);
-    devices_.activate(start_);
+    start_ = rig_.clock.now();
+    safe_ = std::make_unique<runtime::SafeStop>(rig_.devices, 5s, start_);
+    rig_.devices.activate(start_);
     ASSERT_TRUE(cycle_until([&] {
       for (std::size_t d = 0; d <= kDioSlot; ++d)
-        if (!state_.links[d].active || state_.links[d].counts.good_replies == 0) return false;
-      return state_.encoder.data_exchange;
+        if (!rig_.state.links[d].active || rig_.state.links[d].counts.good_replies == 0) return false;
+      return rig_.state.encoder.data_exchange;
     })) << "every device, the module among them, in its active state";
   }
   runtime::Verdicts stop_and_judge() {
-    safe_->begin(clock_.now());
+    safe_->begin(rig_.clock.now());
     EXPECT_TRUE(cycle_until([&] { return safe_->done(); })) << "the safe-stop resolves every device";
     return safe_->verdicts();
   }
 
-  link::VirtualClock clock_;
-  config::CellConfig cell_;
-  runtime::EmulatorSetup setup_;
-  link::SimLink scu_line_;
-  link::SimLink spindle_line_;
-  link::SimLink encoder_line_;
-  link::SimLink dio_line_;
-  runtime::EmulatedCell emulated_;
-  dio::Emulator module_;
   std::vector<device_seam::DeviceKind> kinds_;
-  std::array<link::Link*, 4> links_;
-  runtime::CellDevices devices_;
+  CellRig rig_;
+  dio::Emulator& module_;
   monitor::Monitor monitor_;
   std::bitset<monitor::kRuleCount> fresh_;
-  cell::CellState state_;
   cell::Intents intents_;
   link::TimePoint start_{};
   std::unique_ptr<runtime::SafeStop> safe_;
 };
 
+TEST_F(FourthDevice, ItsSectionNamesItsPortAndAProblemThereIsTheConfigsError) {
+  const auto port = dio::kKind.port(rig_.cell);
+  ASSERT_TRUE(port.has_value());
+  EXPECT_TRUE(port->emulated());
+  EXPECT_EQ(port->line.baud, 38400u);
+  EXPECT_FALSE(dio::kKind.port(device_seam::load_cell_config(kCellFile)).has_value())
+      << "no section, no device";
+
+  const auto lines = std::count(std::istreambuf_iterator<char>(std::ifstream(kCellFile).rdbuf()), {}, '\n');
+  expect_config_error(
+      [&] { (void)cell_with("dio:\n  port: emulated\n  bauds: 9600\n", kinds_); },
+      fmt::format("{}:{}:3: dio.bauds: unknown field (did you mean 'baud'?)", kCellFile, lines + 3));
+  expect_config_error([&] { (void)cell_with(kDioSection, device_seam::cell_device_kinds()); },
+                      fmt::format("{}:{}:1: dio: unknown field", kCellFile, lines + 1));
+}
+
 TEST_F(FourthDevice, IsInTheCycleWithItsLinkItsIntentsAndItsName) {
   start_up();
-  EXPECT_EQ(state_.devices[kDioSlot], "dio");
-  ASSERT_EQ(devices_.devices().size(), 4u);
-  EXPECT_EQ(devices_.devices()[3]->slot(), kDioSlot);
+  EXPECT_EQ(rig_.state.devices[kDioSlot], "dio");
+  ASSERT_EQ(rig_.devices.devices().size(), 4u);
+  EXPECT_EQ(rig_.devices.devices()[3]->slot(), kDioSlot);
 
   // Its part of the intents: the coolant valve opens with the spindle and closes when it stops.
   intents_.spindle = {.run = true, .frequency_hz = 500.0, .clockwise = true, .reset = false};

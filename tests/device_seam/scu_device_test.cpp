@@ -5,15 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include <array>
 #include <string>
 
 #include "config/cell_config.hpp"
-#include "device_seam/device_registry.hpp"
-#include "link/sim_link.hpp"
-#include "runtime/cell_devices.hpp"
-#include "runtime/emulated_cell.hpp"
-#include "runtime/emulator_setup.hpp"
+#include "support/cell_rig.hpp"
 
 namespace cellctl::testing {
 namespace {
@@ -22,28 +17,11 @@ using namespace std::chrono_literals;
 
 class ScuDeviceTest : public ::testing::Test {
  protected:
-  ScuDeviceTest()
-      : cell_(config::load_cell_config(CELLCTL_SOURCE_DIR "/config/cell.yaml")),
-        setup_(runtime::load_emulator_setup(cell_)),
-        scu_line_(clock_, cell_.scu->port.line, "scu"),
-        spindle_line_(clock_, cell_.spindle->port.line, "spindle"),
-        encoder_line_(clock_, cell_.encoder->port.line, "encoder"),
-        emulated_(cell_, setup_,
-                  {.scu = &scu_line_.device(),
-                   .spindle = &spindle_line_.device(),
-                   .encoder = &encoder_line_.device()}),
-        links_{&scu_line_.master(), &spindle_line_.master(), &encoder_line_.master()},
-        devices_(
-            cell_, links_, [](std::size_t) { return true; }, device_seam::cell_device_kinds()) {}
+  ScuDeviceTest() : rig_(config::load_cell_config(CELLCTL_SOURCE_DIR "/config/cell.yaml")) {}
 
   void cycle() {
-    const auto now = clock_.now();
-    emulated_.poll(now);
-    devices_.receive(now);
-    devices_.read(now, state_);
-    devices_.apply(intents_);
-    devices_.transmit(now);
-    clock_.advance(1ms);
+    rig_.receive();
+    rig_.transmit(intents_);
   }
   template <class Done>
   bool cycle_until(Done&& done, int limit = 5000) {
@@ -54,8 +32,8 @@ class ScuDeviceTest : public ::testing::Test {
     return false;
   }
   void start_up() {
-    devices_.activate(clock_.now());
-    ASSERT_TRUE(cycle_until([&] { return state_.links[cell::slot(cell::Device::scu)].active; }));
+    rig_.devices.activate(rig_.clock.now());
+    ASSERT_TRUE(cycle_until([&] { return rig_.state.links[cell::slot(cell::Device::scu)].active; }));
   }
   void ask_move(std::uint32_t id, double target_mm, double speed_mm_s) {
     intents_.axes[0] = {.move_id = id,
@@ -67,16 +45,7 @@ class ScuDeviceTest : public ::testing::Test {
                         .planned_mm_s = 0.0};
   }
 
-  link::VirtualClock clock_;
-  config::CellConfig cell_;
-  runtime::EmulatorSetup setup_;
-  link::SimLink scu_line_;
-  link::SimLink spindle_line_;
-  link::SimLink encoder_line_;
-  runtime::EmulatedCell emulated_;
-  std::array<link::Link*, 3> links_;
-  runtime::CellDevices devices_;
-  cell::CellState state_;
+  CellRig rig_;
   cell::Intents intents_;
 };
 
@@ -85,29 +54,31 @@ TEST_F(ScuDeviceTest, AMoveTheSessionRefusesForGoodReadsRefusedAtOnceWithItsCaus
   ask_move(1, 1e12, 10.0);  // beyond the SCU's 32-bit position in edges
   cycle();
   cycle();
-  EXPECT_TRUE(state_.axes[0].move_refused);
-  EXPECT_EQ(state_.scu_refusal, "a target is beyond the SCU's position range");
-  EXPECT_FALSE(state_.axes[0].commanded);
-  EXPECT_FALSE(state_.axes[1].move_refused) << "the other axis has nothing to do with it";
+  EXPECT_TRUE(rig_.state.axes[0].move_refused);
+  EXPECT_EQ(rig_.state.scu_refusal, "a target is beyond the SCU's position range");
+  EXPECT_FALSE(rig_.state.axes[0].commanded);
+  EXPECT_FALSE(rig_.state.axes[1].move_refused) << "the other axis has nothing to do with it";
 
   // The next move is asked for, taken, and the refusal is history.
   ask_move(2, 10.0, 10.0);
-  ASSERT_TRUE(cycle_until([&] { return state_.axes[0].moves_taken == 1; }));
-  EXPECT_FALSE(state_.axes[0].move_refused);
-  ASSERT_TRUE(cycle_until([&] { return !state_.axes[0].commanded && !state_.axes[0].moving; }, 10000));
-  EXPECT_NEAR(state_.axes[0].scu_mm, 10.0, 0.2);
+  ASSERT_TRUE(cycle_until([&] { return rig_.state.axes[0].moves_taken == 1; }));
+  EXPECT_FALSE(rig_.state.axes[0].move_refused);
+  ASSERT_TRUE(
+      cycle_until([&] { return !rig_.state.axes[0].commanded && !rig_.state.axes[0].moving; }, 10000));
+  EXPECT_NEAR(rig_.state.axes[0].scu_mm, 10.0, 0.2);
 }
 
 TEST_F(ScuDeviceTest, ANewTargetWhileTheAxisMovesIsAskedAgainUntilItsRsIsThrough) {
   start_up();
   ask_move(1, 50.0, 20.0);
-  ASSERT_TRUE(cycle_until([&] { return state_.axes[0].moving; }));
+  ASSERT_TRUE(cycle_until([&] { return rig_.state.axes[0].moving; }));
   // The RS goes first; the session refuses the move as busy until it is through, then takes it.
   ask_move(2, 20.0, 20.0);
-  ASSERT_TRUE(cycle_until([&] { return state_.axes[0].moves_taken == 2; }));
-  EXPECT_FALSE(state_.axes[0].move_refused);
-  ASSERT_TRUE(cycle_until([&] { return !state_.axes[0].commanded && !state_.axes[0].moving; }, 10000));
-  EXPECT_NEAR(state_.axes[0].scu_mm, 20.0, 0.2);
+  ASSERT_TRUE(cycle_until([&] { return rig_.state.axes[0].moves_taken == 2; }));
+  EXPECT_FALSE(rig_.state.axes[0].move_refused);
+  ASSERT_TRUE(
+      cycle_until([&] { return !rig_.state.axes[0].commanded && !rig_.state.axes[0].moving; }, 10000));
+  EXPECT_NEAR(rig_.state.axes[0].scu_mm, 20.0, 0.2);
 }
 
 }  // namespace

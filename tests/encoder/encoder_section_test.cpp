@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/emulator_setup.hpp"
+#include "emulation/emulator_setup.hpp"
 
 namespace cellctl::config {
 namespace {
@@ -15,7 +15,7 @@ EncoderSection parse(const std::string& text) {
 // The section's `emulator:` block, read where emulators are built.
 encoder::EmulatorConfig emulator_of(const std::string& text) {
   const auto section = YamlNode::load_string(text, "cell.yaml").at("encoder");
-  return runtime::parse_encoder_emulator(section, parse_encoder_section(section).session);
+  return emulation::parse_encoder_emulator(section, parse_encoder_section(section).session);
 }
 
 std::string error_of(const std::string& text) {

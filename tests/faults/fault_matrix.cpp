@@ -12,9 +12,9 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "emulation/emulator_setup.hpp"
 #include "recipe/recipe_loader.hpp"
 #include "runtime/cell_run.hpp"
-#include "runtime/emulator_setup.hpp"
 #include "runtime/fault_spec.hpp"
 
 namespace cellctl::faults {
@@ -267,7 +267,7 @@ Outcome run_case(const MatrixCase& c, const config::CellConfig& cell, const std:
     options.mode = runtime::RunMode::virtual_time;
     options.journal_dir = dir / "journal";
     options.faults = {std::get<runtime::FaultSpec>(parsed)};
-    options.emulators = runtime::load_emulator_setup(cell);
+    options.emulators = emulation::load_emulator_setup(cell);
     if (options.emulators->encoder) options.emulators->encoder->state_file = dir / "encoder.eeprom";
     runtime::CellRun run(cell, recipe, std::move(options));
 

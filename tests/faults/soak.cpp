@@ -9,8 +9,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "emulation/emulator_setup.hpp"
 #include "runtime/cell_run.hpp"
-#include "runtime/emulator_setup.hpp"
 #include "runtime/fault_spec.hpp"
 
 namespace cellctl::faults {
@@ -86,7 +86,7 @@ SoakRun soak_run(const SoakPlan& plan, const config::CellConfig& cell, const rec
         throw std::invalid_argument(text + ": " + bad->reason);
       options.faults.push_back(std::get<runtime::FaultSpec>(parsed));
     }
-    options.emulators = runtime::load_emulator_setup(cell);
+    options.emulators = emulation::load_emulator_setup(cell);
     if (options.emulators->encoder) options.emulators->encoder->state_file = dir / "encoder.eeprom";
     runtime::CellRun run(cell, recipe, std::move(options));
 

@@ -58,13 +58,14 @@ class Boundary : public ::testing::Test {
  protected:
   Boundary()
       : cell_(config::load_cell_config(CELLCTL_SOURCE_DIR "/config/cell.yaml")),
-        setup_(runtime::load_emulator_setup(cell_)),
+        setup_(emulation::load_emulator_setup(cell_)),
         scu_line_(clock_, cell_.scu->port.line, "scu"),
         spindle_line_(clock_, cell_.spindle->port.line, "spindle"),
         scu_rec_(scu_line_.master()),
         spindle_rec_(spindle_line_.master()),
-        emulated_(cell_, setup_, {.scu = &scu_line_.device(), .spindle = &spindle_line_.device()}),
-        devices_(cell_, {.scu = &scu_rec_, .spindle = &spindle_rec_}) {}
+        emulated_(cell_, setup_, runtime::DeviceLinks{&scu_line_.device(), &spindle_line_.device()}),
+        links_{&scu_rec_, &spindle_rec_},
+        devices_(cell_, links_, {}) {}
 
   // One control cycle as CellRun runs it, with `decide` as the supervisor.
   template <class Decide>
@@ -90,13 +91,14 @@ class Boundary : public ::testing::Test {
   }
 
   config::CellConfig cell_;
-  runtime::EmulatorSetup setup_;
+  emulation::EmulatorSetup setup_;
   link::VirtualClock clock_;
   link::SimLink scu_line_;
   link::SimLink spindle_line_;
   RecordingLink scu_rec_;
   RecordingLink spindle_rec_;
   runtime::EmulatedCell emulated_;
+  std::array<link::Link*, 2> links_;  // the SCU's and the spindle's slots, the encoder left out
   runtime::CellDevices devices_;
   cell::CellState state_;
   cell::Intents intents_;

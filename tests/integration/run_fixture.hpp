@@ -41,9 +41,9 @@ class RunFixture : public ::testing::Test {
   }
 
   // The emulators' set-up, read from the cell file on first use: change cell_'s sessions before.
-  runtime::EmulatorSetup& emulators() {
+  emulation::EmulatorSetup& emulators() {
     if (!emulators_) {
-      emulators_ = runtime::load_emulator_setup(cell_);
+      emulators_ = emulation::load_emulator_setup(cell_);
       if (emulators_->encoder) emulators_->encoder->state_file = dir_ / "encoder.eeprom";
     }
     return *emulators_;
@@ -86,7 +86,7 @@ class RunFixture : public ::testing::Test {
 
   std::filesystem::path dir_;
   config::CellConfig cell_;
-  std::optional<runtime::EmulatorSetup> emulators_;
+  std::optional<emulation::EmulatorSetup> emulators_;
   recipe::Recipe recipe_;
   std::unique_ptr<runtime::CellRun> run_;
   std::atomic<bool> interrupt_{false};

@@ -33,7 +33,7 @@ class TeachInTest : public ::testing::Test {
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
     cell_ = config::load_cell_config(source_dir() / "config/cell.yaml");
-    setup_ = runtime::load_emulator_setup(cell_);
+    setup_ = emulation::load_emulator_setup(cell_);
     setup_.encoder->state_file = dir_ / "encoder.eeprom";  // this test's own EEPROM
     request_.axis = 0;
     request_.distance_mm = 100.0;
@@ -81,7 +81,7 @@ class TeachInTest : public ::testing::Test {
 
   std::filesystem::path dir_;
   config::CellConfig cell_;
-  runtime::EmulatorSetup setup_;
+  emulation::EmulatorSetup setup_;
   routines::TeachInRequest request_;
   recipe::Recipe recipe_;
   std::unique_ptr<runtime::CellRun> run_;

@@ -12,8 +12,8 @@
 #include <string>
 
 #include "config/cell_config.hpp"
+#include "emulation/emulator_setup.hpp"
 #include "plant_link/link_config.hpp"
-#include "runtime/emulator_setup.hpp"
 
 namespace cellctl::runtime {
 namespace {
@@ -59,7 +59,7 @@ TEST_F(ParsedOnce, TheEmulatorsAndThePlantLinkReadTheFileAsItWasLoaded) {
   const auto file = write(cell_with("0.01", "18830"));
   const auto cell = config::load_cell_config(file);
   write("cell: [not, what, was, loaded\n");  // the file changed after the load: no longer even YAML
-  const auto setup = load_emulator_setup(cell);
+  const auto setup = emulation::load_emulator_setup(cell);
   EXPECT_DOUBLE_EQ(setup.plant.encoder_slip, 0.01);
   ASSERT_TRUE(setup.scu);
   const auto link = plant_link::load_link_config(cell.document.value(), cell);
@@ -72,7 +72,7 @@ TEST_F(ParsedOnce, TheirErrorsStillNameFileLineAndColumn) {
   const auto cell = config::load_cell_config(file);  // the core and the devices are fine
   const auto lines = static_cast<int>(std::count(shipped_.begin(), shipped_.end(), '\n'));
   try {
-    (void)load_emulator_setup(cell);
+    (void)emulation::load_emulator_setup(cell);
     ADD_FAILURE() << "a slip of 0.9 was taken";
   } catch (const config::ConfigError& e) {
     EXPECT_EQ(e.file(), file.string());

@@ -30,9 +30,9 @@ class PlantStateTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   // An SCU alone (no encoder, no spindle: nothing else to keep) over a SimLink nobody talks on.
-  std::unique_ptr<EmulatedCell> scu_only(const EmulatorSetup& setup) {
+  std::unique_ptr<EmulatedCell> scu_only(const emulation::EmulatorSetup& setup) {
     line_ = std::make_unique<link::SimLink>(clock_, cell_.scu->port.line);
-    return std::make_unique<EmulatedCell>(cell_, setup, DeviceLinks{.scu = &line_->device()});
+    return std::make_unique<EmulatedCell>(cell_, setup, DeviceLinks{&line_->device()});
   }
 
   // Moves actuator a to `mm` at 10 mm/s, stepping the emulator on the virtual clock until it rests.
@@ -86,7 +86,7 @@ TEST_F(PlantStateTest, APowerCycleKeepsTheRodsAndLosesTheInitialisation) {
 }
 
 TEST_F(PlantStateTest, WithoutAStateFileNothingIsKept) {
-  const auto setup = load_emulator_setup(cell_);
+  const auto setup = emulation::load_emulator_setup(cell_);
   ASSERT_TRUE(setup.plant_state_file.empty());
   {
     auto first = scu_only(setup);
@@ -99,7 +99,7 @@ TEST_F(PlantStateTest, WithoutAStateFileNothingIsKept) {
 TEST_F(PlantStateTest, TheDryRunEncoderEepromLivesInTheStateFolderUnlessTheConfigNamesOne) {
   auto setup = dry_run_emulator_setup(cell_, dir_);
   ASSERT_TRUE(setup.encoder);
-  EXPECT_EQ(setup.encoder->state_file, load_emulator_setup(cell_).encoder->state_file)
+  EXPECT_EQ(setup.encoder->state_file, emulation::load_emulator_setup(cell_).encoder->state_file)
       << "config/cell.yaml names its own state_file";
   // Same cell, read from a copy without the emulator's state_file.
   fs::create_directories(dir_);

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "config/cell_config.hpp"
-#include "runtime/emulator_setup.hpp"
+#include "emulation/emulator_setup.hpp"
 #include "support/expect_config_error.hpp"
 
 namespace cellctl::config {
@@ -67,7 +67,7 @@ TEST(ScuSection, TheShippedCellConfigLoads) {
   ASSERT_TRUE(cell.scu.has_value());
   EXPECT_EQ(cell.scu->session.actuators.to_ulong(), 0b11u);
   EXPECT_NO_THROW(scu::validate(cell.scu->session));
-  const auto emulated = runtime::load_emulator_setup(cell);
+  const auto emulated = emulation::load_emulator_setup(cell);
   ASSERT_TRUE(emulated.scu.has_value());
   EXPECT_NO_THROW(scu::validate(*emulated.scu));
   // The emulated actuator is the session's (scaling, stroke, speed) with the physics added.

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/emulator_setup.hpp"
+#include "emulation/emulator_setup.hpp"
 #include "support/expect_config_error.hpp"
 
 namespace cellctl::config {
@@ -20,7 +20,7 @@ SpindleSection parse(const std::string& text) {
 spindle::EmulatorConfig emulator_of(const std::string& text) {
   const auto section = YamlNode::load_string(text, "cell.yaml").at("spindle");
   (void)parse_spindle_section(section);
-  return runtime::parse_spindle_emulator(section);
+  return emulation::parse_spindle_emulator(section);
 }
 
 using cellctl::testing::expect_config_error;
@@ -109,7 +109,7 @@ TEST(SpindleSection, TheDefaultCellsSectionParses) {
   const auto s = parse_spindle_section(root.at("spindle"));
   EXPECT_TRUE(s.port.emulated());
   EXPECT_EQ(s.session.status_poll, 20ms);
-  const auto e = runtime::parse_spindle_emulator(root.at("spindle"));
+  const auto e = emulation::parse_spindle_emulator(root.at("spindle"));
   EXPECT_EQ(e.converter_type, 4624);
   EXPECT_EQ(e.firmware, 0x0433);
 }
