@@ -21,13 +21,16 @@ json model_json(const PlotModel& m) {
   j["subtitle"] = m.subtitle;
   j["t_lo"] = m.t_lo;
   j["t_hi"] = m.t_hi;
+  // The geometry the labels were laid out for: the plot area is never drawn narrower.
+  j["geometry"] = {{"plot_px", kPlotAreaPx},   {"font_px", kLabelFontPx}, {"lane_px", kLaneHeightPx},
+                   {"mark_px", kMarkNumberPx}, {"lanes", m.lanes},        {"mark_levels", m.mark_levels}};
   // Series with the same time stamps (one run's, or a long run's curves bucketed alike) share them:
   // written once, referred to by index.
   std::vector<const std::vector<double>*> times;
   j["times"] = json::array();
   j["panels"] = json::array();
   for (const auto& p : m.panels) {
-    json panel{{"title", p.title}, {"unit", p.unit}, {"series", json::array()}};
+    json panel{{"title", p.title}, {"unit", p.unit}, {"axis", p.value_axis}, {"series", json::array()}};
     for (const auto& s : p.series) {
       std::size_t ti = 0;
       while (ti < times.size() && *times[ti] != s.t) ++ti;
@@ -46,10 +49,22 @@ json model_json(const PlotModel& m) {
   }
   j["steps"] = json::array();
   for (const auto& s : m.steps)
-    j["steps"].push_back({{"t", rounded(s.t)}, {"step", s.step}, {"name", s.name}, {"full", s.full}});
+    j["steps"].push_back({{"t", s.t},
+                          {"step", s.step},
+                          {"full", s.full},
+                          {"label", s.label},
+                          {"lane", s.lane},
+                          {"box_left", s.box_left},
+                          {"box_right", s.box_right}});
   j["marks"] = json::array();
   for (const auto& mk : m.marks)
-    j["marks"].push_back({{"t", rounded(mk.t)}, {"kind", mk.kind}, {"text", mk.text}, {"colour", mk.colour}});
+    j["marks"].push_back({{"t", rounded(mk.t)},
+                          {"kind", mk.kind},
+                          {"text", mk.text},
+                          {"colour", mk.colour},
+                          {"level", mk.level}});
+  j["holds"] = json::array();
+  for (const auto& h : m.holds) j["holds"].push_back({{"from", rounded(h.from)}, {"to", rounded(h.to)}});
   return j;
 }
 
@@ -77,7 +92,9 @@ canvas{display:block;cursor:crosshair}
 <script>
 "use strict";
 const M = JSON.parse(document.getElementById("data").textContent);
-const L = 80, R = 20, H = [300, 150, 190], STEPBAND = 70;
+const G = M.geometry, L = 80, R = 20, H = [300, 150, 190];
+// The marks' numbers, then the step labels' lanes, above the first panel (laid out by the model).
+const MARKROW = G.mark_px * G.mark_levels + 8, STEPBAND = MARKROW + 8 + G.lane_px * G.lanes + 10;
 let view = [M.t_lo, M.t_hi];
 const hidden = new Set();
 document.getElementById("title").textContent = M.title;
@@ -98,7 +115,7 @@ function lowerBound(a, t) { let lo = 0, hi = a.length; while (lo < hi) { const m
 
 const panels = M.panels.map((p, i) => {
   const div = document.createElement("div"); div.className = "panel";
-  const title = document.createElement("div"); title.className = "ptitle"; title.textContent = p.title + " [" + p.unit + "]";
+  const title = document.createElement("div"); title.className = "ptitle"; title.textContent = p.title;
   const c = document.createElement("canvas");
   const legend = document.createElement("div"); legend.className = "legend";
   p.series.forEach((s, k) => {
@@ -109,17 +126,17 @@ const panels = M.panels.map((p, i) => {
     lab.append(box, sw, document.createTextNode(s.name)); legend.appendChild(lab);
   });
   div.append(title, c, legend); document.getElementById("panels").appendChild(div);
-  return { p, c, i, h: H[i % 3] + (i === 0 ? STEPBAND : 0), top: i === 0 ? STEPBAND : 6 };
+  return { p, c, i, h: H[i % 3] + (i === 0 ? STEPBAND : 6), top: i === 0 ? STEPBAND : 6 };
 });
 
 function xOf(P, t) { return L + (t - view[0]) / (view[1] - view[0]) * (P.c.width - L - R); }
 function tOf(P, x) { return view[0] + (x - L) / (P.c.width - L - R) * (view[1] - view[0]); }
 
 function draw() {
-  const width = Math.max(600, document.body.clientWidth - 10);
+  const width = Math.max(L + G.plot_px + R, document.body.clientWidth - 10);
   const ts = niceScale(view[0], view[1], 14);
   for (const P of panels) {
-    const c = P.c; c.width = width; c.height = P.h + 22; const g = c.getContext("2d");
+    const c = P.c; c.width = width; c.height = P.h + 34; const g = c.getContext("2d");
     g.clearRect(0, 0, c.width, c.height); g.font = "11px sans-serif";
     let lo = Infinity, hi = -Infinity;
     P.p.series.forEach((s, k) => {
@@ -134,9 +151,12 @@ function draw() {
     P.yOf = yOf;
     g.strokeStyle = "#eee"; g.fillStyle = "#222"; g.textAlign = "right";
     for (const v of ys.ticks) { g.beginPath(); g.moveTo(L, yOf(v)); g.lineTo(c.width - R, yOf(v)); g.strokeStyle = v === 0 ? "#bbb" : "#eee"; g.stroke(); g.fillText(v.toFixed(ys.dec), L - 5, yOf(v) + 4); }
-    g.textAlign = "center";
+    g.save(); g.translate(14, (top + bottom) / 2); g.rotate(-Math.PI / 2); g.textAlign = "center"; g.font = "12px sans-serif"; g.fillText(P.p.axis, 0, 0); g.restore();
+    g.textAlign = "center"; g.fillText("time [s]", L + (c.width - L - R) / 2, bottom + 29);
     for (const t of ts.ticks) { if (t < view[0] || t > view[1]) continue; const x = xOf(P, t); g.strokeStyle = "#f2f2f2"; g.beginPath(); g.moveTo(x, top); g.lineTo(x, bottom); g.stroke(); g.fillText(t.toFixed(ts.dec), x, bottom + 14); }
     g.save(); g.beginPath(); g.rect(L, top, c.width - L - R, bottom - top); g.clip();
+    g.fillStyle = "rgba(242,181,58,0.18)";
+    for (const h of M.holds) { const a = xOf(P, h.from); g.fillRect(a, top, Math.max(1, xOf(P, h.to) - a), bottom - top); }
     g.strokeStyle = "#ccc"; g.lineWidth = 0.8;
     for (const s of M.steps) { const x = xOf(P, s.t); g.beginPath(); g.moveTo(x, top); g.lineTo(x, bottom); g.stroke(); }
     g.lineWidth = 1.4;
@@ -153,9 +173,20 @@ function draw() {
     g.restore(); g.setLineDash([]);
     g.strokeStyle = "#888"; g.strokeRect(L, top, c.width - L - R, bottom - top);
     if (P.i === 0) {
-      g.textAlign = "left"; g.fillStyle = "#555"; let last = -1e9;
-      for (const s of M.steps) { const x = xOf(P, s.t); if (x < L || x > c.width - R || x - last < 12) continue; last = x; g.save(); g.translate(x + 3, top - 4); g.rotate(-Math.PI / 3); g.fillText(s.step + " " + s.name, 0, 0); g.restore(); }
-      M.marks.forEach((m, i) => { const x = xOf(P, m.t); if (x < L || x > c.width - R) return; g.fillStyle = m.colour; g.font = "bold 11px sans-serif"; g.textAlign = "center"; g.fillText(String(i + 1), x, top - 2); });
+      // Every step's label whole, in its lane, where the model placed it relative to its boundary.
+      g.textAlign = "left"; g.font = G.font_px + "px sans-serif"; g.lineWidth = 3; g.strokeStyle = "#fff";
+      for (const s of M.steps) {
+        const x = xOf(P, s.t), x0 = L + (s.t - M.t_lo) / (M.t_hi - M.t_lo) * G.plot_px;
+        const left = x + (L + s.box_left - x0), w = s.box_right - s.box_left, base = top - 6 - G.lane_px * s.lane;
+        if (left + w < L || left > c.width - R) continue;  // zoomed out of view
+        g.strokeStyle = "#c8c8c8"; g.lineWidth = 0.8; g.beginPath(); g.moveTo(x, base - G.font_px + 1); g.lineTo(x, top); g.stroke();
+        g.strokeStyle = "#fff"; g.lineWidth = 3; g.strokeText(s.label, left, base, w);
+        g.fillStyle = "#444"; g.fillText(s.label, left, base, w);
+      }
+      g.setLineDash([4, 2]); g.lineWidth = 1.2;
+      M.marks.forEach(m => { const x = xOf(P, m.t); if (x < L || x > c.width - R) return; g.strokeStyle = m.colour; g.beginPath(); g.moveTo(x, MARKROW + 2); g.lineTo(x, top); g.stroke(); });
+      g.setLineDash([]);
+      M.marks.forEach((m, i) => { const x = xOf(P, m.t); if (x < L || x > c.width - R) return; g.fillStyle = m.colour; g.font = "bold 11px sans-serif"; g.textAlign = "center"; g.fillText(String(i + 1), x, MARKROW - G.mark_px * m.level); });
     }
     if (P.sel) { g.fillStyle = "#0060c022"; g.fillRect(Math.min(P.sel[0], P.sel[1]), top, Math.abs(P.sel[1] - P.sel[0]), bottom - top); }
     if (P.cursor !== undefined) { g.strokeStyle = "#000"; g.lineWidth = 0.7; g.beginPath(); g.moveTo(P.cursor, top); g.lineTo(P.cursor, bottom); g.stroke(); }
@@ -171,6 +202,7 @@ function tipText(t) {
   const lines = ["t = " + t.toFixed(3) + " s"];
   let step = null; for (const s of M.steps) if (s.t <= t) step = s;
   if (step) lines.push("step " + step.step + ": " + step.full);
+  for (const h of M.holds) if (h.from <= t && t <= h.to) lines.push("held " + h.from.toFixed(3) + " s – " + h.to.toFixed(3) + " s");
   for (const P of panels) P.p.series.forEach((s, k) => {
     if (hidden.has(P.i + "/" + k)) return; const v = valueAt(s, t);
     lines.push((s.name + ":").padEnd(26) + (v === null ? "—" : v.toFixed(P.p.unit === "Hz" ? 1 : 3)) + " " + P.p.unit);
@@ -210,11 +242,16 @@ for (const P of panels) {
   }, { passive: false });
 }
 const ml = document.getElementById("marks");
-if (!M.marks.length) ml.textContent = "No faults, no operator commands.";
+if (!M.marks.length && !M.holds.length) ml.textContent = "No faults, no operator commands, no holds.";
 M.marks.forEach((m, i) => {
   const d = document.createElement("div"); d.style.color = m.colour; d.style.cursor = "pointer";
   d.textContent = (i + 1) + "  " + m.t.toFixed(3) + " s  " + m.kind + ": " + m.text;
   d.onclick = () => { const w = (view[1] - view[0]) / 2; view = [m.t - w, m.t + w]; draw(); };
+  ml.appendChild(d);
+});
+M.holds.forEach(h => {
+  const d = document.createElement("div"); d.style.color = "#a06c00";
+  d.textContent = "held " + h.from.toFixed(3) + " s – " + h.to.toFixed(3) + " s (" + (h.to - h.from).toFixed(3) + " s)";
   ml.appendChild(d);
 });
 window.addEventListener("resize", draw);

@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 
+#include "journal/plot_scale.hpp"
+
 namespace cellctl::journal {
 namespace {
 
@@ -30,8 +32,8 @@ std::string mark_colour(MarkKind k) {
       return "#2e8b3a";
     case MarkKind::command:
       return "#0060c0";
-    case MarkKind::note:
-      return "#666666";
+    case MarkKind::note:  // a reset's answer: the only notes the plot marks
+      return "#b06000";
   }
   return "#666666";
 }
@@ -84,7 +86,51 @@ PlotSeries series(const RunRecord& run, std::string name, std::string colour, st
   return s;
 }
 
+// Each label in the lowest lane where its box keeps kLabelGapPx from every other; steps are in time
+// order, so a lane's last box is the one to clear.
+int lay_out_labels(std::vector<PlotStep>& steps, double t_lo, double t_hi) {
+  std::vector<double> lane_right;
+  for (auto& s : steps) {
+    s.label = fmt::format("{} {}", s.step, s.name);
+    const double x = (s.t - t_lo) / (t_hi - t_lo) * kPlotAreaPx;
+    const double w = std::min(label_width_px(s.label), kPlotAreaPx);
+    s.box_left = x + 2.0 + w <= kPlotAreaPx ? x + 2.0 : std::max(0.0, x - 2.0 - w);
+    s.box_right = s.box_left + w;
+    std::size_t lane = 0;
+    while (lane < lane_right.size() && lane_right[lane] + kLabelGapPx > s.box_left) ++lane;
+    if (lane == lane_right.size()) lane_right.push_back(0.0);
+    lane_right[lane] = s.box_right;
+    s.lane = static_cast<int>(lane);
+  }
+  return std::max<int>(1, static_cast<int>(lane_right.size()));
+}
+
+// Stacks the numbers of marks closer than a number's width; returns the rows used.
+int stack_marks(std::vector<PlotMark>& marks, double t_lo, double t_hi) {
+  int rows = 0;
+  double last_x = -1e9;
+  for (std::size_t i = 0; i < marks.size(); ++i) {
+    const double x = (marks[i].t - t_lo) / (t_hi - t_lo) * kPlotAreaPx;
+    marks[i].level = i > 0 && x - last_x < kMarkNumberPx ? marks[i - 1].level + 1 : 0;
+    rows = std::max(rows, marks[i].level + 1);
+    last_x = x;
+  }
+  return rows;
+}
+
 }  // namespace
+
+double label_width_px(std::string_view label) {
+  const auto chars = std::count_if(label.begin(), label.end(),
+                                   [](char c) { return (static_cast<unsigned char>(c) & 0xC0u) != 0x80u; });
+  return static_cast<double>(chars) * kLabelCharPx;
+}
+
+std::string_view reset_of_note(std::string_view note) {
+  if (note.starts_with("faults reset in state ") || note.starts_with("reset ")) return "reset";
+  if (note.starts_with("clear ")) return "clear";
+  return {};
+}
 
 std::string short_step_name(std::string_view label) {
   if (const auto arrow = label.rfind("› "); arrow != std::string_view::npos)
@@ -117,9 +163,9 @@ PlotModel plot_model(const std::vector<const RunRecord*>& runs) {
   if (runs.empty()) return m;
   const RunRecord& first = *runs.front();
   m.title = fmt::format("{} — {}", first.recipe_label(), runs.size() > 1 ? "comparison" : first.outcome());
-  m.panels = {{"Axis positions", "mm", {}},
-              {"Following error (planned − measured, during moves)", "mm", {}},
-              {"Spindle frequency", "Hz", {}}};
+  m.panels = {{"Axis positions", "mm", "position [mm]", {}},
+              {"Following error (planned − measured, during moves)", "mm", "following error [mm]", {}},
+              {"Spindle frequency", "Hz", "frequency [Hz]", {}}};
   m.t_hi = 0.0;
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const RunRecord& run = *runs[r];
@@ -159,16 +205,26 @@ PlotModel plot_model(const std::vector<const RunRecord*>& runs) {
                                         kSpindleColours[pale], "",
                                         [](std::size_t, const SamplePoint& p) { return p.spindle_hz; }));
     for (const auto& mark : run.marks()) {
-      if (mark.kind == MarkKind::note) continue;  // notes are in the report, not on the plot
-      m.marks.push_back({mark.t - run.start(), std::string(to_string(mark.kind)),
-                         prefixed(r, runs.size(), mark.text), mark_colour(mark.kind)});
+      // Notes are in the report, not on the plot; but a typed reset or clear is an operator's command
+      // whose only trace may be the note answering it.
+      const auto reset = mark.kind == MarkKind::note ? reset_of_note(mark.text) : std::string_view{};
+      if (mark.kind == MarkKind::note && reset.empty()) continue;
+      m.marks.push_back({mark.t - run.start(), std::string(reset.empty() ? to_string(mark.kind) : reset),
+                         prefixed(r, runs.size(), mark.text), mark_colour(mark.kind), 0});
     }
   }
   for (const auto& s : first.steps())
-    m.steps.push_back({s.start - first.start(), s.step, short_step_name(s.label), s.label});
+    m.steps.push_back({s.start - first.start(), s.step, short_step_name(s.label), s.label, {}, 0, 0.0, 0.0});
+  for (const auto& h : first.holds()) m.holds.push_back({h.from - first.start(), h.to - first.start()});
   std::stable_sort(m.marks.begin(), m.marks.end(),
                    [](const PlotMark& a, const PlotMark& b) { return a.t < b.t; });
   if (m.t_hi <= m.t_lo) m.t_hi = m.t_lo + 1.0;
+  // The span both drawings show the whole run in: to the time scale's round ticks.
+  const Scale t = nice_scale(m.t_lo, m.t_hi, kTimeTicks);
+  m.t_lo = t.lo;
+  m.t_hi = t.hi;
+  m.lanes = lay_out_labels(m.steps, m.t_lo, m.t_hi);
+  m.mark_levels = stack_marks(m.marks, m.t_lo, m.t_hi);
   return m;
 }
 

@@ -11,8 +11,9 @@
 namespace cellctl::journal {
 namespace {
 
-constexpr double kWidth = 1200, kLeft = 80, kPlotRight = 960, kLegendX = 975;
-constexpr double kStepBand = 120, kGap = 44;
+constexpr double kWidth = 1200, kLeft = 80, kPlotRight = kLeft + kPlotAreaPx, kLegendX = 975;
+constexpr double kGap = 44;
+constexpr double kTitleRow = 16;  // a panel's title above it (the step labels above the first one's)
 constexpr double kPanelHeights[] = {300, 150, 190};
 
 std::string xml(std::string_view s) {
@@ -60,8 +61,9 @@ Scale value_scale(const PlotPanel& p) {
 
 // Tick labels carry their scale's name (data-scale="y0", "t0"), so a test can check each scale.
 std::string axes(const Frame& f, const PlotPanel& p, std::size_t index) {
-  std::string s = fmt::format(R"(<text x="{}" y="{}" font-size="14" font-weight="bold">{}</text>)", kLeft,
-                              f.top - 8, xml(p.title));
+  std::string s = fmt::format(
+      R"(<text x="{}" y="{}" font-size="14" font-weight="bold" stroke="white" stroke-width="3" paint-order="stroke">{}</text>)",
+      kLeft, f.top - 8, xml(p.title));
   for (const double v : f.y.ticks) {
     s += fmt::format(R"(<line x1="{}" y1="{:.1f}" x2="{}" y2="{:.1f}" stroke="{}"/>)", kLeft, f.y_of(v),
                      kPlotRight, f.y_of(v), v == 0.0 ? "#bbb" : "#eee");
@@ -76,11 +78,11 @@ std::string axes(const Frame& f, const PlotPanel& p, std::size_t index) {
         R"(<text class="tick" data-scale="t{}" x="{:.1f}" y="{}" font-size="11" text-anchor="middle">{}</text>)",
         index, f.x_of(t), f.top + f.height + 14, f.t.label(t));
   }
-  s += fmt::format(R"(<text x="{}" y="{}" font-size="11">time [s]</text>)", kPlotRight + 14,
-                   f.top + f.height + 14);
+  s += fmt::format(R"(<text class="axis-title" x="{}" y="{}" font-size="11">time [s]</text>)",
+                   kPlotRight + 14, f.top + f.height + 14);
   s += fmt::format(
-      R"svg(<text x="{}" y="{}" font-size="12" text-anchor="middle" transform="rotate(-90 {} {})">{} [{}]</text>)svg",
-      22, f.top + f.height / 2, 22, f.top + f.height / 2, p.unit == "Hz" ? "frequency" : "position", p.unit);
+      R"svg(<text class="axis-title" x="{}" y="{}" font-size="12" text-anchor="middle" transform="rotate(-90 {} {})">{}</text>)svg",
+      22, f.top + f.height / 2, 22, f.top + f.height / 2, xml(p.value_axis));
   s += fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#888"/>)", kLeft, f.top,
                    kPlotRight - kLeft, f.height);
   return s;
@@ -120,20 +122,49 @@ std::string legend(const Frame& f, const PlotPanel& p) {
   return s;
 }
 
+// Every step: its boundary through every panel up to its label, the label whole in its lane, the run's
+// own label on hover.
+std::string steps(const PlotModel& m, const Frame& f0, const Frame& fl) {
+  std::string svg;
+  for (const auto& st : m.steps) {
+    const double x = f0.x_of(st.t);
+    const double baseline = f0.top - kTitleRow - 6 - kLaneHeightPx * st.lane;
+    svg += fmt::format(
+        R"svg(<g class="step" data-step="{}"><title>{}</title><line class="step-mark" x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{}" stroke="#c8c8c8" stroke-width="0.8"/>)svg"
+        R"svg(<text class="step-label" x="{:.1f}" y="{:.1f}" font-size="{}" fill="#444" stroke="white" stroke-width="3" paint-order="stroke" textLength="{:.1f}" lengthAdjust="spacingAndGlyphs">{}</text></g>)svg",
+        st.step, xml(st.full), x, baseline - kLabelFontPx + 1, x, fl.top + fl.height, kLeft + st.box_left,
+        baseline, kLabelFontPx, st.box_right - st.box_left, xml(st.label));
+  }
+  return svg;
+}
+
+std::string holds(const PlotModel& m, const std::vector<Frame>& frames) {
+  std::string svg;
+  for (const auto& h : m.holds)
+    for (const auto& f : frames)
+      svg += fmt::format(
+          R"(<rect class="hold" x="{:.1f}" y="{}" width="{:.1f}" height="{}" fill="#f2b53a" fill-opacity="0.18"><title>held {:.3f} s – {:.3f} s</title></rect>)",
+          f.x_of(h.from), f.top, std::max(1.0, f.x_of(h.to) - f.x_of(h.from)), f.height, h.from, h.to);
+  return svg;
+}
+
 }  // namespace
 
 std::string render_svg(const std::vector<const RunRecord*>& runs) {
   const PlotModel m = plot_model(runs);
-  const Scale t = nice_scale(m.t_lo, m.t_hi, 14);
+  const Scale t = nice_scale(m.t_lo, m.t_hi, kTimeTicks);
   const double header = 30 + 15.0 * static_cast<double>(m.subtitle.size());
   std::vector<Frame> frames;
-  double top = header + kStepBand;
+  // The marks' numbers above the step labels' lanes, the panels below them.
+  const double marks_row = header + kMarkNumberPx * m.mark_levels + 8;
+  double top = marks_row + 8 + kLaneHeightPx * m.lanes + kTitleRow + 8;
   for (std::size_t i = 0; i < m.panels.size(); ++i) {
     frames.push_back({top, kPanelHeights[i % 3], t, value_scale(m.panels[i])});
     top += kPanelHeights[i % 3] + kGap;
   }
-  const double marks_top = top + 10;
-  const double height = marks_top + 20 + 15.0 * static_cast<double>(m.marks.size());
+  const double list_top = top + 10;
+  const double height =
+      list_top + 20 + 15.0 * static_cast<double>(std::max<std::size_t>(1, m.marks.size() + m.holds.size()));
 
   std::string svg = fmt::format(
       R"(<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{:.0f}" viewBox="0 0 {} {:.0f}" font-family="sans-serif">)"
@@ -145,52 +176,39 @@ std::string render_svg(const std::vector<const RunRecord*>& runs) {
   for (std::size_t i = 0; i < m.subtitle.size(); ++i)
     svg += fmt::format(R"(<text x="{}" y="{}" font-size="11" fill="#444">{}</text>)", kLeft, 36 + 15 * i,
                        xml(m.subtitle[i]));
-
-  // Step boundaries: a line through every panel, the step's number and name above them.
+  svg += holds(m, frames);
   const Frame& f0 = frames.front();
   const Frame& fl = frames.back();
-  double last_label_x = -1e9;
-  for (std::size_t i = 0; i < m.steps.size(); ++i) {
-    const auto& st = m.steps[i];
-    const double x = f0.x_of(st.t);
-    svg +=
-        fmt::format(R"(<line x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="#c8c8c8" stroke-width="0.8"/>)",
-                    x, f0.top, x, fl.top + fl.height);
-    // Names need 11 px: a step too short for its own (a precondition) yields to the next one.
-    const bool next_too_close = i + 1 < m.steps.size() && f0.x_of(m.steps[i + 1].t) - x < 11;
-    if (x - last_label_x < 11 || next_too_close) continue;
-    last_label_x = x;
-    svg += fmt::format(
-        R"svg(<text class="step" x="{:.1f}" y="{}" font-size="10" fill="#555" transform="rotate(-60 {:.1f} {})"><title>{}</title>{} {}</text>)svg",
-        x + 3, f0.top - 24, x + 3, f0.top - 24, xml(st.full), st.step, xml(st.name));
-  }
+  svg += steps(m, f0, fl);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     svg += axes(frames[i], m.panels[i], i);
     for (const auto& s : m.panels[i].series) svg += curve(frames[i], s);
     svg += legend(frames[i], m.panels[i]);
   }
   // Marks: a numbered line through every panel, listed below.
-  double last_mark_x = -1e9;
-  int stacked = 0;  // marks closer than a number's width stack their numbers upwards
   for (std::size_t i = 0; i < m.marks.size(); ++i) {
     const auto& mk = m.marks[i];
     const double x = f0.x_of(mk.t);
-    stacked = x - last_mark_x < 12 ? stacked + 1 : 0;
-    last_mark_x = x;
+    const double y = marks_row - kMarkNumberPx * mk.level;
     svg += fmt::format(
-        R"(<line x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="{}" stroke-width="1.2" stroke-dasharray="4,2"><title>{}</title></line>)",
-        x, f0.top - 14, x, fl.top + fl.height, mk.colour, xml(mk.text));
+        R"(<line class="mark-line" x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="{}" stroke-width="1.2" stroke-dasharray="4,2"><title>{}</title></line>)",
+        x, marks_row + 2, x, fl.top + fl.height, mk.colour, xml(mk.text));
     svg += fmt::format(
         R"(<text x="{:.1f}" y="{}" font-size="11" font-weight="bold" fill="{}" text-anchor="middle">{}</text>)",
-        x, f0.top - 16 - 12 * stacked, mk.colour, i + 1);
+        x, y, mk.colour, i + 1);
     svg += fmt::format(
         R"(<text class="mark" x="{}" y="{}" font-size="11" fill="{}">{}  {:8.3f} s  {}: {}</text>)", kLeft,
-        marks_top + 15 * static_cast<double>(i + 1), mk.colour, i + 1, mk.t, mk.kind, xml(mk.text));
+        list_top + 15 * static_cast<double>(i + 1), mk.colour, i + 1, mk.t, mk.kind, xml(mk.text));
   }
-  if (m.marks.empty())
+  for (std::size_t i = 0; i < m.holds.size(); ++i)
     svg += fmt::format(
-        R"(<text x="{}" y="{}" font-size="11" fill="#444">no faults, no operator commands</text>)", kLeft,
-        marks_top + 15);
+        R"(<text class="mark" x="{}" y="{}" font-size="11" fill="#a06c00">held {:.3f} s – {:.3f} s ({:.3f} s)</text>)",
+        kLeft, list_top + 15 * static_cast<double>(m.marks.size() + i + 1), m.holds[i].from, m.holds[i].to,
+        m.holds[i].to - m.holds[i].from);
+  if (m.marks.empty() && m.holds.empty())
+    svg += fmt::format(
+        R"(<text x="{}" y="{}" font-size="11" fill="#444">no faults, no operator commands, no holds</text>)",
+        kLeft, list_top + 15);
   svg += "</svg>\n";
   return svg;
 }

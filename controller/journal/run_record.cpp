@@ -91,8 +91,12 @@ void RunRecord::add(const Event& e) {
                    // A stop ends the step it interrupts there and then (not when the cell is at rest, maybe
                    // much later).
                    if (to == "Stopping" || to == "Aborting") close_open_steps(t, "interrupted");
-                   if ((to == "Holding" || to == "Held") && !held_since_) held_since_ = t;
-                   if (to != "Holding" && to != "Held" && held_since_) {
+                   const bool held = to == "Holding" || to == "Held";
+                   const bool hold_open = !holds_.empty() && holds_.back().to < holds_.back().from;
+                   if (held && !hold_open) holds_.push_back({t, -1.0});
+                   if (!held && hold_open) holds_.back().to = t;
+                   if (held && !held_since_) held_since_ = t;
+                   if (!held && held_since_) {
                      if (!steps_.empty() && steps_.back().result.empty())
                        steps_.back().held_s += t - *held_since_;
                      held_since_.reset();
@@ -168,6 +172,7 @@ void RunRecord::close_open_steps(double t, std::string_view result) {
 
 void RunRecord::finish() {
   close_open_steps(end_, "interrupted");
+  if (!holds_.empty() && holds_.back().to < holds_.back().from) holds_.back().to = end_;
 }
 
 RunRecord RunRecord::load(const std::filesystem::path& dir_or_file) {

@@ -35,6 +35,12 @@ struct StepRun {
 enum class MarkKind { fault, injected_fault, fault_cleared, command, note };
 [[nodiscard]] std::string_view to_string(MarkKind k) noexcept;
 
+// A stretch of time the cell was held (Holding or Held), until it left for any other state.
+struct Hold {
+  double from = 0.0;
+  double to = 0.0;
+};
+
 struct Mark {
   double t = 0.0;
   MarkKind kind = MarkKind::note;
@@ -69,6 +75,7 @@ class RunRecord {
   [[nodiscard]] const std::vector<SamplePoint>& samples() const noexcept { return samples_; }
   [[nodiscard]] const std::vector<StepRun>& steps() const noexcept { return steps_; }
   [[nodiscard]] const std::vector<Mark>& marks() const noexcept { return marks_; }
+  [[nodiscard]] const std::vector<Hold>& holds() const noexcept { return holds_; }
   [[nodiscard]] const std::string& outcome() const noexcept { return outcome_; }
   [[nodiscard]] double start() const noexcept { return start_; }
   [[nodiscard]] double end() const noexcept { return end_; }
@@ -96,7 +103,8 @@ class RunRecord {
   std::vector<SamplePoint> samples_;
   std::vector<StepRun> steps_;
   std::vector<Mark> marks_;
-  std::optional<double> held_since_;
+  std::vector<Hold> holds_;           // the last one open (to < from) while the cell is held
+  std::optional<double> held_since_;  // of the step in progress
   std::string outcome_ = "unfinished";
   double start_ = 0.0;
   double end_ = 0.0;

@@ -8,6 +8,8 @@ usage: plot_check.py RUN_DIR AXIS_NAME...
 - every tick label is a round number: within each scale the ticks are equally spaced by 1, 2 or 5
   times a power of ten and each label is a multiple of that step;
 - the legend names every axis given, with its SCU and planned curves, the spindle's set and actual;
+- every step the journal started has its boundary and its label whole (its box inside the plot area,
+  overlapping no other label in its lane);
 - plot.html holds its data and script and no http:// or https:// reference (it opens offline).
 """
 import math
@@ -61,8 +63,38 @@ wanted = [f"{a} {what}" for a in axes for what in ("planned", "SCU")] + ["spindl
 for w in wanted:
     if w not in legend:
         failures.append(f"legend lacks '{w}' (has {sorted(legend)})")
-if not any(t.get("class") == "step" for t in texts):
-    failures.append("no step names")
+# Every step the journal started: its boundary and its label whole, inside the plot area, apart from the
+# others in its lane.
+import json
+started = set()
+with open(f"{run_dir}/journal.jsonl", encoding="utf-8") as f:
+    for line in f:
+        j = json.loads(line)
+        if j.get("event") == "step_started":
+            started.add(j.get("step"))
+frames = [r for r in root.iter(ns + "rect") if r.get("fill") == "none"]
+left = float(frames[0].get("x"))
+right = left + float(frames[0].get("width"))
+boxes = []
+for g in root.iter(ns + "g"):
+    if g.get("class") != "step":
+        continue
+    label = g.find(ns + "text")
+    if g.find(ns + "line") is None or label is None or label.get("class") != "step-label":
+        failures.append(f"step {g.get('data-step')}: no boundary or no label")
+        continue
+    x, w, y = float(label.get("x")), float(label.get("textLength")), float(label.get("y"))
+    if not label.text or not label.text.startswith(g.get("data-step") + " "):
+        failures.append(f"step {g.get('data-step')}: label '{label.text}'")
+    if x < left or x + w > right:
+        failures.append(f"step label '{label.text}' [{x}, {x + w}] outside the plot area [{left}, {right}]")
+    boxes.append((y, x, x + w, label.text))
+if len(boxes) != len(started):
+    failures.append(f"{len(boxes)} step labels for {len(started)} steps started")
+for i, a in enumerate(boxes):
+    for b in boxes[i + 1:]:
+        if a[0] == b[0] and a[1] < b[2] and b[1] < a[2]:
+            failures.append(f"step labels '{a[3]}' and '{b[3]}' overlap")
 
 html = open(html_path, encoding="utf-8").read()
 for ref in re.findall(r"https?://\S{0,40}", html):
@@ -72,5 +104,6 @@ if '<script id="data" type="application/json">' not in html or "addEventListener
 
 for f in failures:
     print("FAIL:", f)
-print(f"{len(ticks)} tick labels in {len(scales)} scales, {len(legend)} legend entries, PNG {width}x{height}")
+print(f"{len(ticks)} tick labels in {len(scales)} scales, {len(legend)} legend entries, {len(boxes)} step labels, "
+      f"PNG {width}x{height}")
 sys.exit(1 if failures else 0)
