@@ -265,6 +265,15 @@ void CellRun::publish_status(double t) {
   for (std::size_t i = 0; i < state_.axis_count; ++i) {
     v.position_mm[i] = state_.axes[i].position_mm();
     v.position_known[i] = state_.axes[i].present;
+    const auto& axis = state_.axes[i];
+    const auto& intent = supervisor_->intents().axes[i];
+    v.target_known[i] = intent.move;
+    v.target_mm[i] = intent.target_mm;
+    v.scu_mm[i] = axis.scu_mm;
+    v.encoder_measures[i] = axis.measured;
+    v.encoder_mm[i] = axis.encoder_mm;
+    v.home_recorded[i] = home_record_.axes[i].homed;
+    v.scu_initialised[i] = axis.scu_initialised;
   }
   v.spindle_hz = state_.spindle.actual_hz;
   v.spindle_set_hz = supervisor_->intents().spindle.run ? supervisor_->intents().spindle.frequency_hz : 0.0;
@@ -285,10 +294,13 @@ void CellRun::publish_status(double t) {
   while (bucket < v.jitter_le.size()) v.jitter_le[bucket++] = running;
   for (std::size_t d = 0; d < cell::kMaxDevices; ++d) {
     v.devices[d] = state_.devices[d];
+    v.link_active[d] = state_.links[d].active;
     v.link_fault[d] = state_.links[d].fault;
     v.link_silent_s[d] = link::to_seconds(state_.links[d].silent_for);
     v.link_counts[d] = state_.links[d].counts;
   }
+  for (const auto* d : parts_.devices->devices())
+    v.link_round_trip_s[d->slot()] = link::to_seconds(d->session().health().last_round_trip);
   for (std::size_t r = 0; r < monitor::kRuleCount; ++r) {
     if (!monitor_.latch(static_cast<monitor::Rule>(r)).active) continue;
     v.fault = true;

@@ -28,6 +28,16 @@ struct StatusView {
   std::uint8_t axes = 0;
   std::array<double, cell::kMaxAxes> position_mm{};
   std::array<bool, cell::kMaxAxes> position_known{};  // the SCU has reported the actuator
+  // Each axis as the page names it apart: where the move in progress goes (target_known: a move is
+  // asked for), the SCU's own position, the encoder's where it measures the axis, and the two facts
+  // that make it homed — the home record's entry and the SCU's initialised bit.
+  std::array<double, cell::kMaxAxes> target_mm{};
+  std::array<bool, cell::kMaxAxes> target_known{};
+  std::array<double, cell::kMaxAxes> scu_mm{};
+  std::array<double, cell::kMaxAxes> encoder_mm{};
+  std::array<bool, cell::kMaxAxes> encoder_measures{};
+  std::array<bool, cell::kMaxAxes> home_recorded{};
+  std::array<bool, cell::kMaxAxes> scu_initialised{};
   double spindle_hz = 0.0;
   double spindle_set_hz = 0.0;
   double jitter_max_us = 0.0;  // the loop's largest wake-up jitter so far
@@ -36,9 +46,11 @@ struct StatusView {
   std::uint64_t overruns = 0;
   // Per device slot (cell::CellState::devices): its name ("" for an empty slot) and its link.
   std::array<std::string_view, cell::kMaxDevices> devices{};
+  std::array<bool, cell::kMaxDevices> link_active{};      // the device's session is in its active state
   std::array<bool, cell::kMaxDevices> link_fault{};       // a device's session gave up on its link
   std::array<double, cell::kMaxDevices> link_silent_s{};  // since its last good reply
   std::array<cell::LinkCounts, cell::kMaxDevices> link_counts{};
+  std::array<double, cell::kMaxDevices> link_round_trip_s{};  // the last exchange's; 0 before the first
   bool fault = false;
   monitor::Rule first_fault = monitor::Rule::operator_stop;
 };

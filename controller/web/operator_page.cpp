@@ -5,17 +5,22 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
-#include <tuple>
 #include <variant>
 
 #include "schema/plant_tags.hpp"
 #include "web/answer_status.hpp"
+#include "web/cell_board.hpp"
 #include "web/client_watch.hpp"
+#include "web/command_buttons.hpp"
 #include "web/fault_remedy.hpp"
 #include "web/hand_over.hpp"
 #include "web/page_html.hpp"
 #include "web/page_server.hpp"
+#include "web/recipe_list.hpp"
+#include "web/run_history.hpp"
 
 namespace cellctl::web {
 namespace {
@@ -54,6 +59,20 @@ bool brings_to_rest(std::string_view word) {
   return word == "stop" || word == "abort" || word == "hold";
 }
 
+// A file of a run record as it was written (the plot): the plot's own script and style run in a
+// sandbox (an origin of its own: it cannot reach the page's endpoints, cookie or not).
+void send_record_file(const std::filesystem::path& file, const char* type, httplib::Response& res) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return refuse(res, {404, "no such file in the run record"});
+  std::ostringstream text;
+  text << in.rdbuf();
+  res.headers.erase("Content-Security-Policy");
+  res.set_header("Content-Security-Policy",
+                 "sandbox allow-scripts; default-src 'none'; script-src 'unsafe-inline'; "
+                 "style-src 'unsafe-inline'; img-src data:");
+  res.set_content(text.str(), type);
+}
+
 }  // namespace
 
 OperatorPage::OperatorPage(PageOptions options, const config::CellCore& cell, plant_link::RunAccess run)
@@ -63,6 +82,7 @@ OperatorPage::OperatorPage(PageOptions options, const config::CellCore& cell, pl
       guard_(options_),
       mirror_(cell, run_.mode),
       desk_(cell, options_.recipes, starts_for_present_clients(run_), std::chrono::milliseconds(2000)) {
+  for (const auto& a : cell.axes) axis_names_.push_back(a.name);
   // The command line refuses a token shorter than kMinTokenBytes (page_token.hpp).
   if (options_.token.empty()) throw std::invalid_argument("the operator page needs a token");
   if (const auto problem = listen_problem(options_); !problem.empty()) throw std::runtime_error(problem);
@@ -161,6 +181,7 @@ void OperatorPage::route() {
             std::this_thread::sleep_for(200ms);  // the page's refresh period; a server thread, never the loop
           }
           out += sse("status", status_payload());
+          out += sse("board", board_payload());
           {
             std::lock_guard lock(mutex_);
             if (*last_admin != admin_version_) {
@@ -205,6 +226,26 @@ void OperatorPage::route() {
     if (at_hand_over.abandoned()) abandon();
     reply(answer);
   });
+  // The recipes a start may name, and the runs made: read when asked, on this server thread.
+  s.Get("/recipes", [this](const httplib::Request&, httplib::Response& res) {
+    res.set_content(recipe_list(options_.recipes, cell_).dump(), "application/json");
+  });
+  s.Get("/runs", [this](const httplib::Request&, httplib::Response& res) {
+    res.set_content(run_history(options_.runs).dump(), "application/json");
+  });
+  // The run's name is bounded by the pattern (and checked again as a plain name): never a path.
+  s.Get(R"(/runs/([A-Za-z0-9][A-Za-z0-9_.-]{0,127})/(plot\.html|plot\.svg|report))",
+        [this](const httplib::Request& req, httplib::Response& res) {
+          const std::string run = req.matches[1], file = req.matches[2];
+          if (options_.runs.empty() || !plain_run_name(run)) return refuse(res, {404, "no such run record"});
+          if (file == "report") {
+            const auto report = run_report(options_.runs, run);
+            if (!report) return refuse(res, {404, "no such run record"});
+            return res.set_content(*report, "text/plain; charset=utf-8");
+          }
+          send_record_file(options_.runs / run / file,
+                           file == "plot.svg" ? "image/svg+xml" : "text/html; charset=utf-8", res);
+        });
   s.Get("/metrics", [this](const httplib::Request&, httplib::Response& res) {
     res.set_content(metrics_text(), "text/plain; version=0.0.4");
   });
@@ -268,95 +309,22 @@ std::string OperatorPage::status_payload() {
   return schema::status_payload(mirror_.status_tag(live));
 }
 
+std::string OperatorPage::board_payload() {
+  auto live = run_.status();
+  std::lock_guard lock(mutex_);
+  // Between jobs (cellctl serve) the last job's view, marked as not live.
+  if (live) last_view_ = live->view;
+  auto board = web::board_payload(axis_names_, last_view_, live.has_value());
+  board["state"] = mirror_.state();
+  board["buttons"] = command_buttons(mirror_.state(), static_cast<bool>(run_.start));
+  board["history"] = !options_.runs.empty();
+  return board.dump();
+}
+
 std::string OperatorPage::admin_payload() {
   auto a = mirror_.admin_tag();
   for (auto& f : a.active_faults) f.remedy = std::string(fault_remedy(f.rule));
   return schema::admin_payload(a);
-}
-
-std::string OperatorPage::metrics_text() {
-  std::string out;
-  const auto add = [&](std::string_view name, std::string_view type, std::string_view help) {
-    out += fmt::format("# HELP {} {}\n# TYPE {} {}\n", name, help, name, type);
-  };
-  if (const auto r = run_.status()) {
-    const auto& v = r->view;
-    add("cellctl_loop_jitter_seconds", "histogram", "Control loop wake-up minus deadline.");
-    for (std::size_t b = 0; b < status::kJitterBucketsUs.size(); ++b)
-      out += fmt::format("cellctl_loop_jitter_seconds_bucket{{le=\"{:g}\"}} {}\n",
-                         status::kJitterBucketsUs[b] * 1e-6, v.jitter_le[b]);
-    out += fmt::format("cellctl_loop_jitter_seconds_bucket{{le=\"+Inf\"}} {}\n", v.jitter_le.back());
-    out += fmt::format("cellctl_loop_jitter_seconds_sum {:.9f}\ncellctl_loop_jitter_seconds_count {}\n",
-                       v.jitter_sum_s, v.jitter_le.back());
-    add("cellctl_loop_overrun_cycles_total", "counter", "Cycles that ran past their next deadline.");
-    out += fmt::format("cellctl_loop_overrun_cycles_total {}\n", v.overruns);
-    // Every device the cell has, by the name its slot carries (an empty slot: no device).
-    add("cellctl_device_link_fault", "gauge", "1 when the device's session gave up on its link.");
-    for (std::size_t d = 0; d < v.devices.size(); ++d)
-      if (!v.devices[d].empty())
-        out += fmt::format("cellctl_device_link_fault{{device=\"{}\"}} {}\n", v.devices[d],
-                           v.link_fault[d] ? 1 : 0);
-    add("cellctl_device_silent_seconds", "gauge", "Time since the device's last good reply.");
-    for (std::size_t d = 0; d < v.devices.size(); ++d)
-      if (!v.devices[d].empty())
-        out += fmt::format("cellctl_device_silent_seconds{{device=\"{}\"}} {:.6f}\n", v.devices[d],
-                           v.link_silent_s[d]);
-    add("cellctl_device_exchanges_total", "counter", "Good replies from the device.");
-    for (std::size_t d = 0; d < v.devices.size(); ++d)
-      if (!v.devices[d].empty())
-        out += fmt::format("cellctl_device_exchanges_total{{device=\"{}\"}} {}\n", v.devices[d],
-                           v.link_counts[d].good_replies);
-    add("cellctl_device_errors_total", "counter",
-        "Failed exchanges: no answer in time, a bad frame, or a reply in which the device refused.");
-    for (std::size_t d = 0; d < v.devices.size(); ++d) {
-      if (v.devices[d].empty()) continue;
-      const auto& c = v.link_counts[d];
-      for (const auto& [kind, n] : {std::pair{"timeout", c.timeouts}, std::pair{"bad_frame", c.bad_frames},
-                                    std::pair{"refused", c.refusals}})
-        out += fmt::format("cellctl_device_errors_total{{device=\"{}\",kind=\"{}\"}} {}\n", v.devices[d],
-                           kind, n);
-    }
-    add("cellctl_run_seconds", "gauge", "Time since the run started (the run's clock).");
-    out += fmt::format("cellctl_run_seconds {:.6f}\n", v.t);
-  }
-  std::lock_guard lock(mutex_);
-  const auto& a = mirror_.admin_tag();
-  for (const auto& [key, help, n] :
-       {std::tuple{"runs", "Runs started.", a.runs},
-        std::tuple{"steps_done", "Recipe steps completed.", a.steps_done},
-        std::tuple{"steps_failed", "Recipe steps failed.", a.steps_failed},
-        std::tuple{"faults", "Safety monitor faults latched.", a.faults},
-        std::tuple{"processed", "Runs completed (PackML Admin.ProdProcessedCount).", a.processed}}) {
-    const auto name = fmt::format("cellctl_{}_total", key);
-    add(name, "counter", help);
-    out += fmt::format("{} {}\n", name, n);
-  }
-  add("cellctl_state", "gauge", "PackML StateCurrent of the cell.");
-  out +=
-      fmt::format("cellctl_state{{state=\"{}\"}} {}\n", mirror_.state(), mirror_.state_tag().state_current);
-  add("cellctl_web_commands_total", "counter",
-      "Commands received by the page, refused ones, ones without a valid token or session, and ones not "
-      "obeyed because their client had gone.");
-  out += fmt::format(
-      "cellctl_web_commands_total {}\ncellctl_web_commands_refused_total {}\n"
-      "cellctl_web_commands_unauthorised_total {}\ncellctl_web_commands_abandoned_total {}\n",
-      commands_, refused_, commands_unauthorised_.load(), commands_abandoned_.load());
-  const auto g = guard_.counters();
-  add("cellctl_web_requests_refused_total", "counter",
-      "Requests the page refused before reading their body: wrong Host or Origin (forbidden), no valid "
-      "token or session (unauthorised), a wrong token (wrong_token, also counted as unauthorised), held "
-      "back after wrong tokens (throttled), a body too large (too_large).");
-  for (const auto& [why, n] : {std::pair{"forbidden", g.forbidden}, std::pair{"unauthorised", g.unauthorised},
-                               std::pair{"wrong_token", g.wrong_tokens}, std::pair{"throttled", g.throttled},
-                               std::pair{"too_large", g.too_large}})
-    out += fmt::format("cellctl_web_requests_refused_total{{why=\"{}\"}} {}\n", why, n);
-  add("cellctl_web_streams", "gauge", "Live-event readers connected now.");
-  out += fmt::format("cellctl_web_streams {}\n", streams_.load());
-  add("cellctl_web_streams_refused_total", "counter", "Live-event readers refused: every stream was taken.");
-  out += fmt::format("cellctl_web_streams_refused_total {}\n", streams_refused_.load());
-  add("cellctl_web_dropped_events_total", "counter", "Run events the page's queue had no room for.");
-  out += fmt::format("cellctl_web_dropped_events_total {}\n", events_.dropped());
-  return out;
 }
 
 }  // namespace cellctl::web

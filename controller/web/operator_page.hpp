@@ -3,7 +3,9 @@
 // it, no network needed), `POST /login` a session for the page's token, `/events` the live state,
 // step, progress, axes, spindle and faults as server-sent events, `POST /cmd/<word>` the operator's
 // commands (hold, unhold, stop, abort, reset, clear; under `cellctl serve` also start, home and
-// teach-in, their fields in a JSON body), `/metrics` in the Prometheus text format.
+// teach-in, their fields in a JSON body), `/metrics` in the Prometheus text format; `/recipes` the
+// recipes a start may name (recipe_list.hpp), `/runs` the run history and `/runs/<run>/plot.html`,
+// `plot.svg` and `report` each run's plot and report (run_history.hpp).
 //
 // Every request is judged on its headers before its body is read (request_guard.hpp: Host and
 // Origin, size, the token or the session, the back-off of wrong tokens); the server is set up so that
@@ -24,6 +26,7 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -61,6 +64,8 @@ class OperatorPage {
   // The live events' payloads: the status, and the admin tag with each active fault's remedy.
   [[nodiscard]] std::string status_payload();
   [[nodiscard]] std::string admin_payload();
+  // Axes, devices and the buttons the state allows (cell_board.hpp, command_buttons.hpp).
+  [[nodiscard]] std::string board_payload();
   [[nodiscard]] std::string metrics_text();
   [[nodiscard]] nlohmann::json command(const std::string& word, const std::string& body,
                                        const command::CommandSource& source, command::SteadyTime received);
@@ -73,6 +78,8 @@ class OperatorPage {
   std::mutex mutex_;  // mirror, answers: the pump and the server's threads
   std::condition_variable answered_;
   plant_link::CellMirror mirror_;
+  std::vector<std::string> axis_names_;
+  std::optional<status::StatusView> last_view_;  // the last job's, shown between jobs
   plant_link::CommandDesk desk_;
   std::vector<nlohmann::json> answers_;  // the run's answers, until the request waiting for each takes it
   std::uint64_t next_id_ = 1;

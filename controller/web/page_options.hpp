@@ -16,6 +16,7 @@ struct PageOptions {
   int port = 8080;
   std::string token;  // for every command, the live events and (unless public) /metrics; never empty
   std::filesystem::path recipes = "recipes";
+  std::filesystem::path runs;  // the run records the page lists (cellctl serve's --runs); empty: none
   // Names the page answers to (the Host header) besides the address a client reached it by, and
   // localhost on loopback: a DNS name of the controller (--http-allow-host).
   std::vector<std::string> allowed_hosts;

@@ -5,6 +5,7 @@ import atexit
 import ctypes
 import json
 import os
+import re
 import signal
 import socket
 import subprocess
@@ -82,6 +83,64 @@ class PageSession:
         self.driver.find_element(By.ID, "log-in").click()
         wait.until(EC.invisibility_of_element_located((By.ID, "login")))
         assert self.driver.find_element(By.ID, "token").get_attribute("value") == "", "the page kept the token"
+
+    def text(self, element_id):
+        from selenium.webdriver.common.by import By
+        return self.driver.find_element(By.ID, element_id).text
+
+    def screenshot(self, name, size=(1366, 768)):
+        """The whole page at a window of `size` (the panel at the cell by default) into OUT/name.png."""
+        self.driver.set_window_size(*size)
+        # The page's own height, so that nothing below the fold is cut from the figure.
+        height = self.driver.execute_script("return document.documentElement.scrollHeight")
+        self.driver.set_window_size(size[0], max(size[1], height))
+        self.driver.execute_script("window.scrollTo(0, 0)")
+        self.driver.save_screenshot(os.path.join(self.out, name + ".png"))
+        self.driver.set_window_size(*size)
+
+    def click_confirmed(self, button, confirmation_part, answer_part, timeout=30):
+        """Clicks `button`, checks and accepts its confirmation, waits for the answer."""
+        from selenium.webdriver.common.by import By
+        from selenium.webdriver.support import expected_conditions as EC
+        from selenium.webdriver.support.ui import WebDriverWait
+        wait = WebDriverWait(self.driver, timeout)
+        element = self.driver.find_element(By.ID, button)
+        assert element.is_enabled(), f"{button} is disabled: {element.get_attribute('title')}"
+        element.click()
+        alert = wait.until(EC.alert_is_present())
+        assert confirmation_part in alert.text, alert.text
+        alert.accept()
+        try:
+            wait.until(EC.text_to_be_present_in_element((By.ID, "answer"), answer_part))
+        except Exception:
+            raise AssertionError(f"{button}: the answer is {self.text('answer')!r}, not {answer_part!r}")
+
+    def button_disabled_because(self, button, reason_part):
+        """`button` is disabled and says why, beside it and in its tooltip (within the page's next live
+        events: the state shown may be a refresh behind)."""
+        from selenium.webdriver.common.by import By
+        element = self.driver.find_element(By.ID, button)
+        self.until(lambda: not element.is_enabled() and reason_part in self.text("why-" + button)
+                   and reason_part in element.get_attribute("title"),
+                   f"{button} disabled because {reason_part!r}", timeout=5)
+
+    def check_trend(self, series):
+        """The trend has its time axis (title and ticks), its position axis and a legend naming each
+        of `series` with its unit (read at once: the page redraws the trend with every live event)."""
+        texts = self.driver.execute_script(
+            "const q = c => [...document.querySelectorAll('#trend ' + c)].map(e => e.textContent);"
+            "return {titles: q('.x-title, .y-title'), x: q('.x-tick'), y: q('.y-tick'), legend: q('.legend-entry')};")
+        assert texts["titles"] == ["run time (s)", "position (mm)"], texts
+        assert len(texts["x"]) >= 2 and all(re.fullmatch(r"\d+(\.\d)?", t) for t in texts["x"]), texts
+        assert texts["y"], texts
+        assert texts["legend"] == [f"{s} (mm)" for s in series], texts
+
+    def table(self, body_id):
+        """The rows of a table body, each a list of its cells' texts, read at once (the page redraws its
+        tables with every live event)."""
+        return self.driver.execute_script(
+            "return [...document.getElementById(arguments[0]).rows].map(r => [...r.cells].map(c => c.innerText))",
+            body_id)
 
     def metrics(self, token):
         """/metrics, with the token as Prometheus sends it."""

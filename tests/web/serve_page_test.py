@@ -1,55 +1,71 @@
 #!/usr/bin/python3
 """The operator page of a standing controller in a real browser (Debian's chromium, headless, driven by
-chromium-driver and python3-selenium) against `cellctl serve --virtual-time --http`: the page's Home,
-Teach-In and Start buttons, each behind a confirmation that says what moves, start jobs one at a time.
+chromium-driver and python3-selenium) against `cellctl serve --virtual-time --http`: the jobs started
+from the page (Home, Teach-In, Start from the recipe list), each behind a confirmation that says what
+moves, the commands of a job in progress, and the run history.
 
 usage: serve_page_test.py CELLCTL CONFIG RECIPES_DIR OUT_DIR
 
-Works on a copy of CONFIG in OUT_DIR, with the state folder OUT_DIR/state. Checks: the page shows
-Idle with no job; a dismissed confirmation sends nothing; Home (confirmed) homes the cell to Complete;
-Reset brings it back to Idle (a start is taken only there); Teach-In over 100 mm from 5 mm (confirmed)
-is taught and written into the dry run's config (STATE/config.dry-run.yaml), the cell's config untouched; after another Reset, Start of a recipe runs it to Complete; /metrics counts the three runs; a screenshot is saved (OUT_DIR/serve_page.png);
-SIGTERM ends cellctl serve with 0. Every wait is on a condition with a time-out.
+Works on a copy of CONFIG in OUT_DIR, with the state folder OUT_DIR/state and a recipes folder
+OUT_DIR/recipes (short.yaml and bad-recipe.yaml from RECIPES_DIR, and a long one). Checks, each wait
+on a condition with a time-out:
+ - the Start list: every recipe with its steps and planned time, the invalid one disabled with why;
+ - Idle: Hold disabled with its reason; a dismissed confirmation sends nothing;
+ - Home (confirmed) homes the cell to Complete; Reset brings it back to Idle (figures OUT_DIR/idle.png
+   at 1366×768, OUT_DIR/idle-tablet.png at 820×1180); Teach-In over 100 mm from 5 mm is taught and
+   written into the dry run's config (STATE/config.dry-run.yaml), the cell's config untouched; Start of
+   the recipe picked from the list runs it to Complete;
+ - the run history: the three runs newest first, each complete, each device's safe state observed, the
+   plot and the report of a run served;
+ - a long recipe: Hold, Unhold, Abort, Clear and Reset by their buttons back to Idle, each button
+   enabled only where PackML takes it (Reset disabled in Aborted, with why);
+ - /metrics counts the four runs; Log out ends the session (the login form is back);
+ - SIGTERM ends cellctl serve with 0.
 """
 import os
 import shutil
 import signal
 import subprocess
 import sys
+import urllib.request
 
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support import expected_conditions as EC
-from selenium.webdriver.support.ui import WebDriverWait
+from selenium.webdriver.support.ui import Select, WebDriverWait
 
 from page_session import PageSession
 
-cellctl, config_given, recipes, out = sys.argv[1:5]
+cellctl, config_given, recipes_given, out = sys.argv[1:5]
 shutil.rmtree(out, ignore_errors=True)
 os.makedirs(out)
 config = os.path.join(out, "cell.yaml")
 shutil.copyfile(config_given, config)
+recipes = os.path.join(out, "recipes")
+os.makedirs(recipes)
+for name in ("short.yaml", "bad-recipe.yaml"):
+    shutil.copyfile(os.path.join(recipes_given, name), os.path.join(recipes, name))
+with open(os.path.join(recipes, "slow.yaml"), "w") as f:
+    f.write("""recipe: {name: slow, version: "1", cell: demo-cell}
+limits:
+  axes:
+    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
+  timeouts: {move_s: 60}
+steps:
+  - name: long dwell
+    repeat:
+      times: 10
+      steps:
+        - {name: an hour, dwell: 3600}
+""")
 token = "serve-page-token-0815"
 with open(os.path.join(out, "token"), "w") as f:
     f.write(token + "\n")
 
 page = PageSession(out)
-driver = page.driver
+driver, text = page.driver, page.text
 state_dir = os.path.join(out, "state")
 page.start([cellctl, "-c", config, "serve", "--virtual-time", "--runs", os.path.join(out, "runs"), "--state-dir",
             state_dir, "--recipes", recipes, "--http-token-file", os.path.join(out, "token")])
-
-
-def text(element_id):
-    return driver.find_element(By.ID, element_id).text
-
-
-def confirm_and_answer(button, confirmation_part, answer_part, wait):
-    """Clicks `button`, checks and accepts its confirmation, waits for the answer."""
-    driver.find_element(By.ID, button).click()
-    alert = wait.until(EC.alert_is_present())
-    assert confirmation_part in alert.text, alert.text
-    alert.accept()
-    wait.until(EC.text_to_be_present_in_element((By.ID, "answer"), answer_part))
 
 
 def metric(name):
@@ -59,7 +75,7 @@ def metric(name):
 
 def reset_to_idle(wait):
     """Reset (confirmed) after a job: a start is taken only in Idle (PackML)."""
-    confirm_and_answer("reset", "reset the cell?", "reset: ", wait)
+    page.click_confirmed("reset", "reset the cell?", "reset: ")
     wait.until(EC.text_to_be_present_in_element((By.ID, "state"), "Idle"))
 
 
@@ -69,29 +85,54 @@ def completed(n, what):
     page.until(lambda: metric("cellctl_processed_total") == n, what, timeout=60)
 
 
+def state(name, wait):
+    wait.until(EC.text_to_be_present_in_element((By.ID, "state"), name))
+    page.until(lambda: text("state") == name, f"state {name}")
+
+
+def get(path):
+    req = urllib.request.Request(page.base + path, headers={"X-Cellctl-Token": token})
+    with urllib.request.urlopen(req, timeout=10) as r:
+        return r.status, r.headers.get("Content-Security-Policy"), r.read().decode()
+
+
 try:
     driver.get(page.base)
     wait = WebDriverWait(driver, 60)
     page.log_in(token)
-    wait.until(EC.text_to_be_present_in_element((By.ID, "state"), "Idle"))
+    state("Idle", wait)
 
-    # A dismissed confirmation sends nothing: the Hold confirmed after it is the page's first command
-    # (a click's request leaves before the next click is handled).
+    # The Start list: each recipe of the folder, with its steps and planned time, or why not.
+    page.until(lambda: len(Select(driver.find_element(By.ID, "recipe")).options) == 3, "the recipe list")
+    options = {o.get_attribute("value"): (o.text, o.is_enabled())
+               for o in Select(driver.find_element(By.ID, "recipe")).options}
+    assert options["short"] == ("short — 6 steps, planned ≥ 1.6 s", True), options
+    assert options["slow"] == ("slow — 10 steps, planned ≥ 36000 s", True), options
+    assert options["bad-recipe"][0].startswith("bad-recipe — not valid: ") and not options["bad-recipe"][1], options
+
+    # Idle takes no hold (the button says why); a dismissed confirmation sends nothing.
+    page.button_disabled_because("hold", "hold is taken only in Execute")
+    page.button_disabled_because("clear", "clear is taken only in Aborted")
     driver.find_element(By.ID, "home").click()
     wait.until(EC.alert_is_present()).dismiss()
-    confirm_and_answer("hold", "hold the cell?", "hold: hold is not possible in state Idle", wait)
-    assert metric("cellctl_web_commands_total") == 1 and metric("cellctl_runs_total") == 0, \
+    assert metric("cellctl_web_commands_total") == 0 and metric("cellctl_runs_total") == 0, \
         (metric("cellctl_web_commands_total"), metric("cellctl_runs_total"))
 
-    confirm_and_answer("home", "The axes MOVE", "home: started: homing", wait)
+    page.click_confirmed("home", "The axes MOVE", "home: started: homing")
     completed(1, "homing to complete")
-    wait.until(EC.text_to_be_present_in_element((By.ID, "mode"), "home"))
+    wait.until(EC.text_to_be_present_in_element((By.ID, "mode"), "dry-run"))
+    wait.until(EC.text_to_be_present_in_element((By.ID, "recipe-now"), "home"))
+    state("Complete", wait)
+    page.button_disabled_because("start", "reset first")
     reset_to_idle(wait)
+    page.until(lambda: page.table("axes")[0][4] == "yes", "x homed by the record after homing")
+    page.screenshot("idle")
+    page.screenshot("idle-tablet", (820, 1180))
 
     driver.find_element(By.ID, "ti-from").send_keys("5")
-    confirm_and_answer("teach-in", "the verified result is written into the cell config", "teach-in: started: Teach-In", wait)
+    page.click_confirmed("teach-in", "the verified result is written into the cell config", "teach-in: started: Teach-In")
     completed(2, "the Teach-In to complete")
-    wait.until(EC.text_to_be_present_in_element((By.ID, "mode"), "teach-in x"))
+    wait.until(EC.text_to_be_present_in_element((By.ID, "recipe-now"), "teach-in x"))
     # A dry run (serve --virtual-time) writes the dry run's copy, never the cell's config (issue 22).
     with open(os.path.join(state_dir, "config.dry-run.yaml")) as f:
         assert "measuring_units: " in f.read(), "the Teach-In did not write the dry run's config"
@@ -99,15 +140,45 @@ try:
         assert f.read() == g.read(), "a dry-run Teach-In changed the cell's config"
     reset_to_idle(wait)
 
-    recipe = driver.find_element(By.ID, "recipe")
-    recipe.clear()
-    recipe.send_keys("short")
-    confirm_and_answer("start", "Start recipe short?", "start: started: recipe 'short'", wait)
+    Select(driver.find_element(By.ID, "recipe")).select_by_value("short")
+    page.click_confirmed("start", "Start recipe short?", "start: started: recipe 'short'")
     completed(3, "the recipe to complete")
-    wait.until(EC.text_to_be_present_in_element((By.ID, "mode"), "short-compare"))
-    wait.until(EC.text_to_be_present_in_element((By.ID, "state"), "Complete"))
-    driver.save_screenshot(os.path.join(out, "serve_page.png"))
-    assert metric("cellctl_runs_total") == 3, metric("cellctl_runs_total")
+    wait.until(EC.text_to_be_present_in_element((By.ID, "recipe-now"), "short-compare"))
+    state("Complete", wait)
+
+    # The run history: newest first, each with its outcome, safe states, plot and report.
+    page.until(lambda: len(page.table("runs")) == 3 and page.table("runs")[0][1] == "short-compare", "the run history")
+    runs = page.table("runs")
+    assert [r[0].split("-")[0] for r in runs] == ["short", "teach", "home"], runs
+    assert all(r[2] == "complete" and r[4] == "plot" and r[5] == "report" for r in runs), runs
+    page.until(lambda: [d[6] for d in page.table("devices")] == ["observed"] * 3, "the devices' safe states")
+    status, csp, plot = get(f"runs/{runs[0][0]}/plot.html")
+    assert status == 200 and "<script" in plot, plot[:200]
+    assert csp.startswith("sandbox"), csp
+    status, _, report = get(f"runs/{runs[0][0]}/report")
+    assert status == 200 and "outcome: complete" in report, report[:400]
+    reset_to_idle(wait)
+
+    # A job in progress: Hold, Unhold, Abort, Clear, Reset by their buttons, each as PackML allows.
+    Select(driver.find_element(By.ID, "recipe")).select_by_value("slow")
+    page.click_confirmed("start", "Start recipe slow?", "start: started: recipe 'slow'")
+    state("Execute", wait)
+    page.button_disabled_because("unhold", "unhold is taken only in Held or Holding")
+    page.click_confirmed("hold", "hold the cell?", "hold: accepted")
+    state("Held", wait)
+    page.click_confirmed("unhold", "unhold the cell?", "unhold: unholding")
+    state("Execute", wait)
+    page.click_confirmed("abort", "emergency stop", "abort: ")
+    state("Aborted", wait)
+    page.button_disabled_because("reset", "clear first")
+    page.button_disabled_because("abort", "aborting or aborted already")
+    page.click_confirmed("clear", "clear the cell?", "clear: ")
+    state("Stopped", wait)
+    reset_to_idle(wait)
+    assert metric("cellctl_runs_total") == 4, metric("cellctl_runs_total")
+
+    driver.find_element(By.ID, "logout").click()
+    wait.until(EC.visibility_of_element_located((By.ID, "login")))
 finally:
     driver.quit()
 
@@ -118,4 +189,5 @@ except subprocess.TimeoutExpired:
     page.fail("cellctl serve did not end after SIGTERM")
 if rc != 0:
     page.fail(f"exit {rc}, expected 0 (SIGTERM with no job in progress)")
-print("serve page: Home, Teach-In and Start by button with confirmation, metrics, screenshot — passed")
+print("serve page: recipe list, Home, Teach-In, Start, run history with plot and report, Hold, Unhold, Abort, "
+      "Clear, Reset by button with confirmation, log out, figures — passed")

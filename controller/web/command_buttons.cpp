@@ -1,0 +1,54 @@
+#include "web/command_buttons.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <string>
+#include <utility>
+
+namespace cellctl::web {
+namespace {
+
+using supervisor::Command;
+using supervisor::State;
+
+constexpr std::array kStates{State::idle,      State::starting,  State::execute,    State::holding,
+                             State::held,      State::unholding, State::stopping,   State::stopped,
+                             State::aborting,  State::aborted,   State::completing, State::complete,
+                             State::resetting, State::clearing};
+
+nlohmann::json button(std::string_view reason) {
+  if (reason.empty()) return {{"enabled", true}};
+  return {{"enabled", false}, {"reason", std::string(reason)}};
+}
+
+}  // namespace
+
+std::optional<State> state_named(std::string_view name) noexcept {
+  for (const auto s : kStates)
+    if (supervisor::to_string(s) == name) return s;
+  return std::nullopt;
+}
+
+nlohmann::json command_buttons(std::string_view state, bool starts_jobs) {
+  nlohmann::json out = nlohmann::json::object();
+  const auto s = state_named(state);
+  for (const auto c :
+       {Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset, Command::clear}) {
+    const bool brings_to_rest = c == Command::stop || c == Command::abort;
+    // Not knowing the state never keeps a stop from the operator.
+    const std::string reason = s ? std::string(supervisor::refusal(*s, c))
+                               : brings_to_rest
+                                   ? std::string()
+                                   : fmt::format("the cell's state ({}) is not known yet", state);
+    out[std::string(supervisor::to_string(c))] = button(reason);
+  }
+  const std::string start = !starts_jobs
+                                ? "this cellctl drives one run (cellctl run): jobs start under cellctl serve"
+                            : s ? std::string(supervisor::refusal(*s, Command::start))
+                                : fmt::format("the cell's state ({}) is not known yet", state);
+  for (const auto* job : {"start", "home", "teach-in"}) out[job] = button(start);
+  return out;
+}
+
+}  // namespace cellctl::web
