@@ -17,11 +17,11 @@ build=(
 )
 # The test suite and the benchmarks: the frameworks, and the real programs the tests drive (a
 # broker, a browser, an SVG renderer, socat; openssl makes the broker's test certificates; prometheus
-# scrapes the many-cells test's cells).
+# scrapes the many-cells test's cells; systemd's systemd-analyze verifies the packaged unit).
 tests=(
   libgtest-dev libgmock-dev libbenchmark-dev
   socat python3 librsvg2-bin
-  mosquitto openssl chromium chromium-driver python3-selenium prometheus
+  mosquitto openssl chromium chromium-driver python3-selenium prometheus systemd
 )
 case "${1:-}" in
   "") packages=("${build[@]}" "${tests[@]}") ;;
