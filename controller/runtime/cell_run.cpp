@@ -205,13 +205,13 @@ CellRun::FirstFault CellRun::first_fault(monitor::Rule rule, config::StopCategor
   // data exchange.
   link::Duration longest{};
   const auto limit = std::chrono::duration<double, std::milli>(cell_.limits.link_silence_ms);
-  for (std::size_t d = 0; d < cell::kDevices; ++d) {
+  for (const auto* device : parts_.devices->devices()) {
+    const auto d = device->slot();
     const auto& l = state_.links[d];
     const bool failed = l.fault || !l.active || l.silent_for > limit ||
-                        (static_cast<cell::Device>(d) == cell::Device::encoder && cell_.encoder &&
-                         !state_.encoder.data_exchange);
+                        (d == cell::slot(cell::Device::encoder) && !state_.encoder.data_exchange);
     if (!failed || (f.link && l.silent_for <= longest)) continue;
-    f.link = static_cast<cell::Device>(d);
+    f.link = d;
     longest = l.silent_for;
   }
   if (f.link) f.link_since = t - link::to_seconds(longest);
@@ -232,17 +232,17 @@ void CellRun::report_safety(RunResult& r, schema::RunFigures& figures) const {
   ended.rule = monitor::to_string(f.rule);
   if (f.link) {
     // The session's own words when it gave up on the link; else what the monitor saw of it.
-    const auto reason = safe_stop_->lost_reason(cell::slot(*f.link));
+    const auto reason = safe_stop_->lost_reason(*f.link);
     std::string symptom = reason.empty() ? std::string(f.detail.view()) : reason;
     if (auto* enc = parts_.devices->encoder();
-        *f.link == cell::Device::encoder && enc && !enc->restart_reason().empty())
+        *f.link == cell::slot(cell::Device::encoder) && enc && !enc->restart_reason().empty())
       symptom += "; DP start-up begun again: " + enc->restart_reason();
     ended.kind = schema::EndedBy::Kind::link;
-    ended.device = cell::to_string(*f.link);
+    ended.device = std::string(state_.devices[*f.link]);
     ended.symptom = symptom;
     ended.since_s = f.link_since;
-    r.ended_by = fmt::format("{} link fault, no good reply since {:.3f} s: {}", cell::to_string(*f.link),
-                             f.link_since, symptom);
+    r.ended_by = fmt::format("{} link fault, no good reply since {:.3f} s: {}", ended.device, f.link_since,
+                             symptom);
   } else {
     const bool by_operator =
         f.rule == monitor::Rule::operator_stop || f.rule == monitor::Rule::emergency_stop;

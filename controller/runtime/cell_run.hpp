@@ -232,8 +232,8 @@ class CellRun {
     config::StopCategory category;  // the stop it demanded
     double t;
     journal::Text detail;
-    std::optional<cell::Device> link;  // a device link that had failed then: the fault is named after it
-    double link_since = 0.0;           // its last good reply, s from the start
+    std::optional<std::size_t> link;  // the slot of a device link that had failed then: named after it
+    double link_since = 0.0;          // its last good reply, s from the start
   };
   [[nodiscard]] FirstFault first_fault(monitor::Rule rule, config::StopCategory category, double t,
                                        const journal::Text& detail) const noexcept;

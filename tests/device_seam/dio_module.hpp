@@ -12,9 +12,13 @@
 
 #include <array>
 #include <cstdint>
+#include <fstream>
 #include <memory>
 #include <optional>
+#include <span>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "config/line_section.hpp"
 #include "device_seam/cell_device.hpp"
@@ -193,5 +197,26 @@ inline std::optional<config::PortConfig> port(const config::CellConfig& cell) {
 // Its one registration.
 inline constexpr device_seam::DeviceKind kKind{"dio", "the module stops answering (its watchdog tripped)",
                                                &port, &make, &make_emulator};
+
+// The registry's kinds and the module's, in slot order.
+inline std::vector<device_seam::DeviceKind> kinds_with_dio() {
+  std::vector<device_seam::DeviceKind> kinds(device_seam::cell_device_kinds().begin(),
+                                             device_seam::cell_device_kinds().end());
+  kinds.push_back(kKind);
+  return kinds;
+}
+
+inline constexpr const char* kCellFile = CELLCTL_SOURCE_DIR "/config/cell.yaml";
+inline const std::string kDioSection = "dio:\n  port: emulated\n  baud: 38400\n";
+
+// The demo cell with `dio_section` after it (read as if it were in config/cell.yaml).
+inline config::CellConfig cell_with(const std::string& dio_section,
+                                    std::span<const device_seam::DeviceKind> kinds) {
+  std::ifstream in(kCellFile);
+  std::stringstream text;
+  text << in.rdbuf() << dio_section;
+  return device_seam::parse_cell_config(config::YamlNode::load_string(text.str(), kCellFile), kCellFile,
+                                        kinds);
+}
 
 }  // namespace cellctl::testing::dio

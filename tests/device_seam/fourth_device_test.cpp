@@ -27,30 +27,15 @@ namespace {
 using namespace std::chrono_literals;
 
 constexpr std::size_t kDioSlot = cell::kDevices;  // the first slot after the cell's own three
-constexpr const char* kCellFile = CELLCTL_SOURCE_DIR "/config/cell.yaml";
+using dio::kCellFile;
 
-// The registry's kinds and the module's, in slot order.
-std::vector<device_seam::DeviceKind> kinds_with_dio() {
-  std::vector<device_seam::DeviceKind> kinds(device_seam::cell_device_kinds().begin(),
-                                             device_seam::cell_device_kinds().end());
-  kinds.push_back(dio::kKind);
-  return kinds;
-}
-
-// The demo cell with the module's section after it (read as if it were in config/cell.yaml).
-config::CellConfig cell_with(const std::string& dio_section, std::span<const device_seam::DeviceKind> kinds) {
-  std::ifstream in(kCellFile);
-  std::stringstream text;
-  text << in.rdbuf() << dio_section;
-  return device_seam::parse_cell_config(config::YamlNode::load_string(text.str(), kCellFile), kCellFile,
-                                        kinds);
-}
-const std::string kDioSection = "dio:\n  port: emulated\n  baud: 38400\n";
+using dio::cell_with;
+using dio::kDioSection;
 
 class FourthDevice : public ::testing::Test {
  protected:
   FourthDevice()
-      : kinds_(kinds_with_dio()),
+      : kinds_(dio::kinds_with_dio()),
         rig_(cell_with(kDioSection, kinds_), kinds_),
         module_(*rig_.emulated.find<dio::Emulator>()),
         monitor_(rig_.cell) {}

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,7 @@ class RunFixture : public ::testing::Test {
     o.supervisor = supervisor_settings_;
     o.faults = faults_;
     o.state_dir = dir_ / "state";  // the home record: each test its own
+    o.device_kinds = device_kinds_;
     run_ = std::make_unique<runtime::CellRun>(cell_, recipe_, o);
     return *run_;
   }
@@ -92,6 +94,8 @@ class RunFixture : public ::testing::Test {
   std::atomic<bool> interrupt_{false};
   supervisor::SupervisorSettings supervisor_settings_;  // e.g. move.max_corrections, before make_run()
   std::vector<runtime::FaultSpec> faults_;              // to rehearse, before make_run()
+  // The kinds of device of the cell (a test may add one), before make_run().
+  std::span<const device_seam::DeviceKind> device_kinds_ = device_seam::cell_device_kinds();
 };
 
 }  // namespace cellctl::testing

@@ -110,7 +110,7 @@ def one(key):
 exec_start = one("ExecStart").split()
 if exec_start[0] != "/usr/bin/cellctl" or "serve" not in exec_start:
     fail(f"ExecStart does not run the packaged /usr/bin/cellctl serve: {exec_start}")
-if one("User") in ("", "root", "0") or one("User") != "cellctl":
+if one("User") != "cellctl":
     fail(f"the unit runs as {one('User')}, expected the user cellctl")
 if one("LimitRTPRIO") != "80" or one("LimitMEMLOCK") != "infinity" or not one("CPUAffinity"):
     fail("the unit lacks LimitRTPRIO=80 (the config's default loop.priority), LimitMEMLOCK=infinity or CPUAffinity")

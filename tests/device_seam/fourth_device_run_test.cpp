@@ -1,0 +1,98 @@
+// The fourth kind of device (the I/O module of dio_module.hpp) in whole runs, as a user meets it:
+// registered by its DeviceKind and named by a dio: section, it is on a line of its own with its
+// emulator in a virtual-time CellRun; the recipe's spindle opens its coolant valve; the run's summary
+// gives its safe-stop verdict and its link's figures beside the cell's three; a rehearsed fault names
+// it, and its loss ends the run as a link fault named after it.
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "dio_module.hpp"
+#include "integration/run_fixture.hpp"
+
+namespace cellctl::testing {
+namespace {
+
+constexpr const char* kRecipe = R"(
+recipe: {name: coolant, version: "1", cell: demo-cell}
+limits:
+  axes:
+    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
+    z: {min_mm: 0, max_mm: 120, max_speed_mm_s: 12, tolerance_mm: 0.1}
+  spindle: {min_hz: 200, max_hz: 600}
+  timeouts: {move_s: 30, spindle_s: 10}
+steps:
+  - name: spindle up
+    spindle: {start_hz: 400, direction: cw}
+  - {name: cut, dwell: 1.0}
+  - name: spindle down
+    spindle: stop
+)";
+
+class FourthDeviceRun : public RunFixture {
+ protected:
+  void SetUp() override {
+    RunFixture::SetUp();
+    device_kinds_ = kinds_;
+    cell_ = dio::cell_with(dio::kDioSection, kinds_);
+    load_recipe_text(kRecipe);
+  }
+  nlohmann::json summary() const { return events("summary").at(0); }
+
+  std::vector<device_seam::DeviceKind> kinds_ = dio::kinds_with_dio();
+};
+
+TEST_F(FourthDeviceRun, ItsValveFollowsTheSpindleAndTheSummaryJudgesItBesideTheCellsThree) {
+  auto& run = make_run();
+  bool valve_opened = false;
+  run.on_cycle([&](double, runtime::CellRun& r) {
+    if (auto* module = r.emulators()->find<dio::Emulator>(); module && module->outputs() == 0x01)
+      valve_opened = true;
+  });
+  const auto result = go();
+  EXPECT_EQ(result.final_state, supervisor::State::complete) << result.failure;
+  EXPECT_TRUE(valve_opened) << "the coolant valve opened while the spindle ran";
+  EXPECT_EQ(run.emulators()->find<dio::Emulator>()->outputs(), 0x00) << "and is shut at the end";
+
+  const auto s = summary();
+  for (const char* device : {"scu", "spindle", "encoder", "dio"})
+    EXPECT_EQ(s["devices"][device]["safe"], "observed") << device << ": " << s["devices"][device];
+  EXPECT_NE(s["devices"]["dio"]["evidence"].get<std::string>().find("every output off, read back at"),
+            std::string::npos);
+  ASSERT_TRUE(s["links"].contains("dio")) << "its link's figures in the summary: " << s["links"];
+  EXPECT_GT(s["links"]["dio"]["replies"].get<long>(), 0) << s["links"]["dio"];
+}
+
+TEST_F(FourthDeviceRun, ARehearsedFaultNamesItAndItsLossEndsTheRunAsItsLinkFault) {
+  auto spec = runtime::parse_fault_spec("dio:silent@0.5", kinds_);
+  ASSERT_TRUE(std::holds_alternative<runtime::FaultSpec>(spec));
+  faults_.push_back(std::get<runtime::FaultSpec>(spec));
+  make_run();
+  const auto result = go();
+  EXPECT_NE(result.final_state, supervisor::State::complete);
+
+  const auto injected = events("fault_injected");
+  ASSERT_FALSE(injected.empty());
+  EXPECT_EQ(injected[0]["device"], "dio");
+  EXPECT_EQ(summary()["ended_by"]["kind"], "link") << summary()["ended_by"];
+  EXPECT_EQ(summary()["ended_by"]["device"], "dio") << summary()["ended_by"];
+  EXPECT_EQ(summary()["devices"]["dio"]["safe"], "unknown") << summary()["devices"]["dio"];
+}
+
+TEST_F(FourthDeviceRun, ItsOwnErrorIsItsEmulatorsInTheKindsWords) {
+  auto spec = runtime::parse_fault_spec("dio:error@0.5+0.2", kinds_);
+  ASSERT_TRUE(std::holds_alternative<runtime::FaultSpec>(spec));
+  const auto& fault = std::get<runtime::FaultSpec>(spec);
+  EXPECT_EQ(runtime::FaultRehearsal::what(fault, kinds_),
+            "the module stops answering (its watchdog tripped)");
+  EXPECT_EQ(runtime::FaultRehearsal::what(fault), "?") << "a kind the cell's registry does not have";
+  auto unknown = runtime::parse_fault_spec("dio:error@1");
+  ASSERT_TRUE(std::holds_alternative<runtime::FaultSpecError>(unknown));
+  EXPECT_EQ(std::get<runtime::FaultSpecError>(unknown).reason,
+            "unknown device 'dio' (scu, spindle, encoder)");
+}
+
+}  // namespace
+}  // namespace cellctl::testing
