@@ -7,7 +7,8 @@ usage: package_test.py BUILD_DIR SOURCE_DIR OUT_DIR
 Checks: cpack makes cellctl_<version>_<arch>.deb; its control file depends on systemd, and its
 maintainer scripts (postinst: the user and /etc/cellctl; prerm) are there and parse (sh -n); unpacked
 (dpkg-deb -x) into OUT_DIR/root it holds the binary, the unit, the sysusers file, the example configs
-(the default cell, config/examples/, the recipes) and the README; the unit runs `cellctl serve` as the
+(the default cell, config/examples/, the recipes) and the README; systemd-sysusers --root makes from
+it the system user cellctl (home /var/lib/cellctl, no shell, in dialout) in the scratch root; the unit runs `cellctl serve` as the
 user cellctl (never root) with LimitRTPRIO, LimitMEMLOCK and CPUAffinity, no capability, and a restart
 policy that leaves exits 2, 3, 5 and crashes to a person; `systemd-analyze verify` accepts the unit
 with nothing to say (it warns and still exits 0 on an unknown key or a bad value, so any output fails
@@ -88,8 +89,17 @@ for f in ["usr/bin/cellctl", UNIT, "usr/lib/sysusers.d/cellctl.conf", "usr/share
           "usr/share/cellctl/examples/mosquitto/cellctl.acl", "usr/share/cellctl/examples/recipes/demo.yaml"]:
     if f not in packaged:
         fail(f"the package has no {f}; it has:\n" + "\n".join(packaged))
-if not re.search(r"^u cellctl ", open(os.path.join(root, "usr/lib/sysusers.d/cellctl.conf")).read(), re.M):
-    fail("the sysusers file makes no user cellctl")
+# What the postinst's systemd-sysusers makes, in the scratch root (given a base system's root and dialout).
+os.makedirs(os.path.join(root, "etc"))
+with open(os.path.join(root, "etc/passwd"), "w") as f:
+    f.write("root:x:0:0:root:/root:/bin/bash\n")
+with open(os.path.join(root, "etc/group"), "w") as f:
+    f.write("root:x:0:\ndialout:x:20:\n")
+run(["systemd-sysusers", f"--root={root}", os.path.join(root, "usr/lib/sysusers.d/cellctl.conf")])
+passwd, group = open(os.path.join(root, "etc/passwd")).read(), open(os.path.join(root, "etc/group")).read()
+if not re.search(r"^cellctl:x:[1-9][0-9]*:[0-9]+:[^:]*:/var/lib/cellctl:/usr/sbin/nologin$", passwd, re.M) or \
+        not re.search(r"^dialout:x:20:cellctl$", group, re.M):
+    fail(f"systemd-sysusers did not make the system user cellctl in dialout:\n{passwd}{group}")
 
 # --- the unit ------------------------------------------------------------------------------------------
 unit_text = open(os.path.join(root, UNIT)).read()
