@@ -130,6 +130,10 @@ class Session final : public link::DeviceSession {
   template <class... Args>
   void fault(fmt::format_string<Args...> format, Args&&... args);
   [[nodiscard]] bool defined(int function) const noexcept;
+  // The SCU's fnc_ID of a motion function: its 0-based number.
+  [[nodiscard]] static std::uint8_t fnc(int function) noexcept {
+    return static_cast<std::uint8_t>(function - 1);
+  }
   [[nodiscard]] bool accepting() const noexcept { return lifecycle() == link::Lifecycle::active; }
   [[nodiscard]] std::uint16_t percent(int function, double speed_mm_s) const noexcept;
 
@@ -161,5 +165,16 @@ class Session final : public link::DeviceSession {
   bool f20_refused_ = false;  // the last F20 answer was a refusal (a new one queues behind the stops)
   std::array<std::uint64_t, kMotionFunctionCount> execute_mark_{};
 };
+
+// (Here, for the session's sources: session.cpp, session_replies.cpp.)
+template <class... Args>
+void Session::fault(fmt::format_string<Args...> format, Args&&... args) {
+  enter_fault(format, std::forward<Args>(args)...);
+  urgent_.clear();
+  normal_.clear();
+  in_flight_.reset();
+  replies_.expect_nothing();
+  keepalive_armed_ = false;
+}
 
 }  // namespace cellctl::scu
