@@ -253,6 +253,12 @@ void OperatorPage::route() {
 
 void OperatorPage::pump() {
   while (!stop_.load()) {
+    // The run's view as often as the pump turns, so that a job too short for the page's refresh still
+    // leaves its last view to be shown between jobs (outside mutex_: status() locks the scheduler).
+    if (auto live = run_.status()) {
+      std::lock_guard lock(mutex_);
+      last_view_ = std::move(live->view);
+    }
     bool any = false;
     {
       std::lock_guard lock(mutex_);
@@ -316,6 +322,7 @@ std::string OperatorPage::board_payload() {
   if (live) last_view_ = live->view;
   auto board = web::board_payload(axis_names_, last_view_, live.has_value());
   board["state"] = mirror_.state();
+  board["state_current"] = mirror_.state_tag().state_current;  // PackML's number for it
   board["buttons"] = command_buttons(mirror_.state(), static_cast<bool>(run_.start));
   board["history"] = !options_.runs.empty();
   return board.dump();

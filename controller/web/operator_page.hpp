@@ -79,7 +79,7 @@ class OperatorPage {
   std::condition_variable answered_;
   plant_link::CellMirror mirror_;
   std::vector<std::string> axis_names_;
-  std::optional<status::StatusView> last_view_;  // the last job's, shown between jobs
+  std::optional<status::StatusView> last_view_;  // the run's, kept by the pump: the last job's between jobs
   plant_link::CommandDesk desk_;
   std::vector<nlohmann::json> answers_;  // the run's answers, until the request waiting for each takes it
   std::uint64_t next_id_ = 1;

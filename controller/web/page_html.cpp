@@ -18,7 +18,7 @@ std::string_view operator_page_html() noexcept {
   <button id="log-in" type="submit">Log in</button></form>
  <button id="logout" hidden>Log out</button></header>
 <main class="grid">
-<section class="box" aria-label="state"><div id="state" class="Idle">?</div>
+<section class="box" aria-label="state"><div id="state" class="Idle">?</div><small id="packml"></small>
  <div>mode <b id="mode">—</b> <span id="recipe-now"></span></div>
  <div>step <span id="step">0</span> of <span id="steps">0</span>: <span id="label"></span></div>
  <progress id="progress" max="1" value="0"></progress>

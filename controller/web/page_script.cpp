@@ -60,6 +60,7 @@ function board(b){
  $('board-age').textContent=b.live?'':'(as the last job left them: no job in progress)';
  for(const [cmd,s] of Object.entries(b.buttons||{})){const btn=$(cmd);if(!btn)continue;
   btn.disabled=!s.enabled;btn.title=s.reason||'';const why=$('why-'+cmd);if(why)why.textContent=s.reason||'';}
+ $('packml').textContent='PackML StateCurrent '+b.state_current;
  if(b.state!==lastState){lastState=b.state;if(/Complete|Stopped|Aborted|Idle/.test(b.state))loadRuns();}
  trend(b);}
 let lastState='';
@@ -94,7 +95,7 @@ function live(){if(es)es.close();es=new EventSource('events');
  es.addEventListener('status',e=>status(JSON.parse(e.data)));
  es.addEventListener('board',e=>board(JSON.parse(e.data)));
  es.addEventListener('admin',e=>admin(JSON.parse(e.data)));
- es.addEventListener('mode',e=>{const m=JSON.parse(e.data);$('mode').textContent=m.mode;$('recipe-now').textContent=m.recipe?'— '+m.recipe:'';});
+ es.addEventListener('mode',e=>{const m=JSON.parse(e.data);$('mode').textContent=m.mode+' (UnitModeCurrent '+m.UnitModeCurrent+')';$('recipe-now').textContent=m.recipe?'— '+m.recipe:'';});
  es.addEventListener('cell',e=>{$('cell').textContent=JSON.parse(e.data).cell;});}
 async function post(path,headers,body){const r=await fetch(path,{method:'POST',headers,body});return r.json();}
 $('login').onsubmit=async e=>{e.preventDefault();const token=$('token').value;$('token').value='';

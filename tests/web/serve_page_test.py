@@ -16,17 +16,19 @@ on a condition with a time-out:
    written into the dry run's config (STATE/config.dry-run.yaml), the cell's config untouched; Start of
    the recipe picked from the list runs it to Complete;
  - the run history: the three runs newest first, each complete, each device's safe state observed, the
-   plot and the report of a run served;
+   plot and the report of a run served, and none of the lists or records without the token (401);
  - a long recipe: Hold, Unhold, Abort, Clear and Reset by their buttons back to Idle, each button
    enabled only where PackML takes it (Reset disabled in Aborted, with why);
  - /metrics counts the four runs; Log out ends the session (the login form is back);
  - SIGTERM ends cellctl serve with 0.
 """
+import json
 import os
 import shutil
 import signal
 import subprocess
 import sys
+import urllib.error
 import urllib.request
 
 from selenium.webdriver.common.by import By
@@ -80,9 +82,12 @@ def reset_to_idle(wait):
 
 
 def completed(n, what):
-    """Waits until n jobs have completed (PackML ProdProcessedCount): the page's "Complete" may still be
-    the previous job's."""
-    page.until(lambda: metric("cellctl_processed_total") == n, what, timeout=60)
+    """Waits until n jobs have completed, each its record's summary saying so (the page's "Complete"
+    may still be the previous job's; a homing is no product, so PackML's processed count is no measure)."""
+    def done():
+        runs = json.loads(get("runs")[2])["runs"]
+        return len(runs) == n and all(r["outcome"] == "complete" for r in runs)
+    page.until(done, what, timeout=60)
 
 
 def state(name, wait):
@@ -133,7 +138,9 @@ try:
     page.click_confirmed("teach-in", "the verified result is written into the cell config", "teach-in: started: Teach-In")
     completed(2, "the Teach-In to complete")
     wait.until(EC.text_to_be_present_in_element((By.ID, "recipe-now"), "teach-in x"))
-    # A dry run (serve --virtual-time) writes the dry run's copy, never the cell's config (issue 22).
+    # A dry run (serve --virtual-time) writes the dry run's copy, never the cell's config (issue 22);
+    # the job writes it once its record is closed.
+    page.until(lambda: os.path.exists(os.path.join(state_dir, "config.dry-run.yaml")), "the dry run's config")
     with open(os.path.join(state_dir, "config.dry-run.yaml")) as f:
         assert "measuring_units: " in f.read(), "the Teach-In did not write the dry run's config"
     with open(config) as f, open(config_given) as g:
@@ -157,6 +164,13 @@ try:
     assert csp.startswith("sandbox"), csp
     status, _, report = get(f"runs/{runs[0][0]}/report")
     assert status == 200 and "outcome: complete" in report, report[:400]
+    # The lists and the records are the session's or the token's only.
+    for path in ("recipes", "runs", f"runs/{runs[0][0]}/report", f"runs/{runs[0][0]}/plot.html"):
+        try:
+            urllib.request.urlopen(page.base + path, timeout=10)
+            raise AssertionError(f"/{path} answered without the token")
+        except urllib.error.HTTPError as e:
+            assert e.code == 401, (path, e.code)
     reset_to_idle(wait)
 
     # A job in progress: Hold, Unhold, Abort, Clear, Reset by their buttons, each as PackML allows.
