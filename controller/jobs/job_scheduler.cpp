@@ -43,6 +43,13 @@ std::string short_name(const plant_link::StartRequest& r) {
   return "teach-in " + std::get<plant_link::StartTeachIn>(r).axis;
 }
 
+// What the job is for, as the plant counts it (journal::RunStarted::job).
+std::string_view job_of(const plant_link::StartRequest& r) {
+  if (std::holds_alternative<plant_link::StartRecipe>(r)) return "recipe";
+  if (std::holds_alternative<plant_link::StartHoming>(r)) return "homing";
+  return "teach-in";
+}
+
 bool is_stop(supervisor::Command c) {
   return c == supervisor::Command::stop || c == supervisor::Command::abort;
 }
@@ -93,7 +100,9 @@ plant_link::RunAccess JobScheduler::access() {
   a.arbiter = &arbiter_;
   a.status = [this] { return status(); };
   a.mode = to_string(options_.mode);
-  a.start = [this](const plant_link::StartRequest& r) { return start(r); };
+  a.start = [this](const plant_link::StartRequest& r, const command::CommandSource& by) {
+    return start(r, by);
+  };
   return a;
 }
 
@@ -155,7 +164,7 @@ std::optional<plant_link::LiveRun> JobScheduler::status() {
   return plant_link::live_run(run_->status());
 }
 
-Taken JobScheduler::start(const plant_link::StartRequest& r) {
+Taken JobScheduler::start(const plant_link::StartRequest& r, const command::CommandSource& by) {
   std::lock_guard lock(mutex_);
   if (!blocked_.empty()) return {Taken::How::refused, blocked_};
   if (busy_ != Busy::none)  // the arbiter allows a start only in Idle: a job still ending is not Idle
@@ -173,6 +182,7 @@ Taken JobScheduler::start(const plant_link::StartRequest& r) {
   early_stop_.reset();
   cancelled_.reset();
   pending_ = r;
+  started_by_ = by.words();
   started_.notify_all();
   return {Taken::How::done, "started: " + job_};
 }
@@ -189,7 +199,7 @@ JobScheduler::JobEnd JobScheduler::not_started(const plant_link::StartRequest& r
                                                supervisor::State end) const {
   const auto to = supervisor::to_string(end);
   const auto name = short_name(r);
-  tell_event({0.0, journal::RunStarted{name, {}, to_string(options_.mode), 0}});
+  tell_event({0.0, journal::RunStarted{name, {}, to_string(options_.mode), 0, job_of(r)}});
   tell_event({0.0, journal::StateChanged{"Starting", to, journal::Text::format("not started: {}", why)}});
   return {fmt::format("{}: not started: {}", to, why), end, std::nullopt};
 }
@@ -295,6 +305,10 @@ JobScheduler::JobEnd JobScheduler::run_recipe(const recipe::Recipe& recipe,
   o.state_dir = options_.state_dir;
   o.trace = options_.trace;
   o.faults = options_.faults;
+  {
+    std::lock_guard lock(mutex_);
+    o.start_source = started_by_;  // the run's start is told as the plant's or the page's
+  }
   // The dry run's emulated plant kept between jobs (and serve's runs), as a powered cell keeps its own.
   if (o.mode != runtime::RunMode::hardware)
     o.emulators = runtime::dry_run_emulator_setup(

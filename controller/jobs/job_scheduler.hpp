@@ -93,7 +93,7 @@ class JobScheduler {
   [[nodiscard]] plant_link::Taken request(supervisor::Command c, const command::CommandSource& source);
   [[nodiscard]] std::optional<plant_link::LiveRun> status();
   // Registers a start the arbiter allowed.
-  [[nodiscard]] plant_link::Taken start(const plant_link::StartRequest& r);
+  [[nodiscard]] plant_link::Taken start(const plant_link::StartRequest& r, const command::CommandSource& by);
   // The job, on the serving thread.
   JobEnd run_job(const plant_link::StartRequest& r, std::atomic<bool>& interrupt,
                  std::atomic<bool>& terminate);
@@ -126,6 +126,7 @@ class JobScheduler {
   Busy busy_ = Busy::none;
   std::string job_;                                  // what is in progress, in words
   std::optional<plant_link::StartRequest> pending_;  // started, not yet taken by the serving thread
+  std::string started_by_;                           // who started the last job (CommandSource::words())
   runtime::CellRun* run_ = nullptr;                  // the job's run in progress
   std::optional<supervisor::Command> early_stop_;    // a stop or abort while the job was set up
   std::optional<supervisor::Command> cancelled_;     // a stop or abort before the job was taken

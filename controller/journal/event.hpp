@@ -43,6 +43,9 @@ struct RunStarted {
   std::string_view cell;
   std::string_view mode;  // "virtual-time", "emulated", "hardware"
   std::uint32_t steps = 0;
+  // What the run is for: "recipe" (production), "homing" or "teach-in". Only recipes produce: the plant
+  // counts them (plant_link/cell_mirror.hpp). Not in the journal's line (the record's steps say it).
+  std::string_view job = "recipe";
 };
 struct StateChanged {
   std::string_view from;

@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "plant_link/packml_tags.hpp"
+#include "plant_link/tag_resolution.hpp"
 
 namespace cellctl::plant_link {
 namespace {
@@ -15,7 +16,7 @@ std::string str(const journal::Text& t) {
 }  // namespace
 
 CellMirror::CellMirror(const config::CellCore& cell, std::string run_mode) : run_mode_(std::move(run_mode)) {
-  for (const auto& a : cell.axes) axes_.push_back(a.name);
+  for (const auto& a : cell.axes) axes_.push_back({a.name, position_decimals(a)});
 }
 
 Changed CellMirror::apply(const RunEvent& e) {
@@ -26,6 +27,7 @@ Changed CellMirror::apply(const RunEvent& e) {
     case Kind::run_started:
       ++admin_.runs;
       recipe_ = str(e.name);
+      producing_ = e.text.view() == "recipe";
       steps_ = e.step;
       step_ = 0;
       run_mode_ = str(e.other);
@@ -38,8 +40,11 @@ Changed CellMirror::apply(const RunEvent& e) {
       state_t_ = e.t;
       state_reason_ = str(e.text);
       c.state = true;
-      if (state_ == "Complete") {
-        ++admin_.processed;
+      // A recipe's run ends once, in one of the three; a homing or a Teach-In makes nothing. The arbiter's
+      // own Stopped and Aborted between jobs (no run) are not runs either.
+      if (producing_ && (state_ == "Complete" || state_ == "Stopped" || state_ == "Aborted")) {
+        ++(state_ == "Complete" ? admin_.processed : admin_.defective);
+        producing_ = false;
         c.admin = true;
       }
       if ((state_ == "Stopping" || state_ == "Aborting" || state_ == "Holding") && !state_reason_.empty() &&
@@ -118,20 +123,25 @@ schema::StatusTag CellMirror::status_tag(const LiveStatus& live) const {
   s.steps = live.known ? live.steps : steps_;
   s.label = live.known ? live.label : step_label_;
   // The fraction of steps done: the current one counts once it is over (all of them at Complete).
-  s.progress = state_ == "Complete" ? 1.0
-               : s.steps            ? static_cast<double>(s.step > 0 ? s.step - 1 : 0) / s.steps
-                                    : 0.0;
+  s.progress = to_decimals(state_ == "Complete" ? 1.0
+                           : s.steps            ? static_cast<double>(s.step > 0 ? s.step - 1 : 0) / s.steps
+                                                : 0.0,
+                           kProgressDecimals);
+  // The last positions read stay in the status between jobs and in Idle: the cell at rest where the
+  // last job left it.
   for (std::size_t i = 0; i < axes_.size(); ++i) {
-    schema::StatusTag::Axis a{axes_[i], std::nullopt, std::nullopt};
+    schema::StatusTag::Axis a{axes_[i].name, std::nullopt, std::nullopt};
     if (has_sample_ && i < sample_.axes) {
-      a.planned_mm = sample_.planned_mm[i];
-      a.measured_mm = sample_.scu_mm[i];
+      a.planned_mm = to_decimals(sample_.planned_mm[i], axes_[i].decimals);
+      a.measured_mm = to_decimals(sample_.scu_mm[i], axes_[i].decimals);
     }
     s.axes.push_back(std::move(a));
   }
   if (has_sample_)
-    s.sampled = schema::StatusTag::Sampled{sample_.encoder_mm, sample_.spindle_set_hz, sample_.spindle_hz};
-  s.jitter_max_us = live.jitter_max_us;
+    s.sampled = schema::StatusTag::Sampled{to_decimals(sample_.encoder_mm, kEncoderDecimals),
+                                           to_decimals(sample_.spindle_set_hz, kSpindleDecimals),
+                                           to_decimals(sample_.spindle_hz, kSpindleDecimals)};
+  s.jitter_max_us = to_decimals(live.jitter_max_us, kJitterDecimals);
   return s;
 }
 

@@ -48,12 +48,17 @@ class CellMirror {
   [[nodiscard]] schema::StatusTag status_tag(const LiveStatus& live) const;
 
  private:
-  std::vector<std::string> axes_;
+  struct Axis {
+    std::string name;
+    int decimals = 3;  // of its positions: its SCU's resolution (tag_resolution.hpp)
+  };
+  std::vector<Axis> axes_;
   std::string run_mode_;
   std::string state_ = "Idle";
   double state_t_ = 0.0;
   std::string state_reason_;
   std::string recipe_;
+  bool producing_ = false;  // a recipe's run is in progress: its end counts as processed or defective
   schema::AdminTag admin_;
   std::uint32_t step_ = 0;
   std::uint32_t steps_ = 0;

@@ -177,7 +177,7 @@ nlohmann::json CommandDesk::start(std::string_view word, const nlohmann::json& i
     if (recipe) a["valid"] = true;
     return a;
   }
-  const auto taken = access_.arbiter->start(order, [&] { return access_.start(request); });
+  const auto taken = access_.arbiter->start(order, [&] { return access_.start(request, order.source); });
   auto a = answer(word, id, taken.how != Taken::How::refused, taken.text);
   if (std::holds_alternative<StartRecipe>(request)) a["valid"] = true;
   return a;

@@ -49,9 +49,9 @@ struct RunAccess {
   command::Arbiter* arbiter = nullptr;             // the one command path; never null in use
   std::function<std::optional<LiveRun>()> status;  // nullopt: no run in progress
   std::string mode;                                // "hardware", "emulated", "virtual-time"; "" without a run
-  // Registers a job the arbiter allowed (command::Arbiter::start's `begin`); empty when this cellctl
-  // drives one run and can start no other.
-  std::function<Taken(const StartRequest&)> start;
+  // Registers a job the arbiter allowed (command::Arbiter::start's `begin`), started by `by` (its run's
+  // start is told as theirs); empty when this cellctl drives one run and can start no other.
+  std::function<Taken(const StartRequest&, const command::CommandSource& by)> start;
 };
 
 // The access to one run that exists as long as the access is used: its arbiter and its board.

@@ -32,6 +32,7 @@ std::optional<RunEvent> run_event_of(const journal::Event& event) {
                                      e.kind = Kind::run_started;
                                      e.name = text(s.recipe);
                                      e.other = text(s.mode);
+                                     e.text = text(s.job);
                                      e.step = s.steps;
                                      return true;
                                    },

@@ -15,7 +15,7 @@ namespace cellctl::plant_link {
 
 struct RunEvent {
   enum class Kind : std::uint8_t {
-    run_started,    // name: recipe, other: mode, step: steps
+    run_started,    // name: recipe, other: mode, text: job (recipe, homing, teach-in), step: steps
     state,          // name: to, other: from, text: reason
     step_started,   // step (1-based), name: label
     step_done,      // step, name: label

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace cellctl::recipe {
 namespace {
 
@@ -25,6 +27,15 @@ void unroll_into(const std::vector<Step>& steps, const std::string& prefix, Prog
 }
 
 }  // namespace
+
+std::string_view job_of(const Program& program) noexcept {
+  const auto teaches = [](const Instruction& i) { return std::holds_alternative<TeachIn>(i.action); };
+  const auto homes = [](const Instruction& i) { return std::holds_alternative<Home>(i.action); };
+  const auto& ins = program.instructions;
+  if (std::any_of(ins.begin(), ins.end(), teaches)) return "teach-in";
+  if (!ins.empty() && std::all_of(ins.begin(), ins.end(), homes)) return "homing";
+  return "recipe";
+}
 
 Program unroll(const Recipe& recipe) {
   Program p;

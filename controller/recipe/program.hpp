@@ -4,6 +4,7 @@
 // Built once before the run; the supervisor then only indexes into it (no allocation in the cycle).
 
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -22,5 +23,9 @@ struct Program {
 };
 
 [[nodiscard]] Program unroll(const Recipe& recipe);
+
+// What a program is for, as the plant counts it: "teach-in" when it teaches the encoder, "homing" when
+// it does nothing but home, else "recipe" (production, homing steps or not).
+[[nodiscard]] std::string_view job_of(const Program& program) noexcept;
 
 }  // namespace cellctl::recipe

@@ -421,7 +421,8 @@ RunResult CellRun::run(std::atomic<bool>& interrupt, std::atomic<bool>* terminat
       std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options_.shutdown_timeout_s)),
       start_);
   parts_.devices->activate(start_);
-  (void)supervisor_->command(supervisor::Command::start, "cellctl run", 0.0);  // in Idle: never refused
+  // In Idle: never refused.
+  (void)supervisor_->command(supervisor::Command::start, options_.start_source, 0.0);
   loop_->run([this, &interrupt](link::TimePoint now, std::uint64_t) { cycle(now, interrupt); }, loop_stop_);
 
   emulators_stop_.store(true);

@@ -53,6 +53,9 @@ struct RunOptions {
   std::filesystem::path journal_dir = "runs/latest";
   std::optional<schema::RecordHeader> record_header;  // the journal's first line (journal/record_header.hpp)
   bool trace = false;
+  // Who started the run, as its start's reason names them ("start by …"): cellctl serve's jobs are
+  // started by the plant or the page.
+  std::string start_source = "cellctl run";
   supervisor::SupervisorSettings supervisor;  // mode and sample period are filled in from the config
   // How long after the end a stop is sent again to a device that has not confirmed it and has no
   // protection of its own to bound it (the spindle converter); the SCU is bounded by its own

@@ -52,6 +52,7 @@ std::string admin_payload(const AdminTag& tag) {
               {"steps_failed", tag.steps_failed},
               {"faults", tag.faults},
               {"ProdProcessedCount", tag.processed},
+              {"ProdDefectiveCount", tag.defective},
               {"StopReason", tag.stop_reason ? stop_reason_json(*tag.stop_reason) : json(nullptr)},
               {"active_faults", faults}}
       .dump();

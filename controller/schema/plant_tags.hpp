@@ -52,12 +52,14 @@ struct AdminTag {
   std::uint64_t steps_done = 0;
   std::uint64_t steps_failed = 0;
   std::uint64_t faults = 0;
-  std::uint64_t processed = 0;            // Admin.ProdProcessedCount: runs completed
+  std::uint64_t processed = 0;            // Admin.ProdProcessedCount: recipe runs completed
+  std::uint64_t defective = 0;            // Admin.ProdDefectiveCount: recipe runs ended Stopped or Aborted
   std::optional<StopReason> stop_reason;  // null until something stopped the cell
   std::vector<ActiveFault> active_faults;
 };
 
-// status: where the run is, the axes, the spindle, the loop; the link adds its own health.
+// status: where the run is, the axes, the spindle, the loop; the link adds its own health. Its numbers
+// are given to their devices' resolution (plant_link/tag_resolution.hpp), as the payload writes them.
 struct StatusTag {
   double t = 0.0;
   std::string state;
@@ -67,14 +69,14 @@ struct StatusTag {
   double progress = 0.0;
   struct Axis {
     std::string name;
-    std::optional<float> planned_mm;  // from the latest sample, when there is one for the axis
-    std::optional<float> measured_mm;
+    std::optional<double> planned_mm;  // from the latest sample, when there is one for the axis
+    std::optional<double> measured_mm;
   };
   std::vector<Axis> axes;
   struct Sampled {  // the latest sample's, when there is one
-    float encoder_mm = 0.0f;
-    float spindle_set_hz = 0.0f;
-    float spindle_hz = 0.0f;  // also PackML Status.CurMachSpeed: this cell's machine speed
+    double encoder_mm = 0.0;
+    double spindle_set_hz = 0.0;
+    double spindle_hz = 0.0;  // also PackML Status.CurMachSpeed: this cell's machine speed
   };
   std::optional<Sampled> sampled;
   double jitter_max_us = 0.0;

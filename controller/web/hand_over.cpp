@@ -21,12 +21,13 @@ ClientAtHandOver::~ClientAtHandOver() {
 
 plant_link::RunAccess starts_for_present_clients(plant_link::RunAccess run) {
   if (!run.start) return run;  // `cellctl run`: no start to hand over
-  run.start = [inner = std::move(run.start)](const plant_link::StartRequest& r) {
+  run.start = [inner = std::move(run.start)](const plant_link::StartRequest& r,
+                                             const command::CommandSource& by) {
     if (auto* const client = t_handing_over; client && client->gone_()) {
       client->abandoned_ = true;
       return plant_link::Taken{plant_link::Taken::How::refused, std::string(kClientGone)};
     }
-    return inner(r);
+    return inner(r, by);
   };
   return run;
 }

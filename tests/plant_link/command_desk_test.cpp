@@ -111,10 +111,12 @@ TEST_F(CommandDeskTest, RoutineStartsAreCheckedForShapeAndRefusedByAOneRunCellct
 
 TEST_F(CommandDeskTest, AStandingControllerIsHandedTheCheckedStart) {
   std::vector<StartRequest> started;
+  std::vector<std::string> started_by;
   command::Arbiter standby(std::chrono::seconds(2), {});  // no job yet: the cell is Idle
   RunAccess access = access_of(standby);
-  access.start = [&](const StartRequest& r) {
+  access.start = [&](const StartRequest& r, const command::CommandSource& by) {
     started.push_back(r);
+    started_by.push_back(by.words());
     return Taken{Taken::How::done, "started"};
   };
   CommandDesk desk(cell_, std::filesystem::path(CELLCTL_SOURCE_DIR) / "tests/cli", access,
@@ -132,6 +134,8 @@ TEST_F(CommandDeskTest, AStandingControllerIsHandedTheCheckedStart) {
   EXPECT_EQ(submit_to("start", R"({"recipe":"bad-recipe"})")["exit"], 3);
   EXPECT_EQ(submit_to("teach-in", R"({"axis":"x","distance_mm":50,"from_mm":5})")["ok"], true);
   ASSERT_EQ(started.size(), 2u) << "an invalid recipe reached the controller";
+  // Each job is started by whoever sent the start: its run's start says so.
+  EXPECT_EQ(started_by, (std::vector<std::string>{order().source.words(), order().source.words()}));
   const auto& recipe = std::get<StartRecipe>(started[0]);
   EXPECT_EQ(recipe.name, "short");
   EXPECT_EQ(recipe.steps, 6u);

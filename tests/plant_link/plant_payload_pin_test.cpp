@@ -152,7 +152,7 @@ TEST_F(PlantPayloadPin, EveryPayloadIsPinned) {
   mes_probe_->publish(std::string(MqttBroker::kPrefix) + "/demo-cell/cmd/unhold", R"({"id":9})", true);
   answered(7);
   // The next job, to Complete.
-  feed(0.0, RunStarted{"home", "demo-cell", "virtual-time", 1});
+  feed(0.0, RunStarted{"home", "demo-cell", "virtual-time", 1, "homing"});
   feed(0.0, StateChanged{"Idle", "Starting", Text::format("start by plant")});
   feed(0.1, StateChanged{"Starting", "Execute", {}});
   feed(0.2, StepStarted{0, "home x (line 1)"});
@@ -161,7 +161,7 @@ TEST_F(PlantPayloadPin, EveryPayloadIsPinned) {
   feed(1.1, StateChanged{"Completing", "Complete", Text::format("all steps done; home record written")});
   feed(1.1, RunEnded{"complete"});
   ASSERT_TRUE(plant_probe_->wait_for([](const Message& m) {
-    return MqttProbe::on(m, "/admin") && MqttProbe::body(m)["ProdProcessedCount"] == 1;
+    return MqttProbe::on(m, "/state") && MqttProbe::body(m)["state"] == "Complete";
   }));
   const auto from = plant_probe_->count();
   const auto status =
@@ -181,17 +181,17 @@ TEST_F(PlantPayloadPin, EveryPayloadIsPinned) {
   const std::map<std::string, std::vector<std::string>> expected = {
       {"admin",
        {
-           R"J({"ProdProcessedCount":0,"StopReason":null,"active_faults":[],"faults":0,"runs":0,"steps_done":0,"steps_failed":0})J",
-           R"J({"ProdProcessedCount":0,"StopReason":null,"active_faults":[],"faults":0,"runs":1,"steps_done":0,"steps_failed":0})J",
-           R"J({"ProdProcessedCount":0,"StopReason":null,"active_faults":[],"faults":0,"runs":1,"steps_done":1,"steps_failed":0})J",
-           R"J({"ProdProcessedCount":0,"StopReason":{"command":"hold","source":"plant plant/area1/demo-cell/cmd/hold (MES line 2)","t":1.2,"text":"hold commanded by plant plant/area1/demo-cell/cmd/hold (MES line 2)"},"active_faults":[],"faults":0,"runs":1,"steps_done":1,"steps_failed":0})J",
-           R"J({"ProdProcessedCount":0,"StopReason":{"category":2,"fault":"operator_stop","t":1.3,"text":"operator_stop: Ctrl-C"},"active_faults":[{"category":2,"rule":"operator_stop","t":1.3,"text":"Ctrl-C"}],"faults":1,"runs":1,"steps_done":1,"steps_failed":0})J",
-           R"J({"ProdProcessedCount":0,"StopReason":{"category":2,"fault":"operator_stop","t":1.3,"text":"operator_stop: Ctrl-C"},"active_faults":[],"faults":1,"runs":1,"steps_done":1,"steps_failed":0})J",
-           R"J({"ProdProcessedCount":0,"StopReason":{"category":0,"fault":"link_silent","t":2.1,"text":"link_silent: scu silent for 301 ms (limit 300 ms)"},"active_faults":[{"category":0,"rule":"link_silent","t":2.1,"text":"scu silent for 301 ms (limit 300 ms)"}],"faults":2,"runs":1,"steps_done":1,"steps_failed":0})J",
-           R"J({"ProdProcessedCount":0,"StopReason":{"step":2,"t":2.2,"text":"step 2 (wait (line 4)) failed: stopped by the fault"},"active_faults":[{"category":0,"rule":"link_silent","t":2.1,"text":"scu silent for 301 ms (limit 300 ms)"}],"faults":2,"runs":1,"steps_done":1,"steps_failed":1})J",
-           R"J({"ProdProcessedCount":0,"StopReason":null,"active_faults":[],"faults":2,"runs":2,"steps_done":1,"steps_failed":1})J",
-           R"J({"ProdProcessedCount":0,"StopReason":null,"active_faults":[],"faults":2,"runs":2,"steps_done":2,"steps_failed":1})J",
-           R"J({"ProdProcessedCount":1,"StopReason":null,"active_faults":[],"faults":2,"runs":2,"steps_done":2,"steps_failed":1})J",
+           R"J({"ProdDefectiveCount":0,"ProdProcessedCount":0,"StopReason":null,"active_faults":[],"faults":0,"runs":0,"steps_done":0,"steps_failed":0})J",
+           R"J({"ProdDefectiveCount":0,"ProdProcessedCount":0,"StopReason":null,"active_faults":[],"faults":0,"runs":1,"steps_done":0,"steps_failed":0})J",
+           R"J({"ProdDefectiveCount":0,"ProdProcessedCount":0,"StopReason":null,"active_faults":[],"faults":0,"runs":1,"steps_done":1,"steps_failed":0})J",
+           R"J({"ProdDefectiveCount":0,"ProdProcessedCount":0,"StopReason":{"command":"hold","source":"plant plant/area1/demo-cell/cmd/hold (MES line 2)","t":1.2,"text":"hold commanded by plant plant/area1/demo-cell/cmd/hold (MES line 2)"},"active_faults":[],"faults":0,"runs":1,"steps_done":1,"steps_failed":0})J",
+           R"J({"ProdDefectiveCount":0,"ProdProcessedCount":0,"StopReason":{"category":2,"fault":"operator_stop","t":1.3,"text":"operator_stop: Ctrl-C"},"active_faults":[{"category":2,"rule":"operator_stop","t":1.3,"text":"Ctrl-C"}],"faults":1,"runs":1,"steps_done":1,"steps_failed":0})J",
+           R"J({"ProdDefectiveCount":0,"ProdProcessedCount":0,"StopReason":{"category":2,"fault":"operator_stop","t":1.3,"text":"operator_stop: Ctrl-C"},"active_faults":[],"faults":1,"runs":1,"steps_done":1,"steps_failed":0})J",
+           R"J({"ProdDefectiveCount":0,"ProdProcessedCount":0,"StopReason":{"category":0,"fault":"link_silent","t":2.1,"text":"link_silent: scu silent for 301 ms (limit 300 ms)"},"active_faults":[{"category":0,"rule":"link_silent","t":2.1,"text":"scu silent for 301 ms (limit 300 ms)"}],"faults":2,"runs":1,"steps_done":1,"steps_failed":0})J",
+           R"J({"ProdDefectiveCount":0,"ProdProcessedCount":0,"StopReason":{"step":2,"t":2.2,"text":"step 2 (wait (line 4)) failed: stopped by the fault"},"active_faults":[{"category":0,"rule":"link_silent","t":2.1,"text":"scu silent for 301 ms (limit 300 ms)"}],"faults":2,"runs":1,"steps_done":1,"steps_failed":1})J",
+           R"J({"ProdDefectiveCount":1,"ProdProcessedCount":0,"StopReason":{"step":2,"t":2.2,"text":"step 2 (wait (line 4)) failed: stopped by the fault"},"active_faults":[{"category":0,"rule":"link_silent","t":2.1,"text":"scu silent for 301 ms (limit 300 ms)"}],"faults":2,"runs":1,"steps_done":1,"steps_failed":1})J",
+           R"J({"ProdDefectiveCount":1,"ProdProcessedCount":0,"StopReason":null,"active_faults":[],"faults":2,"runs":2,"steps_done":1,"steps_failed":1})J",
+           R"J({"ProdDefectiveCount":1,"ProdProcessedCount":0,"StopReason":null,"active_faults":[],"faults":2,"runs":2,"steps_done":2,"steps_failed":1})J",
        }},
       {"mode",
        {
@@ -232,7 +232,7 @@ TEST_F(PlantPayloadPin, EveryPayloadIsPinned) {
        }},
       {"status",
        {
-           R"J({"CurMachSpeed":399.9800109863281,"axes":[{"measured_mm":12.300100326538086,"name":"x","planned_mm":12.300000190734863},{"measured_mm":1.5,"name":"z","planned_mm":-0.0}],"encoder_mm":12.289999961853027,"jitter_max_us":0.0,"label":"home x (line 1)","link":{"dropped_events":0,"dropped_status":0,"ignored_retained":0,"mqtt":"5","reconnects":0},"progress":1.0,"spindle":{"actual_hz":399.9800109863281,"set_hz":400.0},"state":"Complete","step":1,"steps":1,"t":1.1})J",
+           R"J({"CurMachSpeed":400.0,"axes":[{"measured_mm":12.3,"name":"x","planned_mm":12.3},{"measured_mm":1.5,"name":"z","planned_mm":0.0}],"encoder_mm":12.29,"jitter_max_us":0.0,"label":"home x (line 1)","link":{"dropped_events":0,"dropped_status":0,"ignored_retained":0,"mqtt":"5","reconnects":0},"progress":1.0,"spindle":{"actual_hz":400.0,"set_hz":400.0},"state":"Complete","step":1,"steps":1,"t":1.1})J",
        }},
   };
   for (const auto& [tag, payloads] : expected) EXPECT_EQ(seen[tag], payloads) << tag;

@@ -14,6 +14,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -189,10 +190,22 @@ TEST_F(ServeTest, ThePlantStartsHomingRecipesAndATeachInOneAtATime) {
   EXPECT_TRUE(has(a, "reason", "start is not possible in state Complete: reset first")) << a.dump();
   reset("r1");
 
+  // Idle: the status carries the positions the homing left, to the SCU's resolution (0.1 mm here).
+  const auto idle = plant_->wait_for(
+      [](const Message& m) { return m.topic == topic("status") && MqttProbe::body(m)["state"] == "Idle"; },
+      plant_->count(), 10s);
+  ASSERT_TRUE(idle) << output();
+  const auto idle_status = MqttProbe::body(*idle);
+  ASSERT_TRUE(idle_status["axes"][0].contains("measured_mm")) << idle->payload;
+  EXPECT_FALSE(std::regex_search(idle->payload, std::regex(R"(\.\d{5,})"))) << "unrounded: " << idle->payload;
+
   // A long recipe: while it runs, a second start is refused with the reason; a stop ends it.
   from = plant_->count();
   a = command("start", {{"recipe", "long"}}, "long1");
   ASSERT_EQ(a["ok"], true) << a.dump();
+  const auto starting = state_after(from, "Starting");
+  ASSERT_TRUE(starting) << output();
+  EXPECT_EQ((*starting)["reason"], "start by plant " + topic("cmd/start")) << "the run names who started it";
   a = command("start", {{"recipe", "short"}}, "busy");
   EXPECT_EQ(a["ok"], false);
   EXPECT_TRUE(has(a, "reason", "a job is in progress: Start is taken only in Idle")) << a.dump();
@@ -232,11 +245,12 @@ TEST_F(ServeTest, ThePlantStartsHomingRecipesAndATeachInOneAtATime) {
   ASSERT_EQ(a["ok"], true) << a.dump();
   ASSERT_TRUE(state_after(from, "Complete")) << output();
 
-  // The counters: four runs (homing, long, Teach-In, short), three of them complete.
+  // The counters: four runs (homing, long, Teach-In, short); of the two recipes short was processed,
+  // long was stopped (the homing and the Teach-In produce nothing).
   ASSERT_TRUE(plant_->wait_for(
       [](const Message& m) {
         return m.topic == topic("admin") && MqttProbe::body(m)["runs"] == 4 &&
-               MqttProbe::body(m)["ProdProcessedCount"] == 3;
+               MqttProbe::body(m)["ProdProcessedCount"] == 1 && MqttProbe::body(m)["ProdDefectiveCount"] == 1;
       },
       0, 10s))
       << last_admin().dump();

@@ -15,7 +15,7 @@ struct Starts {
   int begun = 0;
   plant_link::RunAccess access() {
     plant_link::RunAccess a;
-    a.start = [this](const plant_link::StartRequest&) {
+    a.start = [this](const plant_link::StartRequest&, const command::CommandSource&) {
       ++begun;
       return plant_link::Taken{How::done, "started"};
     };
@@ -24,16 +24,17 @@ struct Starts {
 };
 
 const plant_link::StartRequest kHome = plant_link::StartHoming{};
+const command::CommandSource kPage{command::CommandSource::Origin::web, "127.0.0.1:50000", "token #1"};
 
 TEST(HandOver, AStartWhoseClientHasGoneIsNotRegistered) {
   Starts starts;
   const auto run = starts_for_present_clients(starts.access());
   bool gone = false;
   const ClientAtHandOver client([&] { return gone; });
-  EXPECT_EQ(run.start(kHome).how, How::done);
+  EXPECT_EQ(run.start(kHome, kPage).how, How::done);
   EXPECT_FALSE(client.abandoned());
   gone = true;  // the client closed while the recipe was validated
-  const auto taken = run.start(kHome);
+  const auto taken = run.start(kHome, kPage);
   EXPECT_EQ(taken.how, How::refused);
   EXPECT_EQ(taken.text, kClientGone);
   EXPECT_TRUE(client.abandoned());
@@ -43,9 +44,9 @@ TEST(HandOver, AStartWhoseClientHasGoneIsNotRegistered) {
 TEST(HandOver, OnlyTheClientOfThisThreadIsAsked) {
   Starts starts;
   const auto run = starts_for_present_clients(starts.access());
-  EXPECT_EQ(run.start(kHome).how, How::done);  // no client named: the plant link's starts
+  EXPECT_EQ(run.start(kHome, kPage).how, How::done);  // no client named: the plant link's starts
   const ClientAtHandOver gone_client([] { return true; });
-  std::thread other([&] { EXPECT_EQ(run.start(kHome).how, How::done); });
+  std::thread other([&] { EXPECT_EQ(run.start(kHome, kPage).how, How::done); });
   other.join();
   EXPECT_EQ(starts.begun, 2);
 }
@@ -56,9 +57,9 @@ TEST(HandOver, AnInnerClientGivesWayToTheOuterWhenItEnds) {
   const ClientAtHandOver outer([] { return true; });
   {
     const ClientAtHandOver inner([] { return false; });
-    EXPECT_EQ(run.start(kHome).how, How::done);
+    EXPECT_EQ(run.start(kHome, kPage).how, How::done);
   }
-  EXPECT_EQ(run.start(kHome).how, How::refused);
+  EXPECT_EQ(run.start(kHome, kPage).how, How::refused);
 }
 
 TEST(HandOver, WithoutAStartThereIsNothingToWrap) {
