@@ -1,16 +1,19 @@
 // The fourth kind of device (the I/O module of dio_module.hpp) in whole runs, as a user meets it:
 // registered by its DeviceKind and named by a dio: section, it is on a line of its own with its
 // emulator in a virtual-time CellRun; the recipe's spindle opens its coolant valve; the run's summary
-// gives its safe-stop verdict and its link's figures beside the cell's three; a rehearsed fault names
+// gives its safe-stop verdict and its link's figures beside the cell's three, the operator page's board
+// lists it; a rehearsed fault names
 // it, and its loss ends the run as a link fault named after it.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
 #include "dio_module.hpp"
 #include "integration/run_fixture.hpp"
+#include "web/cell_board.hpp"
 
 namespace cellctl::testing {
 namespace {
@@ -63,6 +66,15 @@ TEST_F(FourthDeviceRun, ItsValveFollowsTheSpindleAndTheSummaryJudgesItBesideTheC
             std::string::npos);
   ASSERT_TRUE(s["links"].contains("dio")) << "its link's figures in the summary: " << s["links"];
   EXPECT_GT(s["links"]["dio"]["replies"].get<long>(), 0) << s["links"]["dio"];
+
+  // The operator page's board lists it among the devices, by its name, with its link's health.
+  const auto board = web::board_payload({"x", "z"}, run.status().read(), true);
+  const auto& devices = board["devices"];
+  const auto dio =
+      std::find_if(devices.begin(), devices.end(), [](const auto& d) { return d["name"] == "dio"; });
+  ASSERT_NE(dio, devices.end()) << board.dump();
+  EXPECT_EQ(devices.size(), 4u) << board.dump();
+  EXPECT_GT((*dio)["replies"].get<long>(), 0) << dio->dump();
 }
 
 TEST_F(FourthDeviceRun, ARehearsedFaultNamesItAndItsLossEndsTheRunAsItsLinkFault) {
