@@ -136,19 +136,20 @@ Result Trajectory<N>::validate(const Input<N>& in, int& axis) noexcept {
   for (int i = 0; i < N; ++i) {
     if (!in.enabled[idx(i)]) continue;
     axis = i;
-    const auto finite = [](double x) { return std::isfinite(x); };
-    if (!finite(in.current_position[i]) || !finite(in.current_velocity[i]) ||
-        !finite(in.current_acceleration[i]) || !finite(in.target_position[i]) ||
-        !finite(in.target_velocity[i]) || !finite(in.target_acceleration[i])) {
-      return Result::invalid_state;
-    }
+    // x * 0 is 0 for a finite x and NaN for an infinite or NaN one, so one comparison tests six
+    // values (a branch each cost more than the rest of the check, 9 % of a plan from rest).
+    const double state = in.current_position[i] * 0.0 + in.current_velocity[i] * 0.0 +
+                         in.current_acceleration[i] * 0.0 + in.target_position[i] * 0.0 +
+                         in.target_velocity[i] * 0.0 + in.target_acceleration[i] * 0.0;
+    if (!(state == 0.0)) return Result::invalid_state;
     const AxisLimits l = limits_of(in, i);
-    const auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
-    if (!positive(l.max_velocity) || !positive(-l.min_velocity) || !positive(l.max_acceleration) ||
-        !positive(-l.min_acceleration) || !positive(l.jerk) || std::isnan(in.min_position[i]) ||
-        std::isnan(in.max_position[i]) || in.min_position[i] > in.max_position[i]) {
+    const double bounds = l.max_velocity * 0.0 + l.min_velocity * 0.0 + l.max_acceleration * 0.0 +
+                          l.min_acceleration * 0.0 + l.jerk * 0.0;
+    const double least =
+        std::min({l.max_velocity, -l.min_velocity, l.max_acceleration, -l.min_acceleration, l.jerk});
+    // Every bound finite and > 0; the travel's ends not NaN (infinite: no travel limit) and ordered.
+    if (!(bounds == 0.0 && least > 0.0 && in.min_position[i] <= in.max_position[i]))
       return Result::invalid_limits;
-    }
   }
   axis = -1;
   return Result::working;
