@@ -58,13 +58,9 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   // the same one: the nearest profile is the farthest one negated.
   symmetric_ = rest_to_rest && limits.min_velocity == -limits.max_velocity &&
                limits.min_acceleration == -limits.max_acceleration;
-  // Constructed in place: one built elsewhere and copied in is read back with wide loads straight
-  // after its narrow stores, a stalled store forward per piece. Symmetric from rest to rest, build()
-  // has them in closed form (rest_to_rest_farthest): none.
-  if (!symmetric_) {
-    std::construct_at(&extremes_[0], v, a, target.velocity, target.acceleration, limits);
-    std::construct_at(&extremes_[1], -v, -a, -target.velocity, -target.acceleration, limits.mirrored());
-  }
+  // The extremes are constructed on first use (extreme()): none symmetric from rest to rest (build()
+  // has them in closed form, rest_to_rest_farthest), one for the shortest duration to a target at rest.
+  constructed_ = {false, false};
   if (rest_to_rest) {
     // From rest to rest: closed form, and never a blocked interval.
     reach_ = 0.0;
@@ -90,9 +86,9 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
     double t = from;
     min_side_ = p > target_offset_ ? 1 : 0;
     if (p < target_offset_) {
-      t = shortest(extremes_[0], target_offset_, limits.max_velocity, from, p - target_offset_);
+      t = shortest(extreme(0), target_offset_, limits.max_velocity, from, p - target_offset_);
     } else if (p > target_offset_) {
-      t = shortest(extremes_[1], -target_offset_, -limits.min_velocity, from, target_offset_ - p);
+      t = shortest(extreme(1), -target_offset_, -limits.min_velocity, from, target_offset_ - p);
     }
     min_duration_ = brake + t;
     return std::isfinite(min_duration_) ? AxisStatus::ok : AxisStatus::unsupported_target;
@@ -107,8 +103,8 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
     if (gap.lo > reach_) has_window = feasible_window(reach_, gap.lo, window);
     from = gap.hi;
   }
-  const ShortSet up = short_set(extremes_[0], target_offset_, limits.max_velocity, from);
-  const ShortSet down = short_set(extremes_[1], -target_offset_, -limits.min_velocity, from);
+  const ShortSet up = short_set(extreme(0), target_offset_, limits.max_velocity, from);
+  const ShortSet down = short_set(extreme(1), -target_offset_, -limits.min_velocity, from);
   double t = from;
   for (const ShortSet* s2 : {&up, &down}) {
     if (s2->gap) return AxisStatus::unsupported_target;
@@ -136,6 +132,22 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
     if (!build(min_duration_, check)) return AxisStatus::unsupported_target;
   }
   return AxisStatus::ok;
+}
+
+const FarthestProfile& AxisProfile::extreme(std::size_t side) const noexcept {
+  if (!constructed_[side]) {
+    // Constructed in place: one built elsewhere and copied in is read back with wide loads straight
+    // after its narrow stores, a stalled store forward per piece.
+    const double v = main_start_.velocity;
+    const double a = main_start_.acceleration;
+    if (side == 0) {
+      std::construct_at(&extremes_[0], v, a, target_.velocity, target_.acceleration, limits_);
+    } else {
+      std::construct_at(&extremes_[1], -v, -a, -target_.velocity, -target_.acceleration, limits_.mirrored());
+    }
+    constructed_[side] = true;
+  }
+  return extremes_[side];
 }
 
 bool AxisProfile::feasible_window(double lo, double hi, Interval& window) const noexcept {
@@ -174,7 +186,7 @@ bool AxisProfile::narrow_window(double a, double b, Interval& window) const noex
   // 4e-3 s apart. At both ends of the range the extremes are one profile, so a target on different
   // sides of it there is crossed for certain.
   const auto middle = [&](double T) {
-    return extremes_[0].position(T) - extremes_[1].position(T) - 2.0 * target_offset_;
+    return extreme(0).position(T) - extreme(1).position(T) - 2.0 * target_offset_;
   };
   const double ma = middle(a);
   const double mb = middle(b);
@@ -189,8 +201,8 @@ bool AxisProfile::narrow_window(double a, double b, Interval& window) const noex
 }
 
 double AxisProfile::margin(double T) const noexcept {
-  const double up = extremes_[0].position(T) - target_offset_;
-  const double down = extremes_[1].position(T) + target_offset_;
+  const double up = extreme(0).position(T) - target_offset_;
+  const double down = extreme(1).position(T) + target_offset_;
   return std::isnan(up) || std::isnan(down) ? -kInfinity : std::min(up, down);
 }
 
@@ -363,16 +375,16 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
     const auto side = static_cast<std::size_t>(min_side_);
     const double sign = side == 0 ? 1.0 : -1.0;
     SevenDurations d = up;
-    const double reached = symmetric_ ? far_symmetric : extremes_[side].position(main, d);
+    const double reached = symmetric_ ? far_symmetric : extreme(side).position(main, d);
     if (std::abs(sign * reached - target_offset_) <= 1e-13 * (1.0 + std::abs(target_offset_))) {
       for (std::size_t i = 0; i < d.size(); ++i) pieces[n++] = {sign * kFarthestJerkSigns[i] * j, d[i]};
       out.append(pieces.data(), n);
       return arrives(out);
     }
   }
-  const double far = symmetric_ ? far_symmetric : extremes_[0].position(main, up);
+  const double far = symmetric_ ? far_symmetric : extreme(0).position(main, up);
   if (symmetric_) down = up;
-  const double near = symmetric_ ? -far : -extremes_[1].position(main, down);
+  const double near = symmetric_ ? -far : -extreme(1).position(main, down);
   const bool has_up = !std::isnan(far);
   const bool has_down = !std::isnan(near);
   if (!has_up && !has_down) return false;
