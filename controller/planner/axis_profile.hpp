@@ -12,8 +12,9 @@
 // independent optimum found no second one). A target at rest has no dips (it can be reached at the
 // reach time and held); otherwise dips are searched by sampling, crowded towards the reach time,
 // and a golden-section refinement (the extremes are not convex near the reach time). Roots are found by
-// regula falsi on T to the last bit, the shortest duration to a target at rest by Newton steps on the
-// extreme's position and slope (root_search.hpp); the optimum itself is an extreme profile, any other
+// regula falsi on T to the last bit, the shortest duration to a target at rest by Newton steps over
+// the extreme's peak velocity (FarthestProfile::duration_to_rest; where that does not apply, over T on
+// the extreme's position and slope, root_search.hpp); the optimum itself is an extreme profile, any other
 // feasible duration a blend of the two.
 //
 // A non-zero target acceleration can make its velocity and acceleration alone unreachable for a

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "planner/jerk_profile.hpp"
+#include "planner/root_search.hpp"
 
 namespace cellctl::planner {
 namespace {
@@ -311,6 +312,62 @@ double FarthestProfile::lowest_velocity_of(const SevenDurations& t) const noexce
     lowest = std::min(lowest, v);
   }
   return lowest;
+}
+
+double FarthestProfile::duration_to_rest(double target) const noexcept {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  if (vf_ != 0.0 || af_ != 0.0) return kNaN;
+  const double j = lim_.jerk;
+  const double amax = lim_.max_acceleration;
+  const double floor = -lim_.min_acceleration;
+  const double v0 = v0_;
+  const double a0 = a0_;
+  // The profile peaking at vp: the rise +J to a1 (held at max_acceleration when it would exceed
+  // it), -J to (vp, 0); the fall -J to -m (m = sqrt(J vp), or the floor held), +J to rest. The fall
+  // is point-symmetric: it covers vp times half its duration vp / m + m / J. Lengthening the rise's
+  // hold (or raising its peak) by what raises vp by dvp adds (vp + a1^2 / 2J) / a1 dvp of position
+  // (the state after it carried to the end), the fall (vp / m + m / 2J) dvp.
+  double a1 = 0.0;
+  double m = 0.0;
+  double time = 0.0;
+  const auto gap = [&](double vp, double& slope) {
+    const double x1 = j * (vp - v0) + 0.5 * a0 * a0;
+    const bool held = x1 > amax * amax;
+    a1 = held ? amax : std::max(std::sqrt(std::max(0.0, x1)), std::max(a0, 0.0));
+    const double t1 = (a1 - a0) * inv_jerk_;
+    const double t2 = held ? (x1 - amax * amax) * inv_jerk_ / amax : 0.0;
+    const double t3 = a1 * inv_jerk_;
+    MotionState s{0.0, v0, a0};
+    s = integrate(s, j, t1);
+    s = integrate(s, 0.0, t2);
+    s = integrate(s, -j, t3);
+    m = std::min(std::sqrt(j * vp), floor);
+    const double fall = vp > 0.0 ? vp / m + m * inv_jerk_ : 0.0;
+    time = t1 + t2 + t3 + fall;
+    slope = (vp + a1 * a1 * 0.5 * inv_jerk_) / a1 + (vp > 0.0 ? vp / m + m * 0.5 * inv_jerk_ : 0.0);
+    return s.position + vp * fall * 0.5 - target;
+  };
+  // The rise needs a1 >= max(a0, 0): vp from where ramping a0 out ends (and not below zero, where the
+  // fall begins) to max_velocity. Short at the lower end (strictly: the positions only grow with
+  // the duration, so no earlier duration reaches the target either), not short at the upper one.
+  const double lo = std::max(v0 + a0 * std::abs(a0) * 0.5 * inv_jerk_, 0.0);
+  const double hi = lim_.max_velocity;
+  double slope = 0.0;
+  const double g_lo = gap(lo, slope);
+  const double g_hi = gap(hi, slope);
+  if (!(g_lo < 0.0 && g_hi >= 0.0)) return kNaN;
+  // Started where a position quadratic in vp through both ends would reach the target (the
+  // tangent at max_velocity took twice the steps: far from the root each step only halved the way).
+  const double start = std::sqrt((g_hi * lo * lo - g_lo * hi * hi) / (g_hi - g_lo));
+  const double vp = newton_root(gap, lo, g_lo, hi, g_hi, start);
+  // The duration at the root. It changes with vp at 1 / a1 + 1 / m, much faster than the position
+  // where a1 or m is small, so the few ulps by which vp misses the root would show in it (up to
+  // 6e-13 relative in random problems): the duration is corrected by the root's offset that the
+  // position's residual gives, to first order (what is left is the residual's own rounding, divided
+  // by the position's slope). Near a zero peak acceleration or velocity that order is not enough.
+  const double residual = gap(vp, slope);
+  if (!(std::isfinite(residual) && a1 >= 1e-3 * amax && m >= 1e-3 * floor)) return kNaN;
+  return time - (1.0 / a1 + 1.0 / m) * residual / slope;
 }
 
 double FarthestProfile::position_of(const SevenDurations& t) const noexcept {

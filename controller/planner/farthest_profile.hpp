@@ -75,6 +75,15 @@ class FarthestProfile {
   [[nodiscard]] double position_and_slope(double T, double& slope) const noexcept;
   // The lowest velocity along the profile with these durations.
   [[nodiscard]] double lowest_velocity_of(const SevenDurations& t) const noexcept;
+  // With the end at rest (vf = af = 0): the shortest duration whose farthest position reaches
+  // `target`, for a target between the position at the reach time and the one at the start of the
+  // cruise. Solved over the peak velocity vp instead of the duration: below the cruise the farthest
+  // profile rises from (v0, a0) to (vp, 0) and falls from there to rest, each half in closed form
+  // (a trapezoid or a triangle of acceleration), so a Newton step costs a few multiplications where
+  // one over the duration solved its case of active bounds first. NaN where that parametrisation
+  // does not hold the root or is ill-conditioned there (a rise that starts by lowering the
+  // acceleration, a peak acceleration or velocity near zero): the caller then searches the durations.
+  [[nodiscard]] double duration_to_rest(double target) const noexcept;
 
  private:
   bool no_cruise(double T, SevenDurations& t, SevenDurations* rates) const noexcept;
