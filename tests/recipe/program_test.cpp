@@ -23,5 +23,16 @@ TEST(Program, UnrollsRepeatsWithLabels) {
   EXPECT_DOUBLE_EQ(std::get<Dwell>(p.instructions[4].action).seconds, 0.5);
 }
 
+TEST(Program, SaysWhatItIsForAsThePlantCountsIt) {
+  Recipe r;
+  r.steps = {Step{"home x", 3, Home{{0}}}, Step{"home z", 4, Home{{1}}}};
+  EXPECT_EQ(job_of(unroll(r)), "homing");
+  r.steps.push_back(Step{"go", 5, Move{{{0, 30.0}}, 15.0}});
+  EXPECT_EQ(job_of(unroll(r)), "recipe") << "a recipe that homes first still produces";
+  r.steps = {Step{"teach", 3, TeachIn{}}};
+  EXPECT_EQ(job_of(unroll(r)), "teach-in");
+  EXPECT_EQ(job_of(Program{}), "recipe");
+}
+
 }  // namespace
 }  // namespace cellctl::recipe
