@@ -74,7 +74,7 @@ button{font-size:1.05em;padding:.45em 1.1em;margin:.15em} button:disabled{opacit
 :focus-visible{outline:3px solid #05a;outline-offset:2px}
 .cmds{display:grid;grid-template-columns:repeat(auto-fill,minmax(12em,1fr));gap:.2em}
 .cmds div,.routines div{display:flex;align-items:center;gap:.4em;flex-wrap:wrap} small{color:#666}
-#faults li{color:#b00;margin-bottom:.4em} #faults li.good{color:#070} #stops li{color:#a60} .remedy{color:#444;font-size:.9em}
+#faults li{color:#b00;margin-bottom:.4em} #faults li.good{color:#070} #stops li{color:#a60} #stops li.none{color:#666} .remedy{color:#444;font-size:.9em}
 #answer{min-height:1.4em} .refused{color:#b00}.accepted{color:#070} .routines{border:none;padding:0;margin:0}
 form{display:inline} [hidden]{display:none} .bad{color:#b00;font-weight:bold} .good{color:#070}
 #trend{width:100%;height:auto;max-height:280px} #trend text{font-size:12px;fill:#333}

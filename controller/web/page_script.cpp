@@ -68,11 +68,15 @@ function status(s){$('state').textContent=s.state;$('state').className=s.state;$
  $('steps').textContent=s.steps;$('label').textContent=s.label||'';$('progress').value=s.progress||0;
  $('t').textContent=(s.t||0).toFixed(1);$('jitter').textContent=(s.jitter_max_us||0).toFixed(0);}
 // Faults (the safety monitor's, each with its remedy) apart from what held or stopped the cell on
-// purpose (a command, a state's reason, a failed step): the latter is listed under its own heading.
+// purpose (a command, a state's reason, a failed step): the latter is listed under its own heading,
+// the last ten seen by this page, newest first.
+const stops=[];
 function admin(a){fill('faults',(a.active_faults||[]).map(f=>{const li=el('li',{},f.rule+' (stop category '+f.category+'): '+f.text);
   li.appendChild(el('div',{class:'remedy'},'Remedy: '+(f.remedy||'')));return li;}));
- const r=a.StopReason;const stops=[];if(r&&r.text&&!r.fault)stops.push(el('li',{},r.text+' (at '+Number(r.t||0).toFixed(1)+' s)'));
- fill('stops',stops);if(!(a.active_faults||[]).length)fill('faults',[el('li',{class:'good'},'none')]);}
+ const r=a.StopReason;
+ if(r&&r.text&&!r.fault&&!stops.some(x=>x.t===r.t&&x.text===r.text)){stops.unshift(r);stops.length=Math.min(stops.length,10);}
+ fill('stops',stops.length?stops.map(x=>el('li',{},x.text+' (at '+Number(x.t||0).toFixed(1)+' s)')):[el('li',{class:'none'},'none')]);
+ if(!(a.active_faults||[]).length)fill('faults',[el('li',{class:'good'},'none')]);}
 function say(what,a){$('answer').textContent=what+': '+(a.ok?a.outcome:a.reason);$('answer').className=a.ok?'accepted':'refused';}
 function loggedIn(yes){$('login').hidden=yes;$('logout').hidden=!yes;if(yes)$('logout').focus();else $('token').focus();}
 async function getJson(path){const r=await fetch(path);if(!r.ok)throw new Error(path+': '+r.status);return r.json();}

@@ -85,7 +85,7 @@ try:
     wait.until(EC.text_to_be_present_in_element((By.ID, "faults"), "spindle_temperature"))
     faults = text("faults")
     assert "Remedy: Motor over-temperature: let the spindle cool down" in faults, faults
-    assert text("stops") == "", text("stops")
+    assert text("stops") == "none", text("stops")
     page.button_disabled_because("hold", "hold is taken only in Execute")
     page.button_disabled_because("clear", "clear is taken only in Aborted")
     page.button_disabled_because("start", "jobs start under cellctl serve")
