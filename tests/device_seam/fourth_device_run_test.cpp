@@ -2,7 +2,7 @@
 // registered by its DeviceKind and named by a dio: section, it is on a line of its own with its
 // emulator in a virtual-time CellRun; the recipe's spindle opens its coolant valve; the run's summary
 // gives its safe-stop verdict and its link's figures beside the cell's three, the operator page's board
-// lists it; a rehearsed fault names
+// and /metrics list it; a rehearsed fault names
 // it, and its loss ends the run as a link fault named after it.
 
 #include <gtest/gtest.h>
@@ -13,7 +13,9 @@
 
 #include "dio_module.hpp"
 #include "integration/run_fixture.hpp"
+#include "support/http_get.hpp"
 #include "web/cell_board.hpp"
+#include "web/operator_page.hpp"
 
 namespace cellctl::testing {
 namespace {
@@ -75,6 +77,19 @@ TEST_F(FourthDeviceRun, ItsValveFollowsTheSpindleAndTheSummaryJudgesItBesideTheC
   ASSERT_NE(dio, devices.end()) << board.dump();
   EXPECT_EQ(devices.size(), 4u) << board.dump();
   EXPECT_GT((*dio)["replies"].get<long>(), 0) << dio->dump();
+
+  // And the page's /metrics, scraped as Prometheus does, has a series for it (by its name).
+  command::Arbiter arbiter(std::chrono::milliseconds(1000), {});
+  web::PageOptions options;
+  options.port = 0;
+  options.token = "fourth-device-test-token";
+  web::OperatorPage page(options, cell_, plant_link::fixed_run(arbiter, run.status(), "virtual-time"));
+  const auto metrics = http_get(page.port(), "/metrics", options.token);
+  ASSERT_TRUE(metrics) << "the page answered nothing";
+  const auto& [status, body] = *metrics;
+  ASSERT_EQ(status, 200) << body;
+  EXPECT_NE(body.find("cellctl_device_exchanges_total{device=\"dio\"} "), std::string::npos) << body;
+  EXPECT_NE(body.find("cellctl_device_link_fault{device=\"dio\"} 0"), std::string::npos) << body;
 }
 
 TEST_F(FourthDeviceRun, ARehearsedFaultNamesItAndItsLossEndsTheRunAsItsLinkFault) {
