@@ -70,7 +70,7 @@ h2{font-size:1em;margin:.2em 0 .4em} #conn{font-size:.85em;color:#555}
 .Execute{color:#070}.Held,.Holding{color:#a60}.Stopped,.Stopping,.Aborted,.Aborting{color:#b00}.Complete{color:#05a}
 progress{width:100%} table{border-collapse:collapse} td,th{padding:.15em .6em;text-align:right}
 th{font-weight:600;font-size:.9em} td:first-child,th:first-child{text-align:left}
-button{font-size:1.05em;padding:.45em 1.1em;margin:.15em} button:disabled{opacity:.45}
+select{max-width:100%} button{font-size:1.05em;padding:.45em 1.1em;margin:.15em} button:disabled{opacity:.45}
 :focus-visible{outline:3px solid #05a;outline-offset:2px}
 .cmds{display:grid;grid-template-columns:repeat(auto-fill,minmax(12em,1fr));gap:.2em}
 .cmds div,.routines div{display:flex;align-items:center;gap:.4em;flex-wrap:wrap} small{color:#666}

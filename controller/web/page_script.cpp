@@ -51,13 +51,13 @@ let lastSafe={};  // per device: the safe state the newest run record left it in
 function board(b){
  fill('axes',b.axes.map(a=>row([a.name,mm(a.target_mm),mm(a.scu_mm),mm(a.encoder_mm),
   yes(a.homed&&a.homed.record),yes(a.homed&&a.homed.scu)])));
- fill('devices',b.devices.map(d=>{const link=el('span',{class:d.link==='up'?'good':'bad'},d.link);
+ fill('devices',b.devices.map(d=>{const link=b.live?el('span',{class:d.link==='up'?'good':'bad'},d.link):el('span',{},'closed: no job');
   const safe=lastSafe[d.name];const sf=el('span',{class:safe&&safe.safe==='unknown'?'bad':''},safe?safe.safe:'—');
   if(safe)sf.title=safe.evidence;
   return row([d.name,link,d.round_trip_ms.toFixed(1),d.last_good_s.toFixed(3),String(d.replies),
    d.timeouts+' / '+d.bad_frames+' / '+d.refusals,sf]);}));
  if(b.spindle){$('sset').textContent=b.spindle.set_hz.toFixed(0);$('sact').textContent=b.spindle.actual_hz.toFixed(0);}
- $('board-age').textContent=b.live?'':'(as the last job left them: no job in progress)';
+ $('board-age').textContent=b.live?'':'(as the last job left them: no job in progress; each job opens the links)';
  for(const [cmd,s] of Object.entries(b.buttons||{})){const btn=$(cmd);if(!btn)continue;
   btn.disabled=!s.enabled;btn.title=s.reason||'';const why=$('why-'+cmd);if(why)why.textContent=s.reason||'';}
  $('packml').textContent='PackML StateCurrent '+b.state_current;
