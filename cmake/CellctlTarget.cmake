@@ -104,6 +104,13 @@ endfunction()
 function(cellctl_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
+  # The allocation counter replaces the global operator new and delete: compiled alone, as in one unity
+  # file with the tests it counts, the replacements would be seen (and inlined) where they are called.
+  foreach(source IN LISTS ARG_SOURCES)
+    if(source MATCHES "allocation_counter\\.cpp$")
+      set_source_files_properties(${source} PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
+    endif()
+  endforeach()
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock GTest::gtest_main)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
   cellctl_warnings(${name})

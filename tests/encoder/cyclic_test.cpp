@@ -12,13 +12,13 @@
 namespace cellctl::encoder {
 namespace {
 
-std::vector<std::uint8_t> bytes(std::string_view hex) {
+std::vector<std::uint8_t> cyclic_bytes(std::string_view hex) {
   return wire::parse_hex(hex).value();
 }
 
 TEST(CyclicInput, Scancon22PositionStatusAndSignedVelocity) {
   // ready + mode + ccw, position 0x00123456; velocity -2
-  auto r = decode_input(Functionality::scancon22, true, bytes("16 12 34 56 ff fe"));
+  auto r = decode_input(Functionality::scancon22, true, cyclic_bytes("16 12 34 56 ff fe"));
   ASSERT_TRUE(std::holds_alternative<CyclicInput>(r));
   const auto& in = std::get<CyclicInput>(r);
   EXPECT_EQ(in.position(true), 0x00123456u);
@@ -34,7 +34,7 @@ TEST(CyclicInput, Scancon22PositionStatusAndSignedVelocity) {
 }
 
 TEST(CyclicInput, Scancon30WithoutStatusBitsUses31Bits) {
-  auto r = decode_input(Functionality::scancon30, false, bytes("7f ff ff ff 80 00 7f ff"));
+  auto r = decode_input(Functionality::scancon30, false, cyclic_bytes("7f ff ff ff 80 00 7f ff"));
   const auto& in = std::get<CyclicInput>(r);
   EXPECT_EQ(in.position(false), 0x7FFFFFFFu);
   EXPECT_EQ(in.velocity, INT16_MIN);
@@ -42,18 +42,20 @@ TEST(CyclicInput, Scancon30WithoutStatusBitsUses31Bits) {
   EXPECT_TRUE(saturated(in.velocity));
   EXPECT_TRUE(saturated(in.acceleration));
   EXPECT_FALSE(saturated(-32767));
-  EXPECT_EQ(
-      std::get<CyclicError>(decode_input(Functionality::scancon30, false, bytes("80 00 00 00 00 00 00 00"))),
-      CyclicError::bit31_set);
+  EXPECT_EQ(std::get<CyclicError>(
+                decode_input(Functionality::scancon30, false, cyclic_bytes("80 00 00 00 00 00 00 00"))),
+            CyclicError::bit31_set);
 }
 
 TEST(CyclicInput, LengthsPerFunctionality) {
-  EXPECT_TRUE(
-      std::holds_alternative<CyclicInput>(decode_input(Functionality::class1, false, bytes("00 00 00 01"))));
-  EXPECT_EQ(std::get<CyclicError>(decode_input(Functionality::class2, false, bytes("00 00 00 01 00 00"))),
-            CyclicError::bad_length);
-  EXPECT_EQ(std::get<CyclicError>(decode_input(Functionality::scancon30, true, bytes("00 00 00 01 00 00"))),
-            CyclicError::bad_length);
+  EXPECT_TRUE(std::holds_alternative<CyclicInput>(
+      decode_input(Functionality::class1, false, cyclic_bytes("00 00 00 01"))));
+  EXPECT_EQ(
+      std::get<CyclicError>(decode_input(Functionality::class2, false, cyclic_bytes("00 00 00 01 00 00"))),
+      CyclicError::bad_length);
+  EXPECT_EQ(
+      std::get<CyclicError>(decode_input(Functionality::scancon30, true, cyclic_bytes("00 00 00 01 00 00"))),
+      CyclicError::bad_length);
 }
 
 TEST(CyclicOutput, BigEndianWord) {
@@ -61,7 +63,7 @@ TEST(CyclicOutput, BigEndianWord) {
   ASSERT_EQ(encode_output(0x80000123u, out), 4u);
   EXPECT_EQ(wire::to_hex(out), "80 00 01 23");
   EXPECT_EQ(decode_output(out), 0x80000123u);
-  EXPECT_FALSE(decode_output(bytes("00 00 00")));
+  EXPECT_FALSE(decode_output(cyclic_bytes("00 00 00")));
 }
 
 TEST(Velocity, SaturatesAtTheExtremes) {

@@ -23,8 +23,9 @@ bool matches(std::uint32_t word, std::string_view row) {
   return true;
 }
 
-struct Rig {
-  explicit Rig(EncoderParameters p) : device(DeviceIdentity{PhysicalResolution{8192, 4096}}, NonVolatile{}) {
+struct HandshakeRig {
+  explicit HandshakeRig(EncoderParameters p)
+      : device(DeviceIdentity{PhysicalResolution{8192, 4096}}, NonVolatile{}) {
     device.parameterize(p);
     device.sample(1.0, link::TimePoint{});
   }
@@ -47,7 +48,7 @@ EncoderParameters commissioning(Functionality f = Functionality::scancon21) {
 }
 
 TEST(Handshake, PresetScanconWithStatusBitsFollowsTable433) {
-  Rig rig(commissioning());
+  HandshakeRig rig(commissioning());
   ASSERT_TRUE(rig.hs.start_preset(5000, true));
   auto [out1, in1] = rig.exchange();
   EXPECT_TRUE(matches(out1, "1000000"));
@@ -67,7 +68,7 @@ TEST(Handshake, PresetScancon30WithoutStatusBitsFollowsTable435) {
   EncoderParameters p;
   p.functionality = Functionality::scancon30;
   p.without_status_bits = true;
-  Rig rig(p);
+  HandshakeRig rig(p);
   ASSERT_TRUE(rig.hs.start_preset(0x01234567, false));
   auto [out1, in1] = rig.exchange();
   EXPECT_EQ(out1, 0x81234567u);  // bit 31 + 31-bit value
@@ -82,7 +83,7 @@ TEST(Handshake, PresetScancon30WithoutStatusBitsFollowsTable435) {
 TEST(Handshake, PresetClass2FollowsTable432) {
   EncoderParameters p;
   p.functionality = Functionality::class2;
-  Rig rig(p);
+  HandshakeRig rig(p);
   ASSERT_TRUE(rig.hs.start_preset(100, false));
   auto [out1, in1] = rig.exchange();
   EXPECT_EQ(out1, 0x80000064u);
@@ -98,7 +99,7 @@ TEST(Handshake, PresetBeyondTheRangeIsNotAcknowledged) {
   p.scaling = true;
   p.measuring_units = 1000;
   p.total_range = 16000;
-  Rig rig(p);
+  HandshakeRig rig(p);
   ASSERT_TRUE(rig.hs.start_preset(16000, true));  // must be ≤ total range − 1
   for (std::uint32_t i = 0; i < Handshake::kMaxExchanges; ++i) (void)rig.exchange();
   EXPECT_EQ(rig.hs.phase(), Handshake::Phase::failed);
@@ -107,7 +108,7 @@ TEST(Handshake, PresetBeyondTheRangeIsNotAcknowledged) {
 }
 
 TEST(Handshake, CountingDirectionFollowsTable441) {
-  Rig rig(commissioning(Functionality::scancon22));
+  HandshakeRig rig(commissioning(Functionality::scancon22));
   ASSERT_TRUE(rig.hs.start_direction(CodeSequence::ccw));
   auto [out1, in1] = rig.exchange();
   EXPECT_TRUE(matches(out1, "0001000"));
@@ -132,7 +133,7 @@ TEST(Handshake, CountingDirectionFollowsTable441) {
 }
 
 TEST(Handshake, TeachInStartAndEndFollowTables442) {
-  Rig rig(commissioning(Functionality::scancon30));
+  HandshakeRig rig(commissioning(Functionality::scancon30));
   ASSERT_TRUE(rig.hs.start_teach_in());
   auto [out1, in1] = rig.exchange();
   EXPECT_TRUE(matches(out1, "0100000"));
@@ -166,7 +167,7 @@ TEST(Handshake, TeachInStartAndEndFollowTables442) {
 TEST(Handshake, TeachInNeedsCommissioningMode) {
   EncoderParameters p;
   p.functionality = Functionality::scancon21;
-  Rig rig(p);
+  HandshakeRig rig(p);
   ASSERT_TRUE(rig.hs.start_teach_in());
   for (std::uint32_t i = 0; i < Handshake::kMaxExchanges; ++i) {
     auto [out, in] = rig.exchange();

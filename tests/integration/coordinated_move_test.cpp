@@ -67,7 +67,7 @@ steps:
   }
 };
 
-struct Case {
+struct MoveCase {
   double x, z, speed;
   const char* path;
 };
@@ -75,20 +75,20 @@ struct Case {
 // default, and with `path: time`) and on a line. (At 15:1, x 150 and z 10 at 12 mm/s, z's share is
 // below what its actuator runs steadily, 0.96 mm/s: the SCU runs it faster than planned and the
 // following-error rule stops the run.)
-constexpr Case kCases[] = {{120, 60, 10, ""},
-                           {120, 60, 10, ", path: line"},
-                           {150, 20, 12, ", path: time"},
-                           {150, 20, 12, ", path: line"},
-                           {40, 100, 12, ""},
-                           {40, 100, 12, ", path: line"},
-                           {90, 30, 6, ", path: time"},
-                           {90, 30, 6, ", path: line"}};
+constexpr MoveCase kCases[] = {{120, 60, 10, ""},
+                               {120, 60, 10, ", path: line"},
+                               {150, 20, 12, ", path: time"},
+                               {150, 20, 12, ", path: line"},
+                               {40, 100, 12, ""},
+                               {40, 100, 12, ", path: line"},
+                               {90, 30, 6, ", path: time"},
+                               {90, 30, 6, ", path: line"}};
 
 // The SCU's sensors read true (no scale error): the axes arrive together. One run per case.
-class CoordinatedMoveCases : public CoordinatedMove, public ::testing::WithParamInterface<Case> {};
+class CoordinatedMoveCases : public CoordinatedMove, public ::testing::WithParamInterface<MoveCase> {};
 
 TEST_P(CoordinatedMoveCases, TwoAxesArriveWithinOneScuRefreshPeriod) {
-  const Case c = GetParam();
+  const MoveCase c = GetParam();
   const Arrival a = run_move(c.x, c.z, c.speed, c.path, 0.0);
   ASSERT_TRUE(a.x_t && a.z_t) << "x " << c.x << " z " << c.z;
   const double skew = std::abs(*a.x_t - *a.z_t);
@@ -106,7 +106,7 @@ INSTANTIATE_TEST_SUITE_P(Ratios, CoordinatedMoveCases, ::testing::ValuesIn(kCase
 // (a new target while moving: RS, RT, RE), so x arrives with z. Without that, x arrives only after a
 // correction at rest (a settle time, then a short move): the skew is then that correction's time.
 TEST_F(CoordinatedMove, ScaleErrorIsCorrectedWhileMovingSoBothStillArriveTogether) {
-  const Case c = kCases[0];
+  const MoveCase c = kCases[0];
   const Arrival a = run_move(c.x, c.z, c.speed, c.path, 0.002);
   ASSERT_TRUE(a.x_t && a.z_t);
   const double skew = *a.x_t - *a.z_t;
@@ -154,7 +154,7 @@ steps:
 
 TEST_F(CoordinatedMove, ScaleErrorCorrectedOnlyAtRestDelaysTheMeasuredAxisByTheCorrection) {
   cell_.axes[0].correct_in_motion = false;
-  const Case c = kCases[0];
+  const MoveCase c = kCases[0];
   const Arrival a = run_move(c.x, c.z, c.speed, c.path, 0.002);
   ASSERT_TRUE(a.x_t && a.z_t);
   const double skew = *a.x_t - *a.z_t;

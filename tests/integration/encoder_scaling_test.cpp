@@ -9,7 +9,7 @@
 namespace cellctl::testing {
 namespace {
 
-constexpr const char* kOneMoveRecipe = R"(
+constexpr const char* kScaledMoveRecipe = R"(
 recipe: {name: one-move, version: "1", cell: demo-cell}
 limits:
   axes:
@@ -33,7 +33,7 @@ TEST_F(EncoderScaling, ScaledUnitsPerRevolutionReadTheTruePosition) {
   session.mm_per_revolution = 0.0;
   session.counts_per_mm = 250.0;
   emulators().scu->actuators[0].physics.scale_error = 0.0;
-  load_recipe_text(kOneMoveRecipe);
+  load_recipe_text(kScaledMoveRecipe);
 
   const auto r = run_with([](double, runtime::CellRun&) { return true; });
   EXPECT_EQ(r.final_state, supervisor::State::complete) << r.failure << "\n" << r.summary_text;

@@ -19,7 +19,7 @@
 namespace cellctl::testing {
 namespace {
 
-constexpr double kAt = 1.5;
+constexpr double kStopAt = 1.5;
 // The stop is sent again to the converter for 5 s after the end (RunOptions::shutdown_timeout_s),
 // then its verdict is unknown: 5 s is the requirement here, not read from the options.
 constexpr double kSpindleConfirmS = 5.0;
@@ -50,7 +50,8 @@ struct ScuSeen {
 class SafeStop : public FaultRun {
  protected:
   // `at`: when the fault comes (what the hook watches from); `also`: called every cycle after it.
-  runtime::RunResult run_faults(std::initializer_list<const char*> specs, double at = kAt, After also = {}) {
+  runtime::RunResult run_faults(std::initializer_list<const char*> specs, double at = kStopAt,
+                                After also = {}) {
     for (const auto* text : specs) {
       auto parsed = runtime::parse_fault_spec(text);
       EXPECT_TRUE(std::holds_alternative<runtime::FaultSpec>(parsed)) << text;
@@ -103,7 +104,7 @@ class SafeStop : public FaultRun {
     EXPECT_EQ(safe("spindle"), "unknown") << evidence("spindle");
     EXPECT_TRUE(r.any_unknown());
     const double end = ended_at();
-    ASSERT_GT(end, kAt) << "the run never ended";
+    ASSERT_GT(end, kStopAt) << "the run never ended";
     const auto lost = time_in(evidence("spindle"), "converter lost at ");
     ASSERT_TRUE(lost) << evidence("spindle");
     // The other devices are resolved long before: the run lasts until the spindle's verdict (the loop
@@ -117,7 +118,7 @@ class SafeStop : public FaultRun {
     EXPECT_GT(run_->emulators()->spindle()->motor().frequency_hz(), 300.0) << "it is still turning";
     std::cout << "  [" << spec << "] converter lost at " << *lost << " s, run ended " << end
               << " s, unknown at " << r.duration_s << " s (" << r.duration_s - end << " s after the end, "
-              << r.duration_s - kAt << " s after the fault)\n";
+              << r.duration_s - kStopAt << " s after the fault)\n";
   }
 
   std::optional<double> f20_after_fault_;
@@ -132,8 +133,8 @@ TEST_F(SafeStop, ScuPortLostWhileMovingIsOpenedAgainAndTheStopConfirmed) {
   ASSERT_TRUE(moving_at_fault_.value_or(false)) << "the fault must come while the axes move";
   EXPECT_EQ(safe("scu"), "observed") << evidence("scu");
   ASSERT_TRUE(f20_after_fault_) << "no F20 reached the SCU after its port came back";
-  EXPECT_GE(*f20_after_fault_, kAt + 0.2);
-  EXPECT_LT(*f20_after_fault_, kAt + 0.2 + 0.2) << "F20 within two reopen attempts of the port's return";
+  EXPECT_GE(*f20_after_fault_, kStopAt + 0.2);
+  EXPECT_LT(*f20_after_fault_, kStopAt + 0.2 + 0.2) << "F20 within two reopen attempts of the port's return";
   EXPECT_NE(evidence("scu").find("port opened again 1 time(s)"), std::string::npos) << evidence("scu");
   EXPECT_NE(evidence("scu").find("last SCU positions"), std::string::npos) << evidence("scu");
   EXPECT_NE(evidence("scu").find("last measured x"), std::string::npos) << evidence("scu");
@@ -152,9 +153,9 @@ TEST_F(SafeStop, ScuPortLostForGoodIsBoundedByItsOwnTimeOutAndWatchedMeanwhile) 
   EXPECT_EQ(safe("scu"), "bounded") << evidence("scu");
   // Never before the SCU's communication time-out (0.5 s) plus the actuators' stopping time after
   // the last request that reached it (at most one keep-alive period before the port went).
-  const double bound = kAt - 0.1 + 0.5 + link::to_seconds(cell_.scu->session.stopping_time);
+  const double bound = kStopAt - 0.1 + 0.5 + link::to_seconds(cell_.scu->session.stopping_time);
   EXPECT_GE(r.duration_s, bound) << "cellctl ended before the SCU's own protection had surely acted";
-  EXPECT_LT(r.duration_s, kAt + 0.5 + link::to_seconds(cell_.scu->session.stopping_time) + 0.2);
+  EXPECT_LT(r.duration_s, kStopAt + 0.5 + link::to_seconds(cell_.scu->session.stopping_time) + 0.2);
   expect_axes_at_rest();  // the emulated SCU's watchdog stopped them, as the manual says
   EXPECT_NE(evidence("scu").find("communication time-out"), std::string::npos) << evidence("scu");
   // The SCU's positions stopped arriving: named as the link, never as a disagreement with the encoder.
@@ -175,7 +176,7 @@ TEST_F(SafeStop, SpindleSilentThenBackGetsItsStopUntilStandstill) {
   EXPECT_TRUE(run_->emulators()->spindle()->motor().at_rest())
       << run_->emulators()->spindle()->motor().frequency_hz() << " Hz";
   // The line is back at 3.5 s; from 400 Hz the converter runs down at 400 Hz/s.
-  EXPECT_GE(r.duration_s, kAt + 2.0 + 0.9) << "ended before the converter could report standstill";
+  EXPECT_GE(r.duration_s, kStopAt + 2.0 + 0.9) << "ended before the converter could report standstill";
   EXPECT_NE(evidence("spindle").find("STILLSTAND reported"), std::string::npos) << evidence("spindle");
   EXPECT_EQ(summary()["ended_by"]["device"], "spindle");
   EXPECT_FALSE(r.any_unknown());
@@ -201,7 +202,7 @@ TEST_F(SafeStop, EncoderLinkLostIsNamedAsTheLinkAndBounded) {
   const auto ended = summary()["ended_by"];
   EXPECT_EQ(ended["kind"], "link") << ended.dump();
   EXPECT_EQ(ended["device"], "encoder") << ended.dump();
-  EXPECT_NEAR(ended["since_s"].get<double>(), kAt, 0.05) << ended.dump();
+  EXPECT_NEAR(ended["since_s"].get<double>(), kStopAt, 0.05) << ended.dump();
   EXPECT_TRUE(fault("disagreement").is_null()) << fault("disagreement").dump();
   EXPECT_TRUE(fault("following_error").is_null()) << fault("following_error").dump();
   EXPECT_FALSE(r.any_unknown());
@@ -255,7 +256,7 @@ TEST_F(SafeStop, ScuLostAtRestIsObservedOnlyByARefreshAfterItsF20) {
 // refresh shows every actuator at rest, never on the first refresh after the F20.
 TEST_F(SafeStop, ScuBackWithAnActuatorRunningOnAfterItsF20IsObservedOnlyOnceItRests) {
   std::optional<double> pushed;
-  const auto r = run_faults({"scu:disconnect@1.5+0.2"}, kAt, [&](double t, runtime::CellRun& cr) {
+  const auto r = run_faults({"scu:disconnect@1.5+0.2"}, kStopAt, [&](double t, runtime::CellRun& cr) {
     // 20 ms after the first F20: after the second one too (the supervisor's own, category 0), and the
     // emulator has let go of z (its function no longer owns it), so an RS of z's function does not
     // stop this motion; RA does. The next refresh is due some 100 ms after the F20.
@@ -289,7 +290,7 @@ TEST_F(SafeStop, ScuBackWithAnActuatorRunningOnAfterItsF20IsObservedOnlyOnceItRe
 TEST_F(SafeStop, ScuClosedWhileAnActuatorStillRunsDownIsBoundedByTheStoppingTime) {
   supervisor_settings_.stop_timeout_s = 0.05;
   bool asked = false;
-  const auto r = run_faults({}, kAt, [&](double, runtime::CellRun& cr) {
+  const auto r = run_faults({}, kStopAt, [&](double, runtime::CellRun& cr) {
     if (!asked) cr.request(supervisor::Command::stop, "test");
     asked = true;
   });

@@ -17,7 +17,7 @@
 namespace cellctl::journal {
 namespace {
 
-std::filesystem::path fresh_dir(const std::string& name) {
+std::filesystem::path fresh_pin_dir(const std::string& name) {
   auto d = std::filesystem::temp_directory_path() /
            ("cellctl-journal-pin-" + name + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(d);
@@ -66,7 +66,7 @@ RecordInfo info_in(const std::filesystem::path& dir) {
 }
 
 TEST(JournalLines, EveryKindOfLineIsPinned) {
-  const auto dir = fresh_dir("every-kind");
+  const auto dir = fresh_pin_dir("every-kind");
   const auto info = info_in(dir);
   std::string long_note = "SCU: ";
   for (int i = 0; long_note.size() < 1100; ++i) long_note += "part " + std::to_string(i) + " — ";
@@ -151,7 +151,7 @@ TEST(JournalLines, EveryKindOfLineIsPinned) {
 
 // A run that could not start (a port that did not open) says so in its summary, after no event.
 TEST(JournalLines, ARunThatDidNotStart) {
-  const auto dir = fresh_dir("not-started");
+  const auto dir = fresh_pin_dir("not-started");
   {
     Journal j(dir, WhenFull::wait);
     j.close_not_started("cannot open /dev/ttyUSB0: No such file or directory");
@@ -166,7 +166,7 @@ TEST(JournalLines, ARunThatDidNotStart) {
 
 // A run a fault of the monitor ended: its words in the summary's ended_by.
 TEST(JournalLines, ARunTheMonitorEnded) {
-  const auto dir = fresh_dir("monitor-ended");
+  const auto dir = fresh_pin_dir("monitor-ended");
   {
     Journal j(dir, WhenFull::wait);
     j.post(0.0, RunStarted{"pinned", "pin-cell", "emulated", 1});

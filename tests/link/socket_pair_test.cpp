@@ -14,7 +14,7 @@
 namespace cellctl::link {
 namespace {
 
-std::vector<std::uint8_t> all_byte_values() {
+std::vector<std::uint8_t> every_byte_value() {
   std::vector<std::uint8_t> v(256);
   std::iota(v.begin(), v.end(), std::uint8_t{0});
   return v;
@@ -30,7 +30,7 @@ std::vector<std::uint8_t> read_now(Link& from) {
 
 TEST(SocketPair, EveryByteValueIsThereAtOnceBothWays) {
   SocketPair pair("test");
-  const auto bytes = all_byte_values();
+  const auto bytes = every_byte_value();
   ASSERT_EQ(pair.master().write(bytes).count, bytes.size());
   EXPECT_EQ(read_now(pair.device()), bytes) << "delivered by write(), not later";
   ASSERT_EQ(pair.device().write(bytes).count, bytes.size());

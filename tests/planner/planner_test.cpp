@@ -275,16 +275,16 @@ TEST(Planner, UpdateNeverAllocates) {
   Input<6> in;
   in.target_position.setConstant(2.0);
   Output<6> out;
-  const std::size_t before = testing::allocation_count();
+  const std::size_t before = cellctl::testing::allocation_count();
   for (int k = 0; k < 3000; ++k) {
     if (k == 1000) in.target_position.setConstant(-1.0);  // a replan mid-motion
     (void)planner.update(in, out);
     out.pass_to_input(in);
   }
-  EXPECT_EQ(testing::allocation_count() - before, 0u);
+  EXPECT_EQ(cellctl::testing::allocation_count() - before, 0u);
   // The counter itself works: an allocation is seen.
   const auto* probe = new std::vector<int>(3);
-  EXPECT_GT(testing::allocation_count() - before, 0u);
+  EXPECT_GT(cellctl::testing::allocation_count() - before, 0u);
   delete probe;
 }
 

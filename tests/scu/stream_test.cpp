@@ -14,14 +14,14 @@ namespace {
 using Kind = ReplyStream::Event::Kind;
 using std::chrono::milliseconds;
 
-std::vector<std::uint8_t> hex(const char* text) {
+std::vector<std::uint8_t> reply_bytes(const char* text) {
   return *wire::parse_hex(text);
 }
 
 TEST(ScuReplyStream, FramesAReplyFedOneByteAtATime) {
   ReplyStream s;
   s.expect({Command::get, true});
-  const auto bytes = hex("52 47 06 04 00 b0 01 00 00 ed 9a");
+  const auto bytes = reply_bytes("52 47 06 04 00 b0 01 00 00 ed 9a");
   for (std::size_t i = 0; i + 1 < bytes.size(); ++i) {
     ASSERT_EQ(s.feed(std::span(bytes).subspan(i, 1)), 1u);
     EXPECT_EQ(s.next().kind, Kind::need_more) << "after byte " << i;
@@ -37,7 +37,7 @@ TEST(ScuReplyStream, ResynchronisesAfterGarbage) {
   ReplyStream s;
   s.expect({Command::get, true});
   // Noise, a stray 'R' that starts nothing valid, then the real reply.
-  (void)s.feed(hex("00 ff 13 52 00 52 47 06 01 00 31 b3 bb"));
+  (void)s.feed(reply_bytes("00 ff 13 52 00 52 47 06 01 00 31 b3 bb"));
   auto e = s.next();
   EXPECT_EQ(e.kind, Kind::error);
   EXPECT_EQ(e.error, DecodeError::bad_start);
@@ -56,7 +56,7 @@ TEST(ScuReplyStream, ResynchronisesAfterGarbage) {
 TEST(ScuReplyStream, ReportsBadCrcAndDropsTheWholeDamagedReply) {
   ReplyStream s;
   s.expect({Command::cyclic, false});
-  (void)s.feed(hex("52 43 06 f7 09"));
+  (void)s.feed(reply_bytes("52 43 06 f7 09"));
   const auto e = s.next();
   EXPECT_EQ(e.kind, Kind::error);
   EXPECT_EQ(e.error, DecodeError::bad_crc);
@@ -67,29 +67,29 @@ TEST(ScuReplyStream, ReportsBadCrcAndDropsTheWholeDamagedReply) {
 TEST(ScuReplyStream, ReportsAReplyToAnotherCommandAndAnImpossibleLength) {
   ReplyStream s;
   s.expect({Command::get, true});
-  (void)s.feed(hex("52 54 06 13 92"));
+  (void)s.feed(reply_bytes("52 54 06 13 92"));
   EXPECT_EQ(s.next().error, DecodeError::unexpected_command);
   s.expect({Command::get, true});
-  (void)s.feed(hex("52 47 06 ff 7f"));
+  (void)s.feed(reply_bytes("52 47 06 ff 7f"));
   EXPECT_EQ(s.next().error, DecodeError::bad_length);
 }
 
 TEST(ScuReplyStream, ErrorReplyNeedsNoCtpAndNothingIsExpectedWhenIdle) {
   ReplyStream s;
   s.expect({Command::get, true});
-  (void)s.feed(hex("52 47 80 7d 35"));
+  (void)s.feed(reply_bytes("52 47 80 7d 35"));
   const auto e = s.next();
   ASSERT_EQ(e.kind, Kind::reply);
   EXPECT_EQ(e.reply.status, Status::checksum_error);
   s.expect_nothing();
-  (void)s.feed(hex("52 47 80 7d 35"));
+  (void)s.feed(reply_bytes("52 47 80 7d 35"));
   EXPECT_EQ(s.next().error, DecodeError::bad_start) << "a reply nobody asked for is garbage";
 }
 
 TEST(ScuRequestStream, FramesBackToBackRequests) {
   RequestStream s;
   const link::TimePoint t{};
-  (void)s.feed(hex("52 4f 00 5c 2d 52 43 01 00 ff 31 8d 52 54 06 00 21 30 39 30 00 00 78 4e"), t);
+  (void)s.feed(reply_bytes("52 4f 00 5c 2d 52 43 01 00 ff 31 8d 52 54 06 00 21 30 39 30 00 00 78 4e"), t);
   auto e = s.next();
   ASSERT_EQ(e.kind, RequestStream::Event::Kind::request);
   EXPECT_TRUE(std::holds_alternative<OpenRequest>(e.request));
@@ -105,7 +105,7 @@ TEST(ScuRequestStream, FramesBackToBackRequests) {
 TEST(ScuRequestStream, DiscardsAPartialRequestAfterTheInterByteTimeout) {
   RequestStream s;
   link::TimePoint t{};
-  const auto ro = hex("52 4f 00 5c 2d");
+  const auto ro = reply_bytes("52 4f 00 5c 2d");
   (void)s.feed(std::span(ro).first(3), t);
   EXPECT_EQ(s.expire(t + milliseconds(1000)), 0u) << "1000 ms is still within the limit";
   EXPECT_EQ(s.expire(t + milliseconds(1001)), 3u);
@@ -123,11 +123,11 @@ TEST(ScuRequestStream, DiscardsAPartialRequestAfterTheInterByteTimeout) {
 
 TEST(ScuRequestStream, NamesTheCommandOfABrokenRequest) {
   RequestStream s;
-  (void)s.feed(hex("52 47 11 00 2c 31"), {});
+  (void)s.feed(reply_bytes("52 47 11 00 2c 31"), {});
   auto e = s.next();
   EXPECT_EQ(e.error, DecodeError::bad_crc);
   EXPECT_EQ(e.command_byte, 'G');
-  (void)s.feed(hex("52 5a 01 02"), {});
+  (void)s.feed(reply_bytes("52 5a 01 02"), {});
   e = s.next();
   EXPECT_EQ(e.error, DecodeError::unknown_command);
   EXPECT_EQ(e.command_byte, 'Z');
