@@ -173,6 +173,10 @@ function draw() {
     g.restore(); g.setLineDash([]);
     g.strokeStyle = "#888"; g.strokeRect(L, top, c.width - L - R, bottom - top);
     if (P.i === 0) {
+      // The marks' lines up to their numbers, under the step labels (which stay readable).
+      g.setLineDash([4, 2]); g.lineWidth = 1.2;
+      M.marks.forEach(m => { const x = xOf(P, m.t); if (x < L || x > c.width - R) return; g.strokeStyle = m.colour; g.beginPath(); g.moveTo(x, MARKROW + 2); g.lineTo(x, top); g.stroke(); });
+      g.setLineDash([]);
       // Every step's label whole, in its lane, where the model placed it relative to its boundary.
       g.textAlign = "left"; g.font = G.font_px + "px sans-serif"; g.lineWidth = 3; g.strokeStyle = "#fff";
       for (const s of M.steps) {
@@ -183,9 +187,6 @@ function draw() {
         g.strokeStyle = "#fff"; g.lineWidth = 3; g.strokeText(s.label, left, base, w);
         g.fillStyle = "#444"; g.fillText(s.label, left, base, w);
       }
-      g.setLineDash([4, 2]); g.lineWidth = 1.2;
-      M.marks.forEach(m => { const x = xOf(P, m.t); if (x < L || x > c.width - R) return; g.strokeStyle = m.colour; g.beginPath(); g.moveTo(x, MARKROW + 2); g.lineTo(x, top); g.stroke(); });
-      g.setLineDash([]);
       M.marks.forEach((m, i) => { const x = xOf(P, m.t); if (x < L || x > c.width - R) return; g.fillStyle = m.colour; g.font = "bold 11px sans-serif"; g.textAlign = "center"; g.fillText(String(i + 1), x, MARKROW - G.mark_px * m.level); });
     }
     if (P.sel) { g.fillStyle = "#0060c022"; g.fillRect(Math.min(P.sel[0], P.sel[1]), top, Math.abs(P.sel[1] - P.sel[0]), bottom - top); }

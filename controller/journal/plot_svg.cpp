@@ -179,20 +179,22 @@ std::string render_svg(const std::vector<const RunRecord*>& runs) {
   svg += holds(m, frames);
   const Frame& f0 = frames.front();
   const Frame& fl = frames.back();
+  // Marks: a line through every panel (under the step labels, which stay readable), numbered above
+  // them, listed below.
+  for (const auto& mk : m.marks)
+    svg += fmt::format(
+        R"(<line class="mark-line" x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="{}" stroke-width="1.2" stroke-dasharray="4,2"><title>{}</title></line>)",
+        f0.x_of(mk.t), marks_row + 2, f0.x_of(mk.t), fl.top + fl.height, mk.colour, xml(mk.text));
   svg += steps(m, f0, fl);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     svg += axes(frames[i], m.panels[i], i);
     for (const auto& s : m.panels[i].series) svg += curve(frames[i], s);
     svg += legend(frames[i], m.panels[i]);
   }
-  // Marks: a numbered line through every panel, listed below.
   for (std::size_t i = 0; i < m.marks.size(); ++i) {
     const auto& mk = m.marks[i];
     const double x = f0.x_of(mk.t);
     const double y = marks_row - kMarkNumberPx * mk.level;
-    svg += fmt::format(
-        R"(<line class="mark-line" x1="{:.1f}" y1="{}" x2="{:.1f}" y2="{}" stroke="{}" stroke-width="1.2" stroke-dasharray="4,2"><title>{}</title></line>)",
-        x, marks_row + 2, x, fl.top + fl.height, mk.colour, xml(mk.text));
     svg += fmt::format(
         R"(<text x="{:.1f}" y="{}" font-size="11" font-weight="bold" fill="{}" text-anchor="middle">{}</text>)",
         x, y, mk.colour, i + 1);
