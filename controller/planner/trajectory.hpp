@@ -33,6 +33,9 @@ inline constexpr double kInf = std::numeric_limits<double>::infinity();
 inline constexpr std::string_view kPhaseFallbackNote =
     "phase synchronisation impossible (the current or target velocities and accelerations are not on the "
     "line between the positions): time-synchronised instead";
+inline constexpr std::string_view kPhaseTravelNote =
+    "phase synchronisation impossible (the straight-line motion leaves an axis's travel): "
+    "time-synchronised instead";
 
 template <int N>
 class Trajectory {
@@ -327,7 +330,8 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
   }
   std::array<AxisProfile, kN> axes;  // not {}: that zeroed their brakes' unused segment slots
   double common = 0.0;
-  if (!planned) {
+  // Each axis on its own: its shortest duration and blocked intervals; `common` their maximum.
+  const auto plan_axes = [&]() {
     for (int i = 0; i < N; ++i) {
       if (!in.enabled[idx(i)]) continue;
       const MotionState start{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]};
@@ -344,9 +348,15 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
         t.blocked_[idx(i)][b] = axes[idx(i)].blocked(b);
       common = std::max(common, axes[idx(i)].min_duration());
     }
+    return Result::working;
+  };
+  if (!planned) {
+    if (const Result r = plan_axes(); is_error(r)) return r;
   }
   // Built, then checked against the travel; an axis that keeps it only with a longer duration
-  // raises the common one, once per axis at most (each raise is its own motion's duration).
+  // raises the common one, once per axis at most (each raise is its own motion's duration). A
+  // straight line that leaves the travel has no other: time synchronisation instead, whose
+  // fallbacks (travel_fit.hpp) may keep it, with a note.
   for (int attempt = 0;; ++attempt) {
     if (!planned) {
       if (t.synchronization_ == Synchronization::time) {
@@ -378,6 +388,14 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
     double longer = 0.0;
     const Result r = t.keep_travel(in, axes, planned, error_axis, excess, longer);
     if (!is_error(r)) break;
+    if (planned) {
+      planned = false;
+      t.synchronization_ = Synchronization::time;
+      t.note_ = kPhaseTravelNote;
+      if (const Result p = plan_axes(); is_error(p)) return p;
+      attempt = -1;
+      continue;
+    }
     if (!(longer > common) || attempt >= N) return r;
     common = longer;
   }

@@ -115,6 +115,14 @@ TEST(Travel, WhereTheShortestMotionOvershootsTheTravelTurningAtOnceMayNot) {
   const double shortest = t.duration();
   EXPECT_NEAR(t.position_extrema(0).max.position, 0.348299, 1e-6);
   in.max_position[0] = 0.347;
+  // Phase synchronisation: the line's profile is that shortest motion, which leaves the travel, so
+  // time synchronisation instead (refused before), and a note saying so.
+  in.synchronization = Synchronization::phase;
+  ASSERT_EQ(Trajectory<1>::calculate(in, t, axis), Result::working);
+  EXPECT_EQ(t.synchronization(), Synchronization::time);
+  EXPECT_EQ(t.note(), kPhaseTravelNote);
+  EXPECT_LE(t.position_extrema(0).max.position, 0.347 + 1e-12);
+  expect_arrives_together(t, in, "phase");
   for (const Synchronization sync : {Synchronization::none, Synchronization::time}) {
     in.synchronization = sync;
     TravelExcess excess;
