@@ -334,13 +334,13 @@ JobScheduler::JobEnd JobScheduler::run_recipe(const recipe::Recipe& recipe,
   std::string words = head;
   if (!result.failure.empty()) words += "; failed step: " + result.failure;
   if (!result.ended_by.empty()) words += "; ended by: " + result.ended_by;
-  for (std::size_t d = 0; d < cell::kDevices; ++d)
-    if (const auto& s = result.safety[d]; s && s->safe == runtime::Safe::unknown) {
+  for (const auto& s : result.safety)  // every device slot of the cell
+    if (s && s->safe == runtime::Safe::unknown) {
       std::lock_guard lock(mutex_);
       blocked_ = fmt::format(
           "no start is taken: the {} safe state is UNKNOWN since the last job ({}); look at the cell, "
           "then start cellctl again",
-          cell::to_string(static_cast<cell::Device>(d)), s->evidence);
+          s->device, s->evidence);
       words += "; WARNING: " + blocked_;
     }
   if (!result.home_record.empty()) words += "; " + result.home_record;

@@ -60,7 +60,9 @@ std::string OperatorPage::metrics_text() {
         std::tuple{"steps_done", "Recipe steps completed.", a.steps_done},
         std::tuple{"steps_failed", "Recipe steps failed.", a.steps_failed},
         std::tuple{"faults", "Safety monitor faults latched.", a.faults},
-        std::tuple{"processed", "Runs completed (PackML Admin.ProdProcessedCount).", a.processed}}) {
+        std::tuple{"processed", "Recipe runs completed (PackML Admin.ProdProcessedCount).", a.processed},
+        std::tuple{"defective", "Recipe runs ended Stopped or Aborted (PackML Admin.ProdDefectiveCount).",
+                   a.defective}}) {
     const auto name = fmt::format("cellctl_{}_total", key);
     add(name, "counter", help);
     out += fmt::format("{} {}\n", name, n);
@@ -68,13 +70,16 @@ std::string OperatorPage::metrics_text() {
   add("cellctl_state", "gauge", "PackML StateCurrent of the cell.");
   out +=
       fmt::format("cellctl_state{{state=\"{}\"}} {}\n", mirror_.state(), mirror_.state_tag().state_current);
-  add("cellctl_web_commands_total", "counter",
-      "Commands received by the page, refused ones, ones without a valid token or session, and ones not "
-      "obeyed because their client had gone.");
-  out += fmt::format(
-      "cellctl_web_commands_total {}\ncellctl_web_commands_refused_total {}\n"
-      "cellctl_web_commands_unauthorised_total {}\ncellctl_web_commands_abandoned_total {}\n",
-      commands_, refused_, commands_unauthorised_.load(), commands_abandoned_.load());
+  for (const auto& [name, help, n] :
+       {std::tuple{"cellctl_web_commands_total", "Commands received by the page.", commands_},
+        std::tuple{"cellctl_web_commands_refused_total", "Commands the page received and refused.", refused_},
+        std::tuple{"cellctl_web_commands_unauthorised_total", "Commands without a valid token or session.",
+                   commands_unauthorised_.load()},
+        std::tuple{"cellctl_web_commands_abandoned_total",
+                   "Commands not obeyed because their client had gone.", commands_abandoned_.load()}}) {
+    add(name, "counter", help);  // each its own HELP and TYPE: a series without them is untyped
+    out += fmt::format("{} {}\n", name, n);
+  }
   const auto g = guard_.counters();
   add("cellctl_web_requests_refused_total", "counter",
       "Requests the page refused before reading their body: wrong Host or Origin (forbidden), no valid "

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -90,6 +92,19 @@ TEST_F(FourthDeviceRun, ItsValveFollowsTheSpindleAndTheSummaryJudgesItBesideTheC
   ASSERT_EQ(status, 200) << body;
   EXPECT_NE(body.find("cellctl_device_exchanges_total{device=\"dio\"} "), std::string::npos) << body;
   EXPECT_NE(body.find("cellctl_device_link_fault{device=\"dio\"} 0"), std::string::npos) << body;
+  // Every series is typed (Prometheus takes one without its TYPE line as untyped), the counts of
+  // recipe runs among them.
+  std::istringstream lines(body);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    auto name = line.substr(0, line.find_first_of("{ "));
+    for (const char* part : {"_bucket", "_sum", "_count"})
+      if (name.ends_with(part) && body.find("# TYPE " + name.substr(0, name.size() - std::strlen(part)) +
+                                            " histogram") != std::string::npos)
+        name.resize(name.size() - std::strlen(part));
+    EXPECT_NE(body.find("# TYPE " + name + " "), std::string::npos) << line;
+  }
+  EXPECT_NE(body.find("cellctl_defective_total 0"), std::string::npos) << body;
 }
 
 TEST_F(FourthDeviceRun, ARehearsedFaultNamesItAndItsLossEndsTheRunAsItsLinkFault) {
