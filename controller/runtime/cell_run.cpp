@@ -241,8 +241,8 @@ void CellRun::report_safety(RunResult& r, schema::RunFigures& figures) const {
     ended.device = std::string(state_.devices[*f.link]);
     ended.symptom = symptom;
     ended.since_s = f.link_since;
-    r.ended_by = fmt::format("{} link fault, no good reply since {:.3f} s: {}", ended.device, f.link_since,
-                             symptom);
+    r.ended_by =
+        fmt::format("{} link fault, no good reply since {:.3f} s: {}", ended.device, f.link_since, symptom);
   } else {
     const bool by_operator =
         f.rule == monitor::Rule::operator_stop || f.rule == monitor::Rule::emergency_stop;

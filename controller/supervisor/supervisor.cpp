@@ -316,9 +316,9 @@ void Supervisor::step(const cell::CellState& s, std::optional<config::StopCatego
         pc_ = 0;
         instruction_started_ = false;
         failure_ = {};
-        events_.post(t, journal::RunStarted{recipe_.name, cell_.name, settings_.mode,
-                                            static_cast<std::uint32_t>(step_count()),
-                                            recipe::job_of(program_)});
+        events_.post(t,
+                     journal::RunStarted{recipe_.name, cell_.name, settings_.mode,
+                                         static_cast<std::uint32_t>(step_count()), recipe::job_of(program_)});
         enter(State::starting, t, why);
         break;
       case Command::hold:

@@ -50,7 +50,8 @@ class RecipeFolder : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
   fs::path dir_;
   // The whole config, as cellctl serve loads it (the SCU's resolution bounds a recipe's tolerances).
-  const config::CellConfig cell_ = config::load_cell_config(fs::path(CELLCTL_SOURCE_DIR) / "config/cell.yaml");
+  const config::CellConfig cell_ =
+      config::load_cell_config(fs::path(CELLCTL_SOURCE_DIR) / "config/cell.yaml");
 };
 
 TEST_F(RecipeFolder, ListsEachRecipeByNameWithStepsAndPlannedTimeOrItsProblem) {
