@@ -22,21 +22,12 @@
 namespace cellctl::testing {
 namespace {
 
-constexpr const char* kRecipe = R"(
-recipe: {name: coolant, version: "1", cell: demo-cell}
-limits:
-  axes:
-    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
-    z: {min_mm: 0, max_mm: 120, max_speed_mm_s: 12, tolerance_mm: 0.1}
-  spindle: {min_hz: 200, max_hz: 600}
-  timeouts: {move_s: 30, spindle_s: 10}
-steps:
-  - name: spindle up
+const std::string kRecipe = demo_recipe("coolant", R"(  - name: spindle up
     spindle: {start_hz: 400, direction: cw}
   - {name: cut, dwell: 1.0}
   - name: spindle down
     spindle: stop
-)";
+)");
 
 class FourthDeviceRun : public RunFixture {
  protected:

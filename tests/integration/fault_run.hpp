@@ -16,20 +16,12 @@ namespace cellctl::testing {
 
 // Spindle to 400 Hz, then x 0 → 120 and z 0 → 60 together at 10 mm/s (about 12 s), back, spindle down.
 // Every cause is injected during the traverse.
-inline constexpr const char* kTraverseRecipe = R"(
-recipe: {name: traverse, version: "1", cell: demo-cell}
-limits:
-  axes:
-    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
-    z: {min_mm: 0, max_mm: 120, max_speed_mm_s: 12, tolerance_mm: 0.1}
-  spindle: {min_hz: 200, max_hz: 600}
-  timeouts: {move_s: 30, spindle_s: 10}
-steps:
-  - {name: spindle up, spindle: {start_hz: 400, direction: cw}}
+inline const std::string kTraverseRecipe =
+    demo_recipe("traverse", R"(  - {name: spindle up, spindle: {start_hz: 400, direction: cw}}
   - {name: traverse, move: {to: {x: 120, z: 60}, speed_mm_s: 10}}
   - {name: back, move: {to: {x: 5, z: 5}, speed_mm_s: 12}}
   - {name: spindle down, spindle: stop}
-)";
+)");
 inline constexpr std::size_t kTraverseStep = 1;  // program index of the traverse
 
 // x alone, 0 → 30 mm at 3 mm/s: below the real threshold of an actuator made to stall at 5 mm/s.

@@ -11,21 +11,13 @@
 namespace cellctl::testing {
 namespace {
 
-constexpr const char* kShortRecipe = R"(
-recipe: {name: short, version: "1", cell: demo-cell}
-limits:
-  axes:
-    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
-    z: {min_mm: 0, max_mm: 120, max_speed_mm_s: 12, tolerance_mm: 0.1}
-  spindle: {min_hz: 200, max_hz: 600}
-  timeouts: {move_s: 30, spindle_s: 10}
-steps:
-  - {name: spindle up, spindle: {start_hz: 400, direction: cw}}
+const std::string kShortRecipe =
+    demo_recipe("short", R"(  - {name: spindle up, spindle: {start_hz: 400, direction: cw}}
   - {name: out, move: {to: {x: 40, z: 20}, speed_mm_s: 12}}
   - {name: pause, dwell: 0.5}
   - {name: back, move: {to: {x: 5, z: 5}, speed_mm_s: 12}}
   - {name: spindle down, spindle: stop}
-)";
+)");
 
 TEST_F(RunFixture, ExecuteCyclesAllocateNothing) {
   load_recipe_text(kShortRecipe);

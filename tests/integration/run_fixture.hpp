@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "config/cell_config.hpp"
@@ -20,6 +21,21 @@ namespace cellctl::testing {
 
 inline std::filesystem::path source_dir() {
   return CELLCTL_SOURCE_DIR;
+}
+
+// A recipe for the demo cell (config/cell.yaml) named `name`, with the demo's limits — x and z within
+// their travel and speed, the spindle 200–600 Hz, 30 s per move, 10 s per spindle step — and `steps`
+// (the YAML list's items, one "  - …" line each).
+inline std::string demo_recipe(std::string_view name, std::string_view steps) {
+  return std::string("recipe: {name: ") + std::string(name) + R"(, version: "1", cell: demo-cell}
+limits:
+  axes:
+    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
+    z: {min_mm: 0, max_mm: 120, max_speed_mm_s: 12, tolerance_mm: 0.1}
+  spindle: {min_hz: 200, max_hz: 600}
+  timeouts: {move_s: 30, spindle_s: 10}
+steps:
+)" + std::string(steps);
 }
 
 class RunFixture : public ::testing::Test {
