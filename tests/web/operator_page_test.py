@@ -35,7 +35,7 @@ from selenium.webdriver.common.keys import Keys
 from selenium.webdriver.support import expected_conditions as EC
 from selenium.webdriver.support.ui import WebDriverWait
 
-from page_session import PageSession
+from page_session import SLOW_RECIPE, PageSession
 
 cellctl, config_given, out = sys.argv[1:4]
 os.makedirs(out, exist_ok=True)
@@ -50,18 +50,7 @@ with open(config, "w") as f:
     f.write(re.sub(r"(?m)^  fault: 1$", "  fault: 2", cell_text))
 recipe = os.path.join(out, "slow.yaml")
 with open(recipe, "w") as f:
-    f.write("""recipe: {name: slow, version: "1", cell: demo-cell}
-limits:
-  axes:
-    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
-  timeouts: {move_s: 60}
-steps:
-  - name: long dwell
-    repeat:
-      times: 10
-      steps:
-        - {name: an hour, dwell: 3600}
-  - name: slow move
+    f.write(SLOW_RECIPE + """  - name: slow move
     move: {to: {x: 40}, speed_mm_s: 2}
 """)
 page = PageSession(out)

@@ -19,6 +19,21 @@ from selenium.webdriver.chrome.service import Service
 
 PR_SET_PDEATHSIG = 1  # <sys/prctl.h>
 
+# A recipe that holds the cell in Execute for ten hours of dwell (on x alone): the job the page's
+# commands act on while it runs.
+SLOW_RECIPE = """recipe: {name: slow, version: "1", cell: demo-cell}
+limits:
+  axes:
+    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
+  timeouts: {move_s: 60}
+steps:
+  - name: long dwell
+    repeat:
+      times: 10
+      steps:
+        - {name: an hour, dwell: 3600}
+"""
+
 
 class PageSession:
     def __init__(self, out):

@@ -35,7 +35,7 @@ from selenium.webdriver.common.by import By
 from selenium.webdriver.support import expected_conditions as EC
 from selenium.webdriver.support.ui import Select, WebDriverWait
 
-from page_session import PageSession
+from page_session import SLOW_RECIPE, PageSession
 
 cellctl, config_given, recipes_given, out = sys.argv[1:5]
 shutil.rmtree(out, ignore_errors=True)
@@ -47,18 +47,7 @@ os.makedirs(recipes)
 for name in ("short.yaml", "bad-recipe.yaml"):
     shutil.copyfile(os.path.join(recipes_given, name), os.path.join(recipes, name))
 with open(os.path.join(recipes, "slow.yaml"), "w") as f:
-    f.write("""recipe: {name: slow, version: "1", cell: demo-cell}
-limits:
-  axes:
-    x: {min_mm: 0, max_mm: 180, max_speed_mm_s: 18, tolerance_mm: 0.1}
-  timeouts: {move_s: 60}
-steps:
-  - name: long dwell
-    repeat:
-      times: 10
-      steps:
-        - {name: an hour, dwell: 3600}
-""")
+    f.write(SLOW_RECIPE)
 token = "serve-page-token-0815"
 with open(os.path.join(out, "token"), "w") as f:
     f.write(token + "\n")
