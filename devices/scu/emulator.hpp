@@ -82,7 +82,17 @@ class Emulator {
   [[nodiscard]] std::uint64_t discarded_partial_requests() const noexcept { return discarded_partials_; }
 
  private:
+  // Its sources, one concept each: emulator.cpp (construction, a poll's order, the actuators as a test
+  // reads them), emulator_telegrams.cpp (requests in, replies out, the reply faults),
+  // emulator_remote_mode.cpp (RO/RC/RA and the watchdog), emulator_motion.cpp (RE/RS, the functions'
+  // targets and speeds, the plant stepped), emulator_data_list.cpp (RG/RT: the readable and writable
+  // data), emulator_faults.cpp (the error word, injected faults, a power cycle).
+
   static std::size_t index(int one_based) noexcept { return static_cast<std::size_t>(one_based - 1); }
+  // User positions structure (0x2001..): for each of 4 users Memory 1..4, Intermediate In/Out, then the
+  // virtual limits. The emulator's defaults are fractions of the stroke, the same for every user: the
+  // remote position's default, the targets of RE Memory/Intermediate, and what RG reads.
+  static constexpr std::array<double, 6> kUserPositionFractions = {0.2, 0.4, 0.6, 0.8, 0.1, 0.9};
   struct Outgoing {
     ReplyBytes bytes;
     link::TimePoint due;
