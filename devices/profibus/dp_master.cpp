@@ -1,3 +1,8 @@
+// profibus::DpMaster: the master's lifecycle and its line — the configuration checked at construction,
+// activate and deactivate, one poll (octets in, the reply matched to the request in flight, the slot
+// time, retries with the same FCB, a slave lost), FCB/FCV per station, TSYN before every request, the
+// state changes and restarts, and Set_Slave_Add. What is sent and judged in start-up and in data
+// exchange is in dp_master_startup.cpp and dp_master_data_exchange.cpp.
 #include "profibus/dp_master.hpp"
 
 #include <algorithm>
@@ -39,26 +44,6 @@ std::string_view to_string(DpState s) noexcept {
   return "?";
 }
 
-std::string_view to_string(StartupFault::Kind k) noexcept {
-  switch (k) {
-    case StartupFault::Kind::none:
-      return "none";
-    case StartupFault::Kind::prm_fault:
-      return "Prm_Fault";
-    case StartupFault::Kind::cfg_fault:
-      return "Cfg_Fault";
-    case StartupFault::Kind::not_supported:
-      return "Not_Supported";
-    case StartupFault::Kind::ident_mismatch:
-      return "ident number mismatch";
-    case StartupFault::Kind::rejected:
-      return "Set_Prm rejected (RS)";
-    case StartupFault::Kind::master_lock:
-      return "Master_Lock";
-  }
-  return "?";
-}
-
 namespace {
 
 constexpr std::string_view kSlaveLost = "slave lost: no good reply within lost_slave_time";
@@ -73,12 +58,6 @@ bool is_reply_from(const FdlFrame& f, std::uint8_t master, std::uint8_t station)
   if (f.kind == FrameKind::short_ack) return true;
   if (f.kind == FrameKind::token || fc::is_request(f.fc)) return false;
   return f.da == master && f.sa == station;
-}
-
-bool is_data_reply(const FdlFrame& f) noexcept {
-  if (f.kind == FrameKind::short_ack) return true;
-  const std::uint8_t code = fc::function(f.fc);
-  return code == fc::kDataLow || code == fc::kDataHigh || code == fc::kOk;
 }
 
 }  // namespace
@@ -135,28 +114,6 @@ void DpMaster::deactivate(link::TimePoint now) {
   in_flight_ = false;
   lifecycle_ = link::Lifecycle::inactive;
   enter(DpState::stopped, now);
-}
-
-link::Duration DpMaster::input_age(link::TimePoint now) const noexcept {
-  const link::TimePoint since = stats_.last_input_at.value_or(activated_at_);
-  return now > since ? now - since : link::Duration{0};
-}
-
-bool DpMaster::set_outputs(std::span<const std::uint8_t> outputs) noexcept {
-  if (outputs.size() != setup_.output_length) return false;
-  (void)outputs_.assign(outputs);  // fits: output_length is at most kMaxIo (checked at construction)
-  return true;
-}
-
-void DpMaster::reject_input() noexcept {
-  ++stats_.bad_inputs;
-  stats_.last_input_at = previous_input_at_;
-}
-
-bool DpMaster::global_control(std::uint8_t commands) noexcept {
-  if (lifecycle_ == link::Lifecycle::inactive || global_control_) return false;
-  global_control_ = GlobalControl{commands, config_.group};
-  return true;
 }
 
 bool DpMaster::set_slave_address(std::uint8_t new_address, bool no_add_chg) noexcept {
@@ -275,73 +232,45 @@ void DpMaster::next_request(link::TimePoint now) {
     return;
   }
   if (global_control_ && state_ == DpState::data_exchange) {
-    std::array<std::uint8_t, kGlobalControlSize> data{};
-    (void)encode(*global_control_, data);  // fills `data`, the service's size
-    global_control_.reset();
-    send(make_sap_frame(kBroadcastAddress, config_.master_address,
-                        static_cast<std::uint8_t>(fc::kRequest | fc::kSdnHigh), sap::kGlobalControl,
-                        sap::kMaster, data),
-         false, Pending::global_control, now);
+    send_global_control(now);
     return;
   }
   if (!has_request(now)) return;
   switch (state_) {
     case DpState::restart_wait:
-      enter(DpState::fdl_status, now);
-      [[fallthrough]];
     case DpState::fdl_status:
-      send(make_frame(setup_.station_address, config_.master_address, next_fc(fc::kFdlStatus)), true,
-           Pending::cyclic, now);
-      return;
     case DpState::diag_initial:
+    case DpState::set_prm:
+    case DpState::chk_cfg:
     case DpState::diag_check:
     case DpState::diag_cyclic:
-      send(sap_request(sap::kSlaveDiag, {}), true, Pending::cyclic, now);
-      return;
-    case DpState::set_prm: {
-      std::array<std::uint8_t, kMaxData> prm{};
-      PrmStandard standard;
-      standard.wd_on = config_.wd_fact_1 > 0 && config_.wd_fact_2 > 0;
-      standard.wd_fact_1 = config_.wd_fact_1;
-      standard.wd_fact_2 = config_.wd_fact_2;
-      standard.min_tsdr_bits = config_.min_tsdr_bits;
-      standard.ident = setup_.ident;
-      standard.group = config_.group;
-      standard.freeze_req = setup_.freeze_req;
-      standard.sync_req = setup_.sync_req;
-      std::size_t n = encode(standard, prm);
-      std::copy_n(setup_.user_prm.view().begin(), setup_.user_prm.size(), prm.begin() + static_cast<long>(n));
-      n += setup_.user_prm.size();
-      send(sap_request(sap::kSetPrm, std::span<const std::uint8_t>(prm.data(), n)), true, Pending::cyclic,
-           now);
-      return;
-    }
-    case DpState::chk_cfg:
-      send(sap_request(sap::kChkCfg, setup_.cfg.view()), true, Pending::cyclic, now);
+      send_startup_request(now);
       return;
     case DpState::data_exchange:
-      send(make_frame(setup_.station_address, config_.master_address, next_fc(fc::kSrdHigh), outputs_.view()),
-           true, Pending::cyclic, now);
-      // A fixed grid, skipping ahead after an overrun rather than bursting to catch up.
-      next_cycle_at_ = std::max(next_cycle_at_ + config_.data_exchange_period, now);
+      send_data_exchange(now);
       return;
-    case DpState::clearing: {
-      const GlobalControl clear{static_cast<std::uint8_t>(GlobalCommand::clear_data), 0};
-      std::array<std::uint8_t, kGlobalControlSize> data{};
-      (void)encode(clear, data);  // fills `data`, the service's size
-      send(make_sap_frame(setup_.station_address, config_.master_address,
-                          static_cast<std::uint8_t>(fc::kRequest | fc::kSdnHigh), sap::kGlobalControl,
-                          sap::kMaster, data),
-           false, Pending::global_control, now);
-      lifecycle_ = link::Lifecycle::inactive;
-      enter(DpState::stopped, now);
+    case DpState::clearing:
+      send_clear_data(now);
       return;
-    }
     case DpState::stopped:
     case DpState::wait_address:
     case DpState::refused:
       return;
   }
+}
+
+// deactivate() from data exchange: Clear_Data to the slave (its outputs to their safe values), then
+// stopped; not waited for, a broadcast-style service gets no reply.
+void DpMaster::send_clear_data(link::TimePoint now) {
+  const GlobalControl clear{static_cast<std::uint8_t>(GlobalCommand::clear_data), 0};
+  std::array<std::uint8_t, kGlobalControlSize> data{};
+  (void)encode(clear, data);  // fills `data`, the service's size
+  send(make_sap_frame(setup_.station_address, config_.master_address,
+                      static_cast<std::uint8_t>(fc::kRequest | fc::kSdnHigh), sap::kGlobalControl,
+                      sap::kMaster, data),
+       false, Pending::global_control, now);
+  lifecycle_ = link::Lifecycle::inactive;
+  enter(DpState::stopped, now);
 }
 
 void DpMaster::on_reply(const FdlFrame& reply, link::TimePoint now) {
@@ -365,113 +294,11 @@ void DpMaster::on_reply(const FdlFrame& reply, link::TimePoint now) {
     enter(DpState::fdl_status, now);
     return;
   }
-  on_cyclic_reply(reply, now);
-}
-
-void DpMaster::on_cyclic_reply(const FdlFrame& reply, link::TimePoint now) {
-  const bool ack = reply.kind == FrameKind::short_ack;
-  switch (state_) {
-    case DpState::fdl_status:
-      enter(DpState::diag_initial, now);
-      return;
-    case DpState::diag_initial:
-    case DpState::diag_check:
-    case DpState::diag_cyclic:
-      on_diag(reply, now);
-      return;
-    case DpState::set_prm:
-      if (!ack) {
-        ++health_.error_replies;
-        refuse(StartupFault::Kind::rejected);
-        return;
-      }
-      enter(DpState::chk_cfg, now);
-      return;
-    case DpState::chk_cfg:
-      // A refused Chk_Cfg (RS after a Prm_Fault) is explained by the diagnosis read next.
-      if (!ack) ++health_.error_replies;
-      enter(DpState::diag_check, now);
-      return;
-    case DpState::data_exchange:
-      on_data(reply, now);
-      return;
-    default:
-      return;
-  }
-}
-
-void DpMaster::on_diag(const FdlFrame& reply, link::TimePoint now) {
-  if (!reply.dsap) {
-    ++health_.error_replies;
-    restart(now, "slave answered Slave_Diag without diagnosis data (refused the service)");
+  if (state_ == DpState::data_exchange) {
+    on_data(reply, now);
     return;
   }
-  const auto diag = decode_diagnosis(reply.data.view());
-  if (!diag) {
-    restart_with_bad_reply(now, "Slave_Diag", reply.data.size(), kStandardDiagSize, kMaxData);
-    return;
-  }
-  diagnosis_ = *diag;
-  ++stats_.diag_reads;
-  StandardDiag& d = diagnosis_.standard;
-  // Master_Lock is the master's bit: the slave names another master as the one that holds it.
-  const bool ours = d.master_address == config_.master_address;
-  d.master_lock = d.master_address != kNoMaster && !ours;
-  if (d.ident != setup_.ident) return refuse(StartupFault::Kind::ident_mismatch);
-  if (d.master_lock) return refuse(StartupFault::Kind::master_lock);
-  if (state_ == DpState::diag_initial) return enter(DpState::set_prm, now);
-  if (state_ == DpState::diag_check) {
-    // Not_Supported comes with Prm_Fault: the more specific reason first.
-    if (d.not_supported) return refuse(StartupFault::Kind::not_supported);
-    if (d.prm_fault) return refuse(StartupFault::Kind::prm_fault);
-    if (d.cfg_fault) return refuse(StartupFault::Kind::cfg_fault);
-  }
-  if (d.ready_for_data_exchange() && ours) {
-    if (state_ == DpState::diag_check) {
-      lifecycle_ = link::Lifecycle::active;
-      stats_.last_input_at.reset();
-      health_.last_good = now;
-    }
-    state_ = DpState::data_exchange;
-    state_since_ = now;
-    return;
-  }
-  if (state_ == DpState::diag_cyclic || d.prm_req) {
-    restart(now, "slave left data exchange (diagnosis shows it not ready)");
-    return;
-  }
-  // Still not ready (e.g. Stat_Diag): ask again one period later, for at most lost_slave_time.
-  if (now - state_since_ > config_.lost_slave_time) {
-    restart(now, "slave not ready within lost_slave_time");
-    return;
-  }
-  next_cycle_at_ = now + std::max(config_.data_exchange_period, tsyn_);
-}
-
-void DpMaster::on_data(const FdlFrame& reply, link::TimePoint now) {
-  if (!is_data_reply(reply)) {
-    ++health_.error_replies;
-    restart(now, "slave refused Data_Exchange (not in data exchange)");
-    return;
-  }
-  if (reply.data.size() != setup_.input_length) {
-    // Not our inputs: a slave that answers with another shape is not in the exchange we configured.
-    ++stats_.bad_inputs;
-    restart_with_bad_reply(now, "Data_Exchange", reply.data.size(), setup_.input_length, setup_.input_length);
-    return;
-  }
-  (void)inputs_.assign(reply.data.view());  // input_length octets, checked above
-  ++stats_.data_exchanges;
-  previous_input_at_ = stats_.last_input_at;
-  if (stats_.last_input_at) {
-    stats_.last_cycle = now - *stats_.last_input_at;
-    stats_.max_cycle = std::max(stats_.max_cycle, stats_.last_cycle);
-  }
-  stats_.last_input_at = now;
-  if (reply.kind != FrameKind::short_ack && fc::function(reply.fc) == fc::kDataHigh) {
-    // DH: the slave has a diagnosis for us; read it before the next exchange.
-    state_ = DpState::diag_cyclic;
-  }
+  on_startup_reply(reply, now);
 }
 
 void DpMaster::on_no_reply(link::TimePoint now) {
@@ -525,55 +352,6 @@ void DpMaster::restart_with_bad_reply(link::TimePoint now, std::string_view serv
                            "{} reply of {} octets, {} to {} expected: not taken, start-up begun again",
                            service, octets, fewest, most);
   enter(DpState::restart_wait, now);
-}
-
-void DpMaster::refuse(StartupFault::Kind kind) {
-  startup_fault_.kind = kind;
-  startup_fault_.diagnosis = diagnosis_;
-  lifecycle_ = link::Lifecycle::fault;
-  state_ = DpState::refused;
-  const StandardDiag& d = diagnosis_.standard;
-  const DiagText diag = describe(d);
-  switch (kind) {
-    case StartupFault::Kind::prm_fault:
-      link::assign_formatted(
-          fault_reason_, "slave refused the parameters (Set_Prm): Prm_Fault; its diagnosis: {}", diag.view());
-      return;
-    case StartupFault::Kind::cfg_fault:
-      link::assign_formatted(fault_reason_,
-                             "slave refused the configuration (Chk_Cfg): Cfg_Fault; its diagnosis: {}",
-                             diag.view());
-      return;
-    case StartupFault::Kind::not_supported:
-      link::assign_formatted(
-          fault_reason_,
-          "slave refused the parameters: a requested function (Freeze/Sync) is Not_Supported; "
-          "its diagnosis: {}",
-          diag.view());
-      return;
-    case StartupFault::Kind::rejected:
-      link::assign_formatted(
-          fault_reason_,
-          "slave rejected Set_Prm (RS: service not activated for master {}); its diagnosis: {}",
-          config_.master_address, diag.view());
-      return;
-    case StartupFault::Kind::ident_mismatch:
-      link::assign_formatted(fault_reason_,
-                             "our master refused the slave: ident number 0x{:04X}, configured 0x{:04X}; its "
-                             "diagnosis: {}",
-                             d.ident, setup_.ident, diag.view());
-      return;
-    case StartupFault::Kind::master_lock:
-      link::assign_formatted(
-          fault_reason_,
-          "our master refused to take the slave: it is locked by master {} (we are {}); its "
-          "diagnosis: {}",
-          d.master_address, config_.master_address, diag.view());
-      return;
-    case StartupFault::Kind::none:
-      break;
-  }
-  fault_reason_.clear();
 }
 
 }  // namespace cellctl::profibus

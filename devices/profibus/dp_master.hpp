@@ -174,13 +174,21 @@ class DpMaster {
   [[nodiscard]] RequestStatus address_change_status() const noexcept { return address_change_; }
 
  private:
+  // Its sources, as SOEM keeps configuration apart from the cyclic work: dp_master.cpp (the lifecycle,
+  // the line: one poll, replies, time-outs and retries, FCB, state changes, Set_Slave_Add),
+  // dp_master_startup.cpp (FDL_Status, Set_Prm, Chk_Cfg, the diagnosis and who refused),
+  // dp_master_data_exchange.cpp (outputs, inputs and their age, DH, Global_Control).
   enum class Pending : std::uint8_t { none, cyclic, global_control, set_address };
 
   void send(const FdlFrame& frame, bool expect_reply, Pending pending, link::TimePoint now);
   void transmit(link::TimePoint now);
   void next_request(link::TimePoint now);
+  void send_startup_request(link::TimePoint now);
+  void send_data_exchange(link::TimePoint now);
+  void send_global_control(link::TimePoint now);
+  void send_clear_data(link::TimePoint now);
   void on_reply(const FdlFrame& reply, link::TimePoint now);
-  void on_cyclic_reply(const FdlFrame& reply, link::TimePoint now);
+  void on_startup_reply(const FdlFrame& reply, link::TimePoint now);
   void on_no_reply(link::TimePoint now);
   void on_diag(const FdlFrame& reply, link::TimePoint now);
   void on_data(const FdlFrame& reply, link::TimePoint now);
