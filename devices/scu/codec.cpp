@@ -75,7 +75,7 @@ const char* to_string(DecodeError e) noexcept {
 bool crc_ok(std::span<const std::uint8_t> frame) noexcept {
   if (frame.size() < kCrcSize) return false;
   const auto body = frame.first(frame.size() - kCrcSize);
-  const auto got = static_cast<std::uint16_t>(frame[frame.size() - 2] | (frame[frame.size() - 1] << 8));
+  const auto got = wire::ByteReader(frame.last(kCrcSize)).le<std::uint16_t>();
   return crc16(body) == got;
 }
 
@@ -163,7 +163,7 @@ FrameLength request_frame_length(std::span<const std::uint8_t> prefix) noexcept 
     case Command::transfer:
     case Command::cyclic: {
       if (prefix.size() < 4) return {};
-      const std::size_t ctp = static_cast<std::size_t>(prefix[2] | (prefix[3] << 8));
+      const std::size_t ctp = wire::ByteReader(prefix.subspan(2, 2)).le<std::uint16_t>();
       if (ctp > kMaxRequestData) return {0, DecodeError::bad_length};
       return {4 + ctp + kCrcSize};
     }
@@ -182,7 +182,7 @@ FrameLength reply_frame_length(std::span<const std::uint8_t> prefix, ReplyShape 
   if (!status) return {0, DecodeError::bad_status};
   if (*status != Status::ack || !expected.has_data) return {5};
   if (prefix.size() < 5) return {};
-  const std::size_t ctp = static_cast<std::size_t>(prefix[3] | (prefix[4] << 8));
+  const std::size_t ctp = wire::ByteReader(prefix.subspan(3, 2)).le<std::uint16_t>();
   if (ctp > kMaxReplyData) return {0, DecodeError::bad_length};
   return {5 + ctp + kCrcSize};
 }
