@@ -18,7 +18,7 @@
 #include "jobs/home_job.hpp"
 #include "jobs/run_record_info.hpp"
 #include "recipe/recipe_loader.hpp"
-#include "routines/home_record_file.hpp"
+#include "runtime/home_record_file.hpp"
 
 namespace cellctl::cli {
 namespace {
@@ -74,7 +74,7 @@ int home(const GlobalOptions& global, const HomeArgs& args) {
                     : args.run.emulate    ? std::string_view("emulated")
                                           : std::string_view{};
   fmt::print("cellctl home: cell '{}', home record {}{}\n", cell.name,
-             routines::home_record_path(state_dir, mode).string(),
+             runtime::home_record_path(state_dir, mode).string(),
              mode.empty() ? "" : " (a dry run's own: the cell's home.json is left alone)");
   for (auto i : axes)
     fmt::print("  {} (sequence {}): {}\n", cell.axes[i].name, cell.axes[i].homing.sequence,

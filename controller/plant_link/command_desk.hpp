@@ -4,9 +4,10 @@
 // outcome: accepted, or refused and why (the arbiter's, the supervisor's and the monitor's own
 // reasons, read from the run's events, as the terminal's narrator reads them). A command the current
 // state does not allow is refused at once, never queued.
-// A payload is empty or a JSON object of at most 64 KiB and 32 levels, checked before it is parsed
-// (command/bounded_json.hpp); its optional fields: "id" (echoed), "issued_at" (UTC, RFC 3339: the
-// command is judged by its age from then), "by" (who, recorded with the source).
+// A payload is empty or a JSON object of at most 64 KiB and 32 levels, read at the edge into typed
+// fields (schema/command_payload.hpp); its optional fields: "id" (echoed), "issued_at" (UTC, RFC
+// 3339: the command is judged by its age from then), "by" (who, recorded with the source). Answers are
+// typed (schema/command_answer.hpp) and made JSON by whoever sends them.
 // Starts: `start` names a recipe in the recipe folder, validated first (every problem
 // file:line:column, as `cellctl check` and exit 3 give them) — but only once the arbiter has said a
 // start would be taken now, so a flood of starts costs a comparison each; `home` ({"axes":[…]}, or
@@ -21,7 +22,6 @@
 #include <filesystem>
 #include <functional>
 #include <mutex>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -32,11 +32,14 @@
 #include "config/cell_core.hpp"
 #include "plant_link/run_access.hpp"
 #include "plant_link/run_event.hpp"
+#include "schema/command_answer.hpp"
 #include "supervisor/packml.hpp"
 
 namespace cellctl::plant_link {
 
 using command::SteadyTime;
+using schema::AnswerId;
+using schema::CommandAnswer;
 
 // A command as it arrived: its word, its payload as received (unparsed), who sent it and when.
 struct Incoming {
@@ -55,11 +58,11 @@ class CommandDesk {
 
   // Returns the answer when it is known at once (a refusal, a start), nullopt when the run will
   // answer (on_event). `state`: the cell's state as the caller shows it, for the answer's words.
-  [[nodiscard]] std::optional<nlohmann::json> submit(const Incoming& in, std::string_view state);
+  [[nodiscard]] std::optional<CommandAnswer> submit(const Incoming& in, std::string_view state);
   // The answers this run event completes.
-  [[nodiscard]] std::vector<nlohmann::json> on_event(const RunEvent& e);
+  [[nodiscard]] std::vector<CommandAnswer> on_event(const RunEvent& e);
   // Answers for commands the run has not answered within the time-out.
-  [[nodiscard]] std::vector<nlohmann::json> expire(SteadyTime now);
+  [[nodiscard]] std::vector<CommandAnswer> expire(SteadyTime now);
   [[nodiscard]] bool waiting() {
     const std::lock_guard lock(mutex_);
     return !pending_.empty();
@@ -68,18 +71,18 @@ class CommandDesk {
  private:
   struct Pending {
     supervisor::Command command;
-    nlohmann::json id;
+    AnswerId id;
     std::string source;
     SteadyTime deadline;
   };
   // The start of a recipe, homing or a Teach-In: the arbiter asked first, its shape checked, then
   // started (or refused).
-  [[nodiscard]] nlohmann::json start(std::string_view word, const nlohmann::json& id,
-                                     const nlohmann::json& body, const command::Order& order,
-                                     std::string_view state) const;
+  [[nodiscard]] CommandAnswer start(std::string_view word, const AnswerId& id,
+                                    const schema::CommandPayload& body, const command::Order& order,
+                                    std::string_view state) const;
   // A recipe's StartRequest, or the answer that refuses it (not a name, not valid for the cell).
-  [[nodiscard]] std::variant<StartRequest, nlohmann::json> recipe_start(const nlohmann::json& id,
-                                                                        const nlohmann::json& body) const;
+  [[nodiscard]] std::variant<StartRequest, CommandAnswer> recipe_start(
+      const AnswerId& id, const schema::CommandPayload& body) const;
 
   const config::CellCore& cell_;
   std::filesystem::path recipes_;
@@ -89,8 +92,7 @@ class CommandDesk {
   std::deque<Pending> pending_;
 };
 
-// An answer: {"command", "id" (when given), "ok", "outcome" or "reason", more fields as given}.
-[[nodiscard]] nlohmann::json answer(std::string_view command, const nlohmann::json& id, bool ok,
-                                    std::string text);
+// An answer to `command`: taken (ok, its outcome) or refused (its reason); the rest as the caller adds.
+[[nodiscard]] CommandAnswer answer(std::string_view command, AnswerId id, bool ok, std::string text);
 
 }  // namespace cellctl::plant_link

@@ -92,9 +92,9 @@ void PlantLink::run_thread() {
     publish_tag("mode", schema::mode_payload(mirror.mode_tag()));
     publish_tag("admin", schema::admin_payload(mirror.admin_tag()));
   };
-  const auto respond = [&](const nlohmann::json& a) {
-    if (!a.value("ok", false)) refused_commands_.fetch_add(1);
-    publish("response", a.dump(), 1, false, kAnswerExpiry);
+  const auto respond = [&](const schema::CommandAnswer& a) {
+    if (!a.ok) refused_commands_.fetch_add(1);
+    publish("response", schema::answer_payload(a), 1, false, kAnswerExpiry);
   };
   const auto lost = [&](Clock::time_point now) {
     socket = false;
@@ -145,14 +145,13 @@ void PlantLink::run_thread() {
           "published with the retain flag (delete it: an empty retained message)",
           command::capped(word, 24), source.words());
       run_.arbiter->ignore(why);
-      auto a = answer(command::capped(word, 24), nullptr, false, why);
-      a["source"] = source.words();
+      auto a = answer(command::capped(word, 24), {}, false, why);
+      a.source = source.words();
       respond(a);
       return;
     }
     if (auto a = desk.submit({word, m.payload, source, Clock::now(), std::nullopt}, mirror.state())) {
-      if (!a->contains("source"))
-        (*a)["source"] = source.words();  // a payload refused before its "by" was read
+      if (a->source.empty()) a->source = source.words();  // a payload refused before its "by" was read
       respond(*a);
     }
   };

@@ -9,7 +9,7 @@
 #include "journal/record_header.hpp"
 #include "loop/control_stages.hpp"
 #include "loop/realtime_setup.hpp"
-#include "routines/home_record_file.hpp"
+#include "runtime/home_record_file.hpp"
 
 namespace cellctl::runtime {
 namespace {
@@ -65,11 +65,11 @@ CellRun::CellRun(const config::CellConfig& cell, const recipe::Recipe& recipe, R
       clock_(run_clock(options_.mode, real_clock_, virtual_clock_)),
       journal_(options_.journal_dir, when_writer_full(options_.mode), options_.record_header),
       monitor_(cell) {
-  home_record_file_ = routines::home_record_path(
+  home_record_file_ = runtime::home_record_path(
       options_.state_dir.empty() ? cell.state_dir : options_.state_dir,
       options_.mode == RunMode::hardware ? std::string_view{} : std::string_view{to_string(options_.mode)});
   home_record_ =
-      routines::load_home_record(home_record_file_, cell, config_sha256(cell), &home_record_problem_);
+      runtime::load_home_record(home_record_file_, cell, config_sha256(cell), &home_record_problem_);
   options_.supervisor.home_record = &home_record_;
   try {
     parts_ = open_cell_parts(cell, options_.mode, clock_, virtual_clock_, options_.trace, options_.faults,
@@ -386,7 +386,7 @@ void CellRun::save_home_record(double t, std::int64_t unix_start, RunResult& r) 
   for (auto& a : home_record_.axes)
     if (a.homed && a.unix_time == 0) a.unix_time = unix_start + static_cast<std::int64_t>(a.run_t);
   try {
-    routines::save_home_record(home_record_file_, home_record_, cell_);
+    runtime::save_home_record(home_record_file_, home_record_, cell_);
     r.home_record = "home record written: " + home_record_file_.string();
   } catch (const std::exception& e) {
     r.home_record = std::string("home record NOT written: ") + e.what();

@@ -1,7 +1,7 @@
 #pragma once
 // What a dry run (--virtual-time, --emulate, `cellctl emulate`) may write: only its own state beside
 // the cell's, in the state folder — never the cell's config or records. Beside the home records
-// (home.virtual-time.json, home.emulated.json, routines/home_record_file.hpp) it keeps:
+// (home.virtual-time.json, home.emulated.json, runtime/home_record_file.hpp) it keeps:
 //   <state_dir>/plant.dry-run.json     the emulated plant between dry runs (runtime/plant_state.hpp):
 //                                      one emulated cell, shared by every dry run of this state folder;
 //   <state_dir>/encoder.dry-run.eeprom the emulated encoder's EEPROM, when the config names no

@@ -4,11 +4,12 @@
 
 #include <algorithm>
 #include <fstream>
-#include <nlohmann/json.hpp>
+#include <iterator>
 #include <stdexcept>
 
 #include "config/config_edit.hpp"
 #include "runtime/emulated_cell.hpp"
+#include "schema/state_files.hpp"
 
 namespace cellctl::runtime {
 
@@ -16,40 +17,36 @@ PlantState load_plant_state(const std::filesystem::path& path) {
   PlantState state;
   std::ifstream in(path);
   if (!in) return state;
-  try {
-    const auto j = nlohmann::json::parse(in);
-    for (const auto& a : j.at("scu_actuators")) {
-      const int index = a.at("actuator").get<int>();
-      if (index < 1 || index > scu::kActuatorCount) throw std::out_of_range("actuator out of range");
-      state.actuators[static_cast<std::size_t>(index - 1)] =
-          PlantState::Actuator{a.at("position_mm").get<double>(), a.at("initialised").get<bool>()};
-    }
-    if (const auto s = j.find("spindle"); s != j.end()) {
-      state.spindle_converter_hours = s->at("converter_hours").get<double>();
-      state.spindle_motor_hours = s->at("motor_hours").get<double>();
-    }
-  } catch (const std::exception& e) {
-    throw std::runtime_error(fmt::format(
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const auto not_the_state = [&](std::string_view what) {
+    return std::runtime_error(fmt::format(
         "{}: not the emulated plant's state ({}); delete it to start the emulators as after power-up",
-        path.string(), e.what()));
+        path.string(), what));
+  };
+  auto read = schema::read_plant_state_json(text);
+  if (const auto* why = std::get_if<std::string>(&read)) throw not_the_state(*why);
+  const auto& kept = std::get<schema::PlantStateFile>(read);
+  for (const auto& a : kept.scu_actuators) {
+    if (a.actuator < 1 || a.actuator > scu::kActuatorCount) throw not_the_state("actuator out of range");
+    state.actuators[static_cast<std::size_t>(a.actuator - 1)] = PlantState::Actuator{a.position_mm, a.initialised};
+  }
+  if (kept.spindle) {
+    state.spindle_converter_hours = kept.spindle->converter_hours;
+    state.spindle_motor_hours = kept.spindle->motor_hours;
   }
   return state;
 }
 
 bool save_plant_state(const std::filesystem::path& path, const PlantState& state) noexcept {
   try {
-    nlohmann::json j;
-    j["what"] = "the emulated plant between dry runs (cellctl); delete to start as after power-up";
-    j["scu_actuators"] = nlohmann::json::array();
+    schema::PlantStateFile kept;
     for (std::size_t i = 0; i < state.actuators.size(); ++i)
       if (const auto& a = state.actuators[i])
-        j["scu_actuators"].push_back(
-            {{"actuator", i + 1}, {"position_mm", a->position_mm}, {"initialised", a->initialised}});
+        kept.scu_actuators.push_back({static_cast<int>(i + 1), a->position_mm, a->initialised});
     if (state.spindle_converter_hours && state.spindle_motor_hours)
-      j["spindle"] = {{"converter_hours", *state.spindle_converter_hours},
-                      {"motor_hours", *state.spindle_motor_hours}};
+      kept.spindle = schema::PlantStateFile::Spindle{*state.spindle_converter_hours, *state.spindle_motor_hours};
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-    config::replace_file(path, j.dump(2) + "\n");
+    config::replace_file(path, schema::plant_state_json(kept));
     return true;
   } catch (...) {
     return false;

@@ -30,12 +30,11 @@ constexpr std::array<std::pair<std::string_view, int>, 14> kPhrases{{
 
 }  // namespace
 
-int answer_status(const nlohmann::json& answer) {
-  if (answer.value("ok", false)) return 200;
-  if (answer.contains("exit")) return 422;  // a recipe not valid for the cell
-  const auto reason = answer.value("reason", std::string());
+int answer_status(const schema::CommandAnswer& answer) {
+  if (answer.ok) return 200;
+  if (answer.exit) return 422;  // a recipe not valid for the cell
   for (const auto& [phrase, status] : kPhrases)
-    if (reason.find(phrase) != std::string::npos) return status;
+    if (answer.text.find(phrase) != std::string::npos) return status;
   return 422;
 }
 

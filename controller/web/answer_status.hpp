@@ -1,5 +1,5 @@
 #pragma once
-// The HTTP status of a command's answer (plant_link::answer's JSON; its body says the same in words,
+// The HTTP status of a command's answer (schema/command_answer.hpp; its body says the same in words,
 // and the page shows the words whatever the status):
 //   200 taken (or done);
 //   409 Conflict: refused by the cell's state — PackML's interlocks, a job in progress or ending,
@@ -14,10 +14,10 @@
 // The arbiter says why in words only (command::Taken), so the kind is read from them, here alone;
 // tests/web/answer_status_test.cpp holds the words of each source against it.
 
-#include <nlohmann/json.hpp>
+#include "schema/command_answer.hpp"
 
 namespace cellctl::web {
 
-[[nodiscard]] int answer_status(const nlohmann::json& answer);
+[[nodiscard]] int answer_status(const schema::CommandAnswer& answer);
 
 }  // namespace cellctl::web

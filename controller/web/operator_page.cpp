@@ -205,9 +205,9 @@ void OperatorPage::route() {
     if (!caller) return refuse(res, {401, "the session has ended: log in again"});
     const command::CommandSource source{command::CommandSource::Origin::web,
                                         fmt::format("{}:{}", req.remote_addr, req.remote_port), caller->who};
-    const auto reply = [&res](const nlohmann::json& a) {
+    const auto reply = [&res](const schema::CommandAnswer& a) {
       res.status = answer_status(a);
-      res.set_content(a.dump(), "application/json");
+      res.set_content(schema::answer_payload(a), "application/json");
     };
     if (brings_to_rest(word)) return reply(command(word, body, source, received));
     // Asked before the command desk and again at the hand-over (hand_over.hpp).
@@ -219,7 +219,7 @@ void OperatorPage::route() {
     };
     if (client.gone()) {
       abandon();
-      return reply(plant_link::answer(word, nullptr, false, std::string(kClientGone)));
+      return reply(plant_link::answer(word, {}, false, std::string(kClientGone)));
     }
     const ClientAtHandOver at_hand_over([&client] { return client.gone(); });
     const auto answer = command(word, body, source, received);
@@ -275,8 +275,8 @@ void OperatorPage::pump() {
   }
 }
 
-nlohmann::json OperatorPage::command(const std::string& word, const std::string& body,
-                                     const command::CommandSource& source, command::SteadyTime received) {
+schema::CommandAnswer OperatorPage::command(const std::string& word, const std::string& body,
+                                            const command::CommandSource& source, command::SteadyTime received) {
   // The desk bounds the body before it parses it; the page's own id is the one its answer is found by.
   std::uint64_t id = 0;
   std::string state;
@@ -290,10 +290,10 @@ nlohmann::json OperatorPage::command(const std::string& word, const std::string&
   std::unique_lock lock(mutex_);
   if (!immediate) {
     // The desk times out unanswered commands itself; the wait's own bound is a little longer.
-    const nlohmann::json mine = id;
+    const schema::AnswerId mine = id;
     const auto found = [&] {
       return std::find_if(answers_.begin(), answers_.end(),
-                          [&](const nlohmann::json& a) { return a.contains("id") && a.at("id") == mine; });
+                          [&](const schema::CommandAnswer& a) { return a.id == mine; });
     };
     answered_.wait_for(lock, 3s, [&] { return found() != answers_.end(); });
     if (const auto it = found(); it != answers_.end()) {
@@ -303,7 +303,7 @@ nlohmann::json OperatorPage::command(const std::string& word, const std::string&
       immediate = plant_link::answer(word, id, false, "no answer from the run");
     }
   }
-  if (!immediate->value("ok", false)) ++refused_;
+  if (!immediate->ok) ++refused_;
   return *immediate;
 }
 

@@ -23,7 +23,7 @@
 #include <variant>
 #include <vector>
 
-#include "command/bounded_json.hpp"
+#include "schema/command_payload.hpp"
 #include "web/failure_backoff.hpp"
 #include "web/page_options.hpp"
 #include "web/session_store.hpp"
@@ -35,7 +35,7 @@ struct Request;
 namespace cellctl::web {
 
 // A command's body, and every other: the JSON limit of the command path.
-inline constexpr std::size_t kMaxBody = command::JsonLimits{}.max_bytes;
+inline constexpr std::size_t kMaxBody = schema::kMaxCommandBytes;
 
 // A refusal (status 0: none; go on).
 struct Verdict {

@@ -10,7 +10,7 @@
 
 #include "encoder/eeprom_file.hpp"
 #include "journal/record_header.hpp"
-#include "routines/home_record_file.hpp"
+#include "runtime/home_record_file.hpp"
 #include "run_fixture.hpp"
 
 namespace cellctl::testing {
@@ -35,7 +35,7 @@ class HomingTest : public RunFixture {
     return go();
   }
   routines::HomeRecord record() const {
-    return routines::load_home_record(routines::home_record_path(dir_ / "state", "virtual-time"), cell_,
+    return runtime::load_home_record(runtime::home_record_path(dir_ / "state", "virtual-time"), cell_,
                                       journal::file_sha256(cell_.source));
   }
   // A new process with new emulators: the SCU's actuators as the emulator config says (after a

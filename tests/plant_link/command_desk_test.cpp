@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "config/cell_config.hpp"
 
 namespace cellctl::plant_link {
@@ -38,7 +40,8 @@ class CommandDeskTest : public ::testing::Test {
     auto a = desk_.submit({word, payload, order().source, std::chrono::steady_clock::now(), std::nullopt},
                           "Execute");
     EXPECT_TRUE(a.has_value());
-    return a.value_or(nlohmann::json());
+    // As the plant reads it on its response topic.
+    return a ? nlohmann::json::parse(schema::answer_payload(*a)) : nlohmann::json();
   }
 };
 
@@ -126,13 +129,13 @@ TEST_F(CommandDeskTest, AStandingControllerIsHandedTheCheckedStart) {
         .submit({word, payload, order().source, std::chrono::steady_clock::now(), std::nullopt}, "Idle")
         .value();
   };
-  EXPECT_EQ(submit_to("start", R"({"recipe":"short"})")["ok"], true);
-  EXPECT_EQ(submit_to("start", R"({"recipe":"short"})")["ok"], false);  // the job is starting
+  EXPECT_EQ(submit_to("start", R"({"recipe":"short"})").ok, true);
+  EXPECT_EQ(submit_to("start", R"({"recipe":"short"})").ok, false);  // the job is starting
   standby.job_ended(command::State::complete);
-  EXPECT_EQ(submit_to("start", R"({"recipe":"short"})")["ok"], false);  // Complete: reset first
-  EXPECT_EQ(submit_to("reset", "")["ok"], true);
-  EXPECT_EQ(submit_to("start", R"({"recipe":"bad-recipe"})")["exit"], 3);
-  EXPECT_EQ(submit_to("teach-in", R"({"axis":"x","distance_mm":50,"from_mm":5})")["ok"], true);
+  EXPECT_EQ(submit_to("start", R"({"recipe":"short"})").ok, false);  // Complete: reset first
+  EXPECT_EQ(submit_to("reset", "").ok, true);
+  EXPECT_EQ(submit_to("start", R"({"recipe":"bad-recipe"})").exit, 3);
+  EXPECT_EQ(submit_to("teach-in", R"({"axis":"x","distance_mm":50,"from_mm":5})").ok, true);
   ASSERT_EQ(started.size(), 2u) << "an invalid recipe reached the controller";
   // Each job is started by whoever sent the start: its run's start says so.
   EXPECT_EQ(started_by, (std::vector<std::string>{order().source.words(), order().source.words()}));

@@ -16,8 +16,8 @@ namespace {
 using namespace std::chrono_literals;
 using command::Taken;
 
-nlohmann::json refused(const std::string& reason) {
-  return plant_link::answer("start", nullptr, false, reason);
+schema::CommandAnswer refused(const std::string& reason) {
+  return plant_link::answer("start", {}, false, reason);
 }
 
 command::Order fresh() {
@@ -26,7 +26,7 @@ command::Order fresh() {
 }
 
 TEST(AnswerStatus, TakenIs200) {
-  EXPECT_EQ(answer_status(plant_link::answer("stop", nullptr, true, "accepted at t = 1.000 s")), 200);
+  EXPECT_EQ(answer_status(plant_link::answer("stop", {}, true, "accepted at t = 1.000 s")), 200);
 }
 
 TEST(AnswerStatus, TheArbitersRefusalsByTheStateAre409) {
@@ -58,7 +58,7 @@ TEST(AnswerStatus, PayloadAndShapeProblems) {
   EXPECT_EQ(answer_status(refused("'jump' is not a command: hold, unhold, stop, abort, reset, clear")), 404);
   auto invalid =
       refused("recipe 'demo' is not valid for cell 'demo-cell': 2 problems (exit 3); nothing moved");
-  invalid["exit"] = 3;
+  invalid.exit = 3;
   EXPECT_EQ(answer_status(invalid), 422);
   EXPECT_EQ(answer_status(refused("teach-in needs the distance: {\"axis\":\"x\",\"distance_mm\":100}")), 422);
   EXPECT_EQ(answer_status(refused("the run gave no answer within 2000 ms: the outcome is unknown")), 504);

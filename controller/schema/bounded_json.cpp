@@ -1,8 +1,8 @@
-#include "command/bounded_json.hpp"
+#include "schema/bounded_json.hpp"
 
 #include <fmt/format.h>
 
-namespace cellctl::command {
+namespace cellctl::schema {
 namespace {
 
 // Counts the nesting and stops the parse at the first level beyond the limit; keeps nothing.
@@ -61,4 +61,4 @@ std::variant<nlohmann::json, std::string> parse_bounded_object(std::string_view 
   return j;
 }
 
-}  // namespace cellctl::command
+}  // namespace cellctl::schema

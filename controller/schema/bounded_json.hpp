@@ -10,7 +10,7 @@
 #include <string_view>
 #include <variant>
 
-namespace cellctl::command {
+namespace cellctl::schema {
 
 struct JsonLimits {
   std::size_t max_bytes = 64 * 1024;
@@ -22,4 +22,4 @@ struct JsonLimits {
 [[nodiscard]] std::variant<nlohmann::json, std::string> parse_bounded_object(std::string_view text,
                                                                              const JsonLimits& limits = {});
 
-}  // namespace cellctl::command
+}  // namespace cellctl::schema

@@ -1,10 +1,10 @@
 // JSON from the network is bounded before it becomes a tree: the depth that once crashed the
 // process (150 000 levels) is refused by a pass that builds nothing.
-#include "command/bounded_json.hpp"
+#include "schema/bounded_json.hpp"
 
 #include <gtest/gtest.h>
 
-namespace cellctl::command {
+namespace cellctl::schema {
 namespace {
 
 std::string nested(std::size_t depth) {
@@ -45,4 +45,4 @@ TEST(BoundedJson, NoObjectAndNoJsonAreRefusedWithoutEchoingThem) {
 }
 
 }  // namespace
-}  // namespace cellctl::command
+}  // namespace cellctl::schema
