@@ -259,8 +259,8 @@ void DpMaster::next_request(link::TimePoint now) {
   }
 }
 
-// deactivate() from data exchange: Clear_Data to the slave (its outputs to their safe values), then
-// stopped; not waited for, a broadcast-style service gets no reply.
+// deactivate() from data exchange: Global_Control Clear_Data to the slave (it clears its outputs), sent
+// without acknowledgement (SDN), then stopped: nothing to wait for.
 void DpMaster::send_clear_data(link::TimePoint now) {
   const GlobalControl clear{static_cast<std::uint8_t>(GlobalCommand::clear_data), 0};
   std::array<std::uint8_t, kGlobalControlSize> data{};
