@@ -231,7 +231,7 @@ void OperatorPage::route() {
     res.set_content(recipe_list(options_.recipes, cell_).dump(), "application/json");
   });
   s.Get("/runs", [this](const httplib::Request&, httplib::Response& res) {
-    res.set_content(run_history(options_.runs).dump(), "application/json");
+    res.set_content(schema::run_history_json(run_history(options_.runs)), "application/json");
   });
   // The run's name is bounded by the pattern (and checked again as a plain name): never a path.
   s.Get(R"(/runs/([A-Za-z0-9][A-Za-z0-9_.-]{0,127})/(plot\.html|plot\.svg|report))",

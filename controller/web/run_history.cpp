@@ -20,11 +20,11 @@ namespace fs = std::filesystem;
 // A journal larger than this is reported by `cellctl report`, not by the page.
 constexpr std::uintmax_t kMaxReportedJournal = 64u << 20;
 
-// A JSON object from one line of the file, at most kMaxRecordLine long: the first line (from_end
-// false) or the last complete one. Null when there is none or it does not parse.
-nlohmann::json record_line(const fs::path& file, bool from_end) {
+// One line of the file, at most kMaxRecordLine long: the first line (from_end false) or the last
+// complete one; none when there is none within the bound.
+std::optional<std::string> record_line(const fs::path& file, bool from_end) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) return nullptr;
+  if (!in) return std::nullopt;
   in.seekg(0, std::ios::end);
   const auto size = static_cast<std::uintmax_t>(in.tellg());
   const auto take = std::min<std::uintmax_t>(size, kMaxRecordLine);
@@ -37,36 +37,24 @@ nlohmann::json record_line(const fs::path& file, bool from_end) {
     while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.remove_suffix(1);
     const auto start = line.rfind('\n');
     // Without a newline before it the line may begin before the bytes read: only a whole file will do.
-    if (start == std::string_view::npos && take < size) return nullptr;
+    if (start == std::string_view::npos && take < size) return std::nullopt;
     if (start != std::string_view::npos) line.remove_prefix(start + 1);
   } else if (const auto end = line.find('\n'); end != std::string_view::npos) {
     line = line.substr(0, end);
   } else if (take < size) {
-    return nullptr;
+    return std::nullopt;
   }
-  auto parsed = nlohmann::json::parse(line, nullptr, false);
-  return parsed.is_object() ? parsed : nlohmann::json(nullptr);
+  return std::string(line);
 }
 
-nlohmann::json run_entry(const fs::path& dir) {
+schema::RunEntry run_entry(const fs::path& dir) {
   const auto journal = dir / "journal.jsonl";
-  nlohmann::json run{{"run", dir.filename().string()}, {"outcome", nullptr}};
-  const auto header = record_line(journal, false);
-  if (header.is_object() && header.value("event", "") == "record") run["recipe"] = header.value("recipe", "");
-  const auto summary = record_line(journal, true);
-  if (summary.is_object() && summary.value("event", "") == "summary") {
-    run["outcome"] = summary.value("outcome", "");
-    run["duration_s"] = summary.value("duration_s", 0.0);
-    nlohmann::json devices = nlohmann::json::array();
-    if (const auto it = summary.find("devices"); it != summary.end() && it->is_object())
-      for (const auto& [name, d] : it->items())
-        if (d.is_object())
-          devices.push_back(
-              {{"name", name}, {"safe", d.value("safe", "")}, {"evidence", d.value("evidence", "")}});
-    run["devices"] = std::move(devices);
-  }
+  schema::RunEntry run;
+  run.run = dir.filename().string();
+  if (const auto header = record_line(journal, false)) run.recipe = schema::header_recipe(*header);
+  if (const auto summary = record_line(journal, true)) run.ended = schema::summary_end(*summary);
   std::error_code ec;
-  run["plot"] = fs::is_regular_file(dir / "plot.html", ec);
+  run.plot = fs::is_regular_file(dir / "plot.html", ec);
   return run;
 }
 
@@ -79,7 +67,7 @@ bool plain_run_name(std::string_view name) noexcept {
   });
 }
 
-nlohmann::json run_history(const fs::path& folder) {
+schema::RunHistory run_history(const fs::path& folder) {
   std::vector<std::pair<fs::file_time_type, fs::path>> records;
   std::error_code ec;
   if (!folder.empty())
@@ -92,10 +80,11 @@ nlohmann::json run_history(const fs::path& folder) {
       if (!e) records.emplace_back(written, entry.path());
     }
   std::sort(records.begin(), records.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-  nlohmann::json runs = nlohmann::json::array();
+  schema::RunHistory history;
   for (std::size_t i = 0; i < records.size() && i < kMaxListedRuns; ++i)
-    runs.push_back(run_entry(records[i].second));
-  return {{"runs", std::move(runs)}, {"more", records.size() > kMaxListedRuns}};
+    history.runs.push_back(run_entry(records[i].second));
+  history.more = records.size() > kMaxListedRuns;
+  return history;
 }
 
 std::optional<std::string> run_report(const fs::path& folder, std::string_view name) {

@@ -3,18 +3,16 @@
 // journal.jsonl), newest first, with its recipe, how it ended, how long it took, the safe state each
 // device was left in, and whether its plot is there; its report is made on request (GET
 // /runs/<run>/report, `cellctl report`'s text). Read on a server thread when the page asks, never on the
-// loop. A record is read only at its two ends (the header line, the summary line), each bounded.
-//
-// {"runs":[{"run":"short-20261128-050327-job3","recipe":"short","outcome":"complete","duration_s":5.5,
-//   "plot":true,"devices":[{"name":"scu","safe":"observed","evidence":"…"}]}],"more":false}
-// A run still being written, or cut short, has no summary: "outcome":null.
+// loop. A record is read only at its two ends (the header line, the summary line), each bounded; what
+// they say, and the history's JSON, is the schema's (schema/run_history.hpp).
 
 #include <cstddef>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
+
+#include "schema/run_history.hpp"
 
 namespace cellctl::web {
 
@@ -27,7 +25,7 @@ inline constexpr std::size_t kMaxRecordLine = 256 * 1024;
 [[nodiscard]] bool plain_run_name(std::string_view name) noexcept;
 
 // The history, empty when `folder` is empty (a `cellctl run` page has no runs folder of its own).
-[[nodiscard]] nlohmann::json run_history(const std::filesystem::path& folder);
+[[nodiscard]] schema::RunHistory run_history(const std::filesystem::path& folder);
 
 // `cellctl report`'s text of run `name`, nullopt when there is no such record.
 [[nodiscard]] std::optional<std::string> run_report(const std::filesystem::path& folder,

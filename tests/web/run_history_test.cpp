@@ -10,12 +10,18 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace cellctl::web {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The history as the page is sent it.
+nlohmann::json history(const fs::path& dir) {
+  return nlohmann::json::parse(schema::run_history_json(run_history(dir)));
+}
 
 class RunsFolder : public ::testing::Test {
  protected:
@@ -50,7 +56,7 @@ TEST_F(RunsFolder, NewestFirstWithOutcomeDurationSafeStatesAndPlot) {
   std::ofstream(dir_ / "short-1-job1" / "plot.html") << "<html></html>";
   record("home-2-job2", kHeader, std::chrono::seconds(10));  // still being written
   fs::create_directories(dir_ / "not-a-record");
-  const auto h = run_history(dir_);
+  const auto h = history(dir_);
   ASSERT_EQ(h["runs"].size(), 2u) << h.dump();
   const auto& newest = h["runs"][0];
   EXPECT_EQ(newest["run"], "home-2-job2");
@@ -71,10 +77,27 @@ TEST_F(RunsFolder, ALastLineLongerThanTheBoundIsNotReadAsTheSummary) {
          kHeader + R"({"event":"summary","outcome":"complete","pad":")" + std::string(kMaxRecordLine, 'x') +
              "\"}\n",
          std::chrono::seconds(1));
-  const auto h = run_history(dir_);
+  const auto h = history(dir_);
   ASSERT_EQ(h["runs"].size(), 1u);
   EXPECT_TRUE(h["runs"][0]["outcome"].is_null());
   EXPECT_EQ(h["runs"][0]["recipe"], "short-compare");
+}
+
+TEST_F(RunsFolder, LinesOfAnotherShapeReadAsNoneAndNeverStopTheListing) {
+  // Keys of other types than this version writes (the old reader threw on the first two).
+  record("odd-job1",
+         R"({"event":7,"recipe":"x"})"
+         "\n"
+         R"({"event":"summary","outcome":3,"devices":{"scu":"observed"}})"
+         "\n",
+         std::chrono::seconds(1));
+  record("other-job2", "not json\n[1,2]\n", std::chrono::seconds(2));
+  const auto h = history(dir_);
+  ASSERT_EQ(h["runs"].size(), 2u) << h.dump();
+  for (const auto& run : h["runs"]) {
+    EXPECT_FALSE(run.contains("recipe")) << run.dump();
+    EXPECT_TRUE(run["outcome"].is_null()) << run.dump();
+  }
 }
 
 TEST_F(RunsFolder, OnlyPlainNamesAreRunsAndAReportNeverFollowsAPath) {
@@ -87,7 +110,7 @@ TEST_F(RunsFolder, OnlyPlainNamesAreRunsAndAReportNeverFollowsAPath) {
   EXPECT_FALSE(run_report(dir_, "inner/deep"));
   EXPECT_FALSE(run_report(dir_, "missing"));
   EXPECT_FALSE(run_report({}, "inner"));
-  EXPECT_TRUE(run_history({})["runs"].empty()) << "a page without a runs folder lists none";
+  EXPECT_TRUE(history({})["runs"].empty()) << "a page without a runs folder lists none";
 }
 
 }  // namespace
