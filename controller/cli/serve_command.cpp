@@ -4,6 +4,8 @@
 #include <spdlog/spdlog.h>
 
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -12,9 +14,11 @@
 #include "cli/run_command.hpp"
 #include "config/cell_config.hpp"
 #include "device_seam/device_registry.hpp"
+#include "emulation/emulator_setup.hpp"
 #include "exit_codes/exit_codes.hpp"
 #include "jobs/job_scheduler.hpp"
 #include "jobs/run_record_info.hpp"
+#include "motion/planned_time.hpp"
 #include "plant_link/link_config.hpp"
 
 namespace cellctl::cli {
@@ -30,6 +34,20 @@ struct ServeArgs {
   std::vector<runtime::FaultSpec> faults;  // rehearsed in every job (dry runs only)
   PageArgs page;                           // --http and its options
 };
+
+// Each recipe's planned time on the page's Start list: the planner's (the page does not see it), with
+// the spindle's ramps where they are known — an emulated converter's; a real one's are its own
+// parameters, which the config does not hold (its run-ups are then counted apart).
+recipe::ProgramTimer recipe_timer(const config::CellConfig& cell, runtime::RunMode mode) {
+  std::optional<motion::SpindleRamps> ramps;
+  if (mode != runtime::RunMode::hardware)
+    if (const auto setup = emulation::load_emulator_setup(cell); setup.spindle)
+      ramps = motion::SpindleRamps{setup.spindle->ramp_up_hz_s, setup.spindle->ramp_down_hz_s};
+  return [core = static_cast<const config::CellCore&>(cell), ramps](
+             const recipe::Program& program, std::span<const std::optional<double>> start_mm) {
+    return motion::planned_time(core, program, start_mm, ramps);
+  };
+}
 
 int serve(const GlobalOptions& global, const ServeArgs& args) {
   const auto cell = device_seam::load_cell_config(global.config);
@@ -77,7 +95,12 @@ int serve(const GlobalOptions& global, const ServeArgs& args) {
   };
   say(fmt::format("cellctl serve: cell '{}' — {}; standing by for the plant and the operator page", cell.name,
                   jobs::mode_label(cell, options.mode)));
-  if (page) page->options.runs = args.runs_dir;  // the page's run history
+  // Read before the page and the plant link open: their first Idle shows the cell as it stands.
+  scheduler.look(say);
+  if (page) {
+    page->options.runs = args.runs_dir;  // the page's run history
+    page->options.plan = recipe_timer(cell, options.mode);
+  }
   auto facing = open_plant_facing(cell, link_config, page, recipes, scheduler.access(), say);
   scheduler.listen(&facing);
   say(fmt::format("  jobs: start (a recipe in {}), home, teach-in; run records under {}/", recipes.string(),

@@ -17,6 +17,7 @@
 #include "journal/record_header.hpp"
 #include "recipe/program.hpp"
 #include "recipe/recipe_loader.hpp"
+#include "runtime/cell_look.hpp"
 #include "runtime/dry_run_state.hpp"
 
 namespace cellctl::jobs {
@@ -100,6 +101,10 @@ plant_link::RunAccess JobScheduler::access() {
   a.arbiter = &arbiter_;
   a.status = [this] { return status(); };
   a.mode = to_string(options_.mode);
+  a.at_rest = [this] {
+    std::lock_guard lock(mutex_);
+    return at_rest_;
+  };
   a.start = [this](const plant_link::StartRequest& r, const command::CommandSource& by) {
     return start(r, by);
   };
@@ -204,8 +209,29 @@ JobScheduler::JobEnd JobScheduler::not_started(const plant_link::StartRequest& r
   return {fmt::format("{}: not started: {}", to, why), end, std::nullopt};
 }
 
+void JobScheduler::look(const std::function<void(const std::string&)>& say) {
+  runtime::LookOptions o;
+  o.mode = options_.mode;
+  o.state_dir = options_.state_dir;
+  o.trace = options_.trace;
+  try {
+    // The dry runs' emulated plant, as the jobs find it (run_recipe).
+    if (o.mode != runtime::RunMode::hardware)
+      o.emulators = runtime::dry_run_emulator_setup(
+          cell_, options_.state_dir.empty() ? cell_.state_dir : options_.state_dir);
+    auto look = runtime::look_at_cell(cell_, std::move(o));
+    say(fmt::format("  the cell as it stands: {}", look.words));
+    std::lock_guard lock(mutex_);
+    at_rest_ = look.view;
+    rest_sample_ = look.sample;
+  } catch (const std::exception& e) {
+    say(fmt::format("  the cell could not be read before the first job: {}", e.what()));
+  }
+}
+
 int JobScheduler::serve(std::atomic<bool>& interrupt, std::atomic<bool>& terminate,
                         const std::function<void(const std::string&)>& say) {
+  if (rest_sample_) tell_event({0.0, *rest_sample_});  // the cell as look() read it: the plant's Idle status
   for (;;) {
     std::optional<plant_link::StartRequest> job;
     std::optional<supervisor::Command> cancelled;

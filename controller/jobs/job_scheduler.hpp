@@ -37,6 +37,7 @@
 #include "plant_link/run_access.hpp"
 #include "runtime/cell_links.hpp"
 #include "runtime/cell_run.hpp"
+#include "status/status_view.hpp"
 
 namespace cellctl::jobs {
 
@@ -61,6 +62,12 @@ class JobScheduler {
   [[nodiscard]] command::Arbiter& arbiter() noexcept { return arbiter_; }
   // Every event of every job, and the scheduler's own; set before serve(), outliving it.
   void listen(journal::EventListener* listener) { listener_ = listener; }
+
+  // Reads the cell once, before any job and before serve() (runtime/cell_look.hpp: nothing is
+  // commanded), so that the page's axes and devices and the plant's Idle status show it from the
+  // start; says what it read, or why it could not (serve stands by all the same). serve() tells the
+  // listener the sample it read first, as a job's run tells its own.
+  void look(const std::function<void(const std::string&)>& say);
 
   // Runs the jobs as they are started, saying each one's start and end through `say`, until
   // `terminate` (a job in progress gets its controlled stop first) or an `interrupt` while no job is
@@ -131,6 +138,8 @@ class JobScheduler {
   std::optional<supervisor::Command> early_stop_;    // a stop or abort while the job was set up
   std::optional<supervisor::Command> cancelled_;     // a stop or abort before the job was taken
   std::string blocked_;                              // why no start is taken any more
+  std::optional<status::StatusView> at_rest_;        // the cell as look() read it
+  std::optional<journal::Sample> rest_sample_;       // the same, as the journal samples it
   std::atomic<int> jobs_done_{0};
   command::Arbiter arbiter_;  // last: its Tell reaches the members above
 };

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "motion/move_limits.hpp"
+
 namespace cellctl::motion {
 
 MoveExecutor::MoveExecutor(const config::CellCore& cell, const recipe::Limits& limits, double dt,
@@ -161,11 +163,7 @@ void MoveExecutor::plan(const cell::CellState& s, double t, std::uint32_t& move_
     input_.current_velocity[k] = from[i].velocity;
     input_.current_acceleration[k] = from[i].acceleration;
     input_.target_position[k] = a.in_move ? a.target_mm : input_.current_position[k];
-    if (i < cell_.axes.size()) {
-      input_.max_velocity[k] = std::min(speed_, cell_.axes[i].max_speed_mm_s);
-      input_.max_acceleration[k] = cell_.axes[i].max_accel_mm_s2;
-      input_.max_jerk[k] = cell_.axes[i].max_jerk_mm_s3;
-    }
+    if (i < cell_.axes.size()) limit_axis(cell_, speed_, i, input_);
   }
 
   for (std::size_t i = 0; i < cell::kMaxAxes; ++i) {

@@ -49,6 +49,9 @@ struct RunAccess {
   command::Arbiter* arbiter = nullptr;             // the one command path; never null in use
   std::function<std::optional<LiveRun>()> status;  // nullopt: no run in progress
   std::string mode;                                // "hardware", "emulated", "virtual-time"; "" without a run
+  // The cell as `cellctl serve` read it before any job (runtime/cell_look.hpp), never live; empty or
+  // nullopt: not read (`cellctl run`, or a cell that could not be read).
+  std::function<std::optional<status::StatusView>()> at_rest;
   // Registers a job the arbiter allowed (command::Arbiter::start's `begin`), started by `by` (its run's
   // start is told as theirs); empty when this cellctl drives one run and can start no other.
   std::function<Taken(const StartRequest&, const command::CommandSource& by)> start;

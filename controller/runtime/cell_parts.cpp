@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "journal/record_header.hpp"
+
 namespace cellctl::runtime {
 
 CellParts open_cell_parts(const config::CellConfig& cell, RunMode mode, const link::Clock& clock,
@@ -30,6 +32,14 @@ CellParts open_cell_parts(const config::CellConfig& cell, RunMode mode, const li
   p.devices = std::make_unique<CellDevices>(
       cell, master, [links = p.links.get()](std::size_t slot) { return links->reopen(slot).ok(); }, kinds);
   return p;
+}
+
+std::string config_sha256(const config::CellConfig& cell) {
+  try {
+    return journal::file_sha256(cell.source);
+  } catch (const std::exception&) {
+    return {};  // a cell made in memory (tests): no file to hash
+  }
 }
 
 void serve_emulators(const std::atomic<bool>& stop, const link::Clock& clock, FaultRehearsal* rehearsal,

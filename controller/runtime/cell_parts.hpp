@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "config/cell_config.hpp"
@@ -39,6 +40,10 @@ struct CellParts {
                                         bool trace, const std::vector<FaultSpec>& faults,
                                         std::optional<emulation::EmulatorSetup>& emulators,
                                         std::span<const device_seam::DeviceKind> kinds);
+
+// The hash of the cell's config file, which the home record is checked against ("" for a cell made in
+// memory: no file).
+[[nodiscard]] std::string config_sha256(const config::CellConfig& cell);
 
 // The emulators' thread in real time: they answer like hardware, on their own time, until `stop`.
 void serve_emulators(const std::atomic<bool>& stop, const link::Clock& clock, FaultRehearsal* rehearsal,

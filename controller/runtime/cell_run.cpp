@@ -6,9 +6,9 @@
 #include <chrono>
 #include <optional>
 
-#include "journal/record_header.hpp"
 #include "loop/control_stages.hpp"
 #include "loop/realtime_setup.hpp"
+#include "runtime/cell_view.hpp"
 #include "runtime/home_record_file.hpp"
 
 namespace cellctl::runtime {
@@ -45,14 +45,6 @@ std::string link_figures(const CellDevices& devices, std::vector<schema::LinkFig
         name, h.good_replies, round_trip_ms, silence_ms, h.timeouts, h.retries, h.bad_frames);
   }
   return text;
-}
-
-std::string config_sha256(const config::CellConfig& cell) {
-  try {
-    return journal::file_sha256(cell.source);
-  } catch (const std::exception&) {
-    return {};  // a cell made in memory (tests): no file to hash
-  }
 }
 
 }  // namespace
@@ -261,21 +253,12 @@ void CellRun::publish_status(double t) {
   v.step = static_cast<std::uint32_t>(std::min(supervisor_->step_index() + 1, supervisor_->step_count()));
   if (const auto* ins = supervisor_->current()) v.label = ins->label;
   v.step_planned_s = supervisor_->step_planned_s();
-  v.axes = state_.axis_count;
+  show_cell(state_, home_record_, *parts_.devices, v);
   for (std::size_t i = 0; i < state_.axis_count; ++i) {
-    v.position_mm[i] = state_.axes[i].position_mm();
-    v.position_known[i] = state_.axes[i].present;
-    const auto& axis = state_.axes[i];
     const auto& intent = supervisor_->intents().axes[i];
     v.target_known[i] = intent.move;
     v.target_mm[i] = intent.target_mm;
-    v.scu_mm[i] = axis.scu_mm;
-    v.encoder_measures[i] = axis.measured;
-    v.encoder_mm[i] = axis.encoder_mm;
-    v.home_recorded[i] = home_record_.axes[i].homed;
-    v.scu_initialised[i] = axis.scu_initialised;
   }
-  v.spindle_hz = state_.spindle.actual_hz;
   v.spindle_set_hz = supervisor_->intents().spindle.run ? supervisor_->intents().spindle.frequency_hz : 0.0;
   const auto& stats = loop_->stats();
   v.jitter_max_us = std::chrono::duration<double, std::micro>(stats.jitter.max()).count();
@@ -292,15 +275,9 @@ void CellRun::publish_status(double t) {
     running += stats.jitter.bin_count(b);
   }
   while (bucket < v.jitter_le.size()) v.jitter_le[bucket++] = running;
-  for (std::size_t d = 0; d < cell::kMaxDevices; ++d) {
-    v.devices[d] = state_.devices[d];
-    v.link_active[d] = state_.links[d].active;
-    v.link_fault[d] = state_.links[d].fault;
-    v.link_silent_s[d] = link::to_seconds(state_.links[d].silent_for);
-    v.link_counts[d] = state_.links[d].counts;
-  }
+  // Each device's safe state as the stop resolves it (its words, the evidence, come after the loop).
   for (const auto* d : parts_.devices->devices())
-    v.link_round_trip_s[d->slot()] = link::to_seconds(d->session().health().last_round_trip);
+    if (const auto& safe = d->resolved()) v.safe[d->slot()] = to_string(*safe);
   for (std::size_t r = 0; r < monitor::kRuleCount; ++r) {
     if (!monitor_.latch(static_cast<monitor::Rule>(r)).active) continue;
     v.fault = true;

@@ -51,6 +51,9 @@ struct StatusView {
   std::array<double, cell::kMaxDevices> link_silent_s{};  // since its last good reply
   std::array<cell::LinkCounts, cell::kMaxDevices> link_counts{};
   std::array<double, cell::kMaxDevices> link_round_trip_s{};  // the last exchange's; 0 before the first
+  // The device's safe state once the run's stop has resolved it: "observed", "bounded" or "unknown"
+  // (static text, device_seam::to_string(Safe)); "" while it is not resolved.
+  std::array<std::string_view, cell::kMaxDevices> safe{};
   bool fault = false;
   monitor::Rule first_fault = monitor::Rule::operator_stop;
 };

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <optional>
 
+#include "supervisor/cell_sample.hpp"
+
 namespace cellctl::supervisor {
 namespace {
 
@@ -287,18 +289,9 @@ void Supervisor::tell_teach_in(double t) {
 void Supervisor::sample(const cell::CellState& s, double t) {
   if (t < next_sample_t_) return;
   next_sample_t_ = t + settings_.sample_s;
-  journal::Sample smp;
-  smp.axes = s.axis_count;
-  for (std::size_t i = 0; i < s.axis_count; ++i) {
-    smp.planned_mm[i] = static_cast<float>(planned_mm(i));
-    smp.scu_mm[i] = static_cast<float>(s.axes[i].scu_mm);
-    if (s.axes[i].measured) {
-      smp.encoder_mm = static_cast<float>(s.axes[i].encoder_mm);
-      smp.encoder_mm_s = static_cast<float>(s.axes[i].encoder_mm_s);
-    }
-  }
+  auto smp = cell_sample(s);
+  for (std::size_t i = 0; i < s.axis_count; ++i) smp.planned_mm[i] = static_cast<float>(planned_mm(i));
   smp.spindle_set_hz = static_cast<float>(intents_.spindle.run ? intents_.spindle.frequency_hz : 0.0);
-  smp.spindle_actual_hz = static_cast<float>(s.spindle.actual_hz);
   events_.post(t, smp);
 }
 

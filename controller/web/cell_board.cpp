@@ -49,6 +49,8 @@ nlohmann::json board_payload(const std::vector<std::string>& axis_names,
                          {"timeouts", c.timeouts},
                          {"bad_frames", c.bad_frames},
                          {"refusals", c.refusals}});
+      // The run's own verdict once its stop has resolved the device (cellctl run has no run records).
+      if (!v.safe[d].empty()) devices.back()["safe"] = std::string(v.safe[d]);
     }
   }
   nlohmann::json out{{"live", view && live}, {"axes", std::move(axes)}, {"devices", std::move(devices)}};

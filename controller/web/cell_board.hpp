@@ -8,7 +8,8 @@
 // {"live":true,"t":…,"axes":[{"name":"x","target_mm":40.0|null,"scu_mm":…|null,"encoder_mm":…|null,
 //   "homed":{"record":true,"scu":true}}],
 //  "devices":[{"name":"scu","link":"up"|"lost"|"down","round_trip_ms":…,"last_good_s":…,"replies":…,
-//   "timeouts":…,"bad_frames":…,"refusals":…}],"spindle":{"set_hz":…,"actual_hz":…}}
+//   "timeouts":…,"bad_frames":…,"refusals":…,"safe":"observed"|"bounded"|"unknown" (once the run's stop
+//   resolved it)}],"spindle":{"set_hz":…,"actual_hz":…}}
 // (without a view: {"live":false,"axes":[{"name":"x"}…],"devices":[]}).
 
 #include <nlohmann/json.hpp>

@@ -228,7 +228,16 @@ void OperatorPage::route() {
   });
   // The recipes a start may name, and the runs made: read when asked, on this server thread.
   s.Get("/recipes", [this](const httplib::Request&, httplib::Response& res) {
-    res.set_content(recipe_list(options_.recipes, cell_).dump(), "application/json");
+    // Planned from where the page last saw the axes stand (a start is taken only at rest, in Idle).
+    std::array<std::optional<double>, cell::kMaxAxes> start{};
+    auto at_rest = run_.at_rest ? run_.at_rest() : std::optional<status::StatusView>{};
+    {
+      std::lock_guard lock(mutex_);
+      const auto& view = last_view_ ? last_view_ : at_rest;
+      for (std::size_t i = 0; view && i < view->axes && i < start.size(); ++i)
+        if (view->position_known[i]) start[i] = view->position_mm[i];
+    }
+    res.set_content(recipe_list(options_.recipes, cell_, options_.plan, start).dump(), "application/json");
   });
   s.Get("/runs", [this](const httplib::Request&, httplib::Response& res) {
     res.set_content(schema::run_history_json(run_history(options_.runs)), "application/json");
@@ -317,10 +326,14 @@ std::string OperatorPage::status_payload() {
 
 std::string OperatorPage::board_payload() {
   auto live = run_.status();
+  // Before the first job, the cell as serve read it (outside mutex_: it locks the scheduler).
+  auto at_rest = !live && run_.at_rest ? run_.at_rest() : std::optional<status::StatusView>{};
   std::lock_guard lock(mutex_);
   // Between jobs (cellctl serve) the last job's view, marked as not live.
   if (live) last_view_ = live->view;
-  auto board = web::board_payload(axis_names_, last_view_, live.has_value());
+  const bool read_at_start = !last_view_ && at_rest;
+  auto board = web::board_payload(axis_names_, read_at_start ? at_rest : last_view_, live.has_value());
+  if (read_at_start) board["read_at_start"] = true;
   board["state"] = mirror_.state();
   board["state_current"] = mirror_.state_tag().state_current;  // PackML's number for it
   board["buttons"] = command_buttons(mirror_.state(), static_cast<bool>(run_.start));

@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "recipe/planned_time.hpp"
+
 namespace cellctl::web {
 
 struct PageOptions {
@@ -24,6 +26,8 @@ struct PageOptions {
   bool public_metrics = false;                // /metrics without the token (--http-public-metrics)
   std::filesystem::path cert_file, key_file;  // both: HTTPS (PEM)
   bool insecure_http = false;                 // plain HTTP on a non-loopback address, as the operator asked
+  // Each recipe's planned time on the Start list (recipe_list.hpp); empty: not shown.
+  recipe::ProgramTimer plan;
 
   [[nodiscard]] bool tls() const noexcept { return !cert_file.empty(); }
 };

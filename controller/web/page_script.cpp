@@ -47,17 +47,20 @@ function trend(b){if(typeof b.t!=='number'||!b.live)return;const v={};
  if(hist.length&&b.t<hist[hist.length-1].t)hist.length=0;  // a new job's clock starts again at 0
  if(!Object.keys(v).length)return;hist.push({t:b.t,v});while(hist[0].t<b.t-60)hist.shift();draw();}
 
-let lastSafe={};  // per device: the safe state the newest run record left it in
+// Per device: the safe state the newest run record left it in (cellctl serve), unless the board
+// carries the live run's own verdict (its stop has resolved the device: cellctl run too).
+let lastSafe={};
 function board(b){
  fill('axes',b.axes.map(a=>row([a.name,mm(a.target_mm),mm(a.scu_mm),mm(a.encoder_mm),
   yes(a.homed&&a.homed.record),yes(a.homed&&a.homed.scu)])));
  fill('devices',b.devices.map(d=>{const link=b.live?el('span',{class:d.link==='up'?'good':'bad'},d.link):el('span',{},'closed: no job');
-  const safe=lastSafe[d.name];const sf=el('span',{class:safe&&safe.safe==='unknown'?'bad':''},safe?safe.safe:'—');
+  const safe=d.safe?{safe:d.safe,evidence:'as this run\'s stop resolved it'}:lastSafe[d.name];const sf=el('span',{class:safe&&safe.safe==='unknown'?'bad':''},safe?safe.safe:'—');
   if(safe)sf.title=safe.evidence;
   return row([d.name,link,d.round_trip_ms.toFixed(1),d.last_good_s.toFixed(3),String(d.replies),
    d.timeouts+' / '+d.bad_frames+' / '+d.refusals,sf]);}));
  if(b.spindle){$('sset').textContent=b.spindle.set_hz.toFixed(0);$('sact').textContent=b.spindle.actual_hz.toFixed(0);}
- $('board-age').textContent=b.live?'':'(as the last job left them: no job in progress; each job opens the links)';
+ $('board-age').textContent=b.live?'':b.read_at_start?'(as read when cellctl serve started: no job yet; each job opens the links)'
+  :'(as the last job left them: no job in progress; each job opens the links)';
  for(const [cmd,s] of Object.entries(b.buttons||{})){const btn=$(cmd);if(!btn)continue;
   btn.disabled=!s.enabled;btn.title=s.reason||'';const why=$('why-'+cmd);if(why)why.textContent=s.reason||'';}
  $('packml').textContent='PackML StateCurrent '+b.state_current;
@@ -82,7 +85,8 @@ function loggedIn(yes){$('login').hidden=yes;$('logout').hidden=!yes;if(yes)$('l
 async function getJson(path){const r=await fetch(path);if(!r.ok)throw new Error(path+': '+r.status);return r.json();}
 async function loadRecipes(){try{const l=await getJson('recipes');const sel=$('recipe'),keep=sel.value;sel.textContent='';
  for(const r of l.recipes){const o=el('option',{value:r.name},r.problem?r.name+' — not valid: '+r.problem
-  :r.name+' — '+r.steps+' steps, planned ≥ '+r.planned_s+' s');o.disabled=!!r.problem;sel.appendChild(o);}
+  :r.name+' — '+r.steps+' steps'+(typeof r.planned_s==='number'?', planned '+r.planned_s+' s':'')
+  +(r.not_counted?' and '+r.not_counted+' step'+(r.not_counted>1?'s':'')+' only the run can time':''));o.disabled=!!r.problem;sel.appendChild(o);}
  if(keep)sel.value=keep;}catch(e){say('recipes',{reason:String(e)});}}
 async function loadRuns(){try{const l=await getJson('runs');lastSafe={};
  if(l.runs.length&&l.runs[0].devices)for(const d of l.runs[0].devices)lastSafe[d.name]=d;

@@ -3,18 +3,22 @@
 // the cell as a start would be (plant_link::CommandDesk), with its steps (unrolled) and its planned
 // time — or why it cannot be started. Read on a server thread when the page asks, never on the loop.
 //
-// The planned time is a lower bound: each dwell's seconds and each move's travel at its speed (from
-// the previous target of its axes); ramps, spindle run-ups, waits and each axis's first move (it
-// starts where the cell stands) are not known before the run and not counted.
+// The planned time is the planner's (motion/planned_time.hpp: each move's jerk-limited profile at the
+// cell's limits and its settle, dwells, the spindle's run-ups where its ramps are known), handed over
+// by the command line as a recipe::ProgramTimer (the page does not see the planner), from where the
+// page last saw the axes stand; the steps only the run can time are counted apart (not_counted).
 //
-// {"recipes":[{"name":"demo","steps":12,"planned_s":34.5},{"name":"bad","problem":"…"}],"more":false}
+// {"recipes":[{"name":"demo","steps":12,"planned_s":34.5,"not_counted":1},{"name":"bad","problem":"…"}],
+//  "more":false} (no planned_s without a timer; no not_counted when it is 0)
 
 #include <cstddef>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
 
 #include "config/cell_core.hpp"
-#include "recipe/recipe.hpp"
+#include "recipe/planned_time.hpp"
 
 namespace cellctl::web {
 
@@ -22,9 +26,9 @@ namespace cellctl::web {
 inline constexpr std::size_t kMaxListedRecipes = 100;
 inline constexpr std::uintmax_t kMaxRecipeBytes = 1u << 20;
 
-// The lower bound above, in seconds.
-[[nodiscard]] double planned_at_least_s(const recipe::Recipe& recipe);
-
-[[nodiscard]] nlohmann::json recipe_list(const std::filesystem::path& folder, const config::CellCore& cell);
+// `start_mm`: where each of the cell's axes stands (nullopt: not known).
+[[nodiscard]] nlohmann::json recipe_list(const std::filesystem::path& folder, const config::CellCore& cell,
+                                         const recipe::ProgramTimer& timer,
+                                         std::span<const std::optional<double>> start_mm);
 
 }  // namespace cellctl::web

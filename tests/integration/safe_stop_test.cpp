@@ -95,6 +95,17 @@ class SafeStop : public FaultRun {
     return s.size() == 1 ? s[0] : nlohmann::json();
   }
   std::string safe(const char* device) const { return summary()["devices"][device]["safe"]; }
+  // The run's status board, as its last cycle published it, says each device's verdict as the summary
+  // does (the page shows it under cellctl run, which has no run records to read it from).
+  void expect_board_says_the_verdicts() const {
+    const auto view = run_->status().read();
+    for (const auto* d : {"scu", "spindle", "encoder"}) {
+      std::size_t slot = 0;
+      while (slot < view.devices.size() && view.devices[slot] != d) ++slot;
+      ASSERT_LT(slot, view.devices.size()) << d;
+      EXPECT_EQ(std::string(view.safe[slot]), safe(d)) << d;
+    }
+  }
   std::string evidence(const char* device) const { return summary()["devices"][device]["evidence"]; }
 
   // The converter lost for good while it turns at 400 Hz: unknown, never bounded, and never sooner
@@ -191,6 +202,7 @@ TEST_F(SafeStop, SpindleNeverBackIsUnknownWithItsLastSetFrequency) {
   // The converter has no watchdog: it is still turning, which is why this must be said.
   EXPECT_GT(run_->emulators()->spindle()->motor().frequency_hz(), 300.0);
   EXPECT_EQ(safe("scu"), "observed") << evidence("scu");
+  expect_board_says_the_verdicts();
   expect_axes_at_rest();
 }
 
@@ -206,6 +218,7 @@ TEST_F(SafeStop, EncoderLinkLostIsNamedAsTheLinkAndBounded) {
   EXPECT_TRUE(fault("disagreement").is_null()) << fault("disagreement").dump();
   EXPECT_TRUE(fault("following_error").is_null()) << fault("following_error").dump();
   EXPECT_FALSE(r.any_unknown());
+  expect_board_says_the_verdicts();
 }
 
 TEST_F(SafeStop, HealthyRunEndsWithEveryDeviceObserved) {

@@ -261,6 +261,33 @@ TEST_F(ServeTest, ThePlantStartsHomingRecipesAndATeachInOneAtATime) {
   EXPECT_NE(output().find("ended after 4 jobs"), std::string::npos) << output();
 }
 
+TEST_F(ServeTest, TheFirstIdleStatusBeforeAnyJobHasTheCellAsItStands) {
+  // The emulated x stands at 42 mm (not the 0 the status would show were it not read); nothing moves it.
+  auto cell = read_file(config_);
+  const auto at = cell.find("start_position_mm: 0");
+  ASSERT_NE(at, std::string::npos);
+  cell.replace(at, std::string("start_position_mm: 0").size(), "start_position_mm: 42");
+  std::ofstream(config_) << cell;
+  launch();
+  // The first status of all, before any job: the SCU's position, the encoder's (not referenced yet in
+  // this fresh plant: it counts from 0) and the axis planned where its best measurement says it
+  // stands (the encoder's, as the supervisor plans from), the spindle at rest.
+  const auto first = plant_->wait_for([](const Message& m) { return m.topic == topic("status"); }, 0, 10s);
+  ASSERT_TRUE(first) << output();
+  const auto status = MqttProbe::body(*first);
+  EXPECT_EQ(status["state"], "Idle") << first->payload;
+  ASSERT_TRUE(status["axes"][0].contains("measured_mm")) << first->payload;
+  EXPECT_EQ(status["axes"][0]["measured_mm"], 42.0) << first->payload;
+  ASSERT_TRUE(status.contains("encoder_mm")) << first->payload;
+  EXPECT_EQ(status["axes"][0]["planned_mm"], status["encoder_mm"]) << first->payload;
+  EXPECT_EQ(status["spindle"]["actual_hz"], 0) << first->payload;
+  EXPECT_FALSE(has_long_fraction(first->payload)) << "unrounded: " << first->payload;
+  EXPECT_NE(output().find("the cell as it stands: x 42.0 mm"), std::string::npos) << output();
+  // The look is no job: no run record, no run counted.
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "runs")) << output();
+  EXPECT_EQ(last_admin().value("runs", -1), 0) << last_admin().dump();
+}
+
 TEST_F(ServeTest, SigtermDuringAJobStopsItFirstAndEndsServe) {
   launch();
   const auto from = plant_->count();

@@ -66,6 +66,18 @@ TEST(CellBoard, EveryNamedSlotIsADeviceWithItsLinkAndAnEmptySlotIsNone) {
   EXPECT_EQ(dio["refusals"], 3);
 }
 
+TEST(CellBoard, ADeviceHasItsSafeStateOnceTheRunsStopResolvedIt) {
+  auto v = two_axes();
+  auto b = board_payload({"x", "z"}, v, true);
+  for (const auto& d : b["devices"]) EXPECT_FALSE(d.contains("safe")) << "not resolved yet: " << d.dump();
+  v.safe[0] = "observed";
+  v.safe[2] = "unknown";
+  b = board_payload({"x", "z"}, v, true);
+  EXPECT_EQ(b["devices"][0]["safe"], "observed");
+  EXPECT_EQ(b["devices"][1]["safe"], "unknown");
+  EXPECT_FALSE(b["devices"][2].contains("safe"));
+}
+
 TEST(CellBoard, WithoutAViewTheAxesAreNamedAndNothingElseIsClaimed) {
   const auto b = board_payload({"x", "z"}, std::nullopt, true);
   EXPECT_FALSE(b["live"].get<bool>());

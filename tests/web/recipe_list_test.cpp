@@ -1,13 +1,18 @@
-// The page's Start list: each recipe in the folder validated against the cell, with its steps and its
-// planned time (a lower bound: dwells, and moves from their axes' previous targets at their speed), or
-// why it cannot be started; what is no recipe, or too large, is not loaded.
+// The page's Start list: each recipe in the folder validated against the cell, with its steps and the
+// planned time its timer gives (the planner's, handed over by the command line: tested against runs in
+// tests/integration/planned_time_test.cpp) from where the axes stand, or why it cannot be started;
+// what is no recipe, or too large, is not loaded.
 #include "web/recipe_list.hpp"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "config/cell_config.hpp"
 
@@ -15,25 +20,6 @@ namespace cellctl::web {
 namespace {
 
 namespace fs = std::filesystem;
-
-recipe::Step move(std::vector<recipe::AxisTarget> to, double speed) {
-  return {"move", 0, recipe::Move{std::move(to), speed, recipe::Path::time}};
-}
-recipe::Step dwell(double s) {
-  return {"dwell", 0, recipe::Dwell{s}};
-}
-
-TEST(RecipeList, PlannedTimeCountsDwellsAndMovesFromTheirPreviousTargets) {
-  recipe::Recipe r;
-  r.steps = {move({{0, 20.0}, {1, 10.0}}, 10.0),            // the first: its start is where the cell stands
-             dwell(0.5), move({{0, 5.0}, {1, 5.0}}, 5.0)};  // 15 mm at 5 mm/s: 3 s
-  EXPECT_DOUBLE_EQ(planned_at_least_s(r), 3.5);
-  recipe::Recipe repeated;
-  recipe::Repeat rep{3, {move({{0, 10.0}}, 10.0), move({{0, 0.0}}, 10.0)}};
-  repeated.steps = {{"back and forth", 0, rep}};
-  // 1 s back, then 1 s there and 1 s back twice more: the first move of all is not counted.
-  EXPECT_DOUBLE_EQ(planned_at_least_s(repeated), 5.0);
-}
 
 class RecipeFolder : public ::testing::Test {
  protected:
@@ -55,7 +41,15 @@ class RecipeFolder : public ::testing::Test {
 };
 
 TEST_F(RecipeFolder, ListsEachRecipeByNameWithStepsAndPlannedTimeOrItsProblem) {
-  const auto list = recipe_list(dir_, cell_);
+  // A timer that says what it was given: the program's steps and the start of x.
+  std::vector<std::optional<double>> seen_start;
+  const recipe::ProgramTimer timer = [&](const recipe::Program& p,
+                                         std::span<const std::optional<double>> start) {
+    seen_start.assign(start.begin(), start.end());
+    return recipe::PlannedTime{static_cast<double>(p.instructions.size()) + 0.04, 2};
+  };
+  const std::array<std::optional<double>, 2> start{12.5, std::nullopt};
+  const auto list = recipe_list(dir_, cell_, timer, start);
   ASSERT_EQ(list["recipes"].size(), 3u) << list.dump();
   const auto& bad = list["recipes"][0];
   EXPECT_EQ(bad["name"], "bad");
@@ -66,12 +60,24 @@ TEST_F(RecipeFolder, ListsEachRecipeByNameWithStepsAndPlannedTimeOrItsProblem) {
   const auto& short_recipe = list["recipes"][2];
   EXPECT_EQ(short_recipe["name"], "short");
   EXPECT_EQ(short_recipe["steps"], 6);
-  EXPECT_DOUBLE_EQ(short_recipe["planned_s"].get<double>(), 1.6);  // 0.3 s dwell + 15 mm at 12 mm/s
+  EXPECT_DOUBLE_EQ(short_recipe["planned_s"].get<double>(), 6.0);  // to the tenth of a second
+  EXPECT_EQ(short_recipe["not_counted"], 2);
+  ASSERT_EQ(seen_start.size(), 2u);
+  EXPECT_EQ(seen_start[0], 12.5);
+  EXPECT_FALSE(seen_start[1]);
   EXPECT_FALSE(list["more"].get<bool>());
 }
 
+TEST_F(RecipeFolder, WithoutATimerNoPlannedTimeIsClaimed) {
+  const auto list = recipe_list(dir_, cell_, {}, {});
+  const auto& short_recipe = list["recipes"][2];
+  EXPECT_EQ(short_recipe["steps"], 6);
+  EXPECT_FALSE(short_recipe.contains("planned_s")) << short_recipe;
+  EXPECT_FALSE(short_recipe.contains("not_counted")) << short_recipe;
+}
+
 TEST_F(RecipeFolder, AFolderThatIsNotThereListsNothing) {
-  const auto list = recipe_list(dir_ / "missing", cell_);
+  const auto list = recipe_list(dir_ / "missing", cell_, {}, {});
   EXPECT_TRUE(list["recipes"].empty());
 }
 

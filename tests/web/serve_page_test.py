@@ -9,7 +9,10 @@ usage: serve_page_test.py CELLCTL CONFIG RECIPES_DIR OUT_DIR
 Works on a copy of CONFIG in OUT_DIR, with the state folder OUT_DIR/state and a recipes folder
 OUT_DIR/recipes (short.yaml and bad-recipe.yaml from RECIPES_DIR, and a long one). Checks, each wait
 on a condition with a time-out:
- - the Start list: every recipe with its steps and planned time, the invalid one disabled with why;
+ - before any job: the axes' SCU and encoder positions and every device's link figures, as serve read
+   the cell when it started (figure OUT_DIR/idle-before-jobs.png);
+ - the Start list: every recipe with its steps and the planner's planned time (from where the axes stand),
+   the invalid one disabled with why;
  - Idle: Hold disabled with its reason; a dismissed confirmation sends nothing;
  - Home (confirmed) homes the cell to Complete; Reset brings it back to Idle (figures OUT_DIR/idle.png
    at 1366×768, OUT_DIR/idle-tablet.png at 820×1180); Teach-In over 100 mm from 5 mm is taught and
@@ -18,12 +21,13 @@ on a condition with a time-out:
  - the run history: the three runs newest first, each complete, each device's safe state observed, the
    plot and the report of a run served, and none of the lists or records without the token (401);
  - a long recipe: Hold, Unhold, Abort, Clear and Reset by their buttons back to Idle, each button
-   enabled only where PackML takes it (Reset disabled in Aborted, with why);
+   enabled only where PackML takes it (Reset disabled in Aborted, with why; figure OUT_DIR/aborted.png);
  - /metrics counts the four runs; Log out ends the session (the login form is back);
  - SIGTERM ends cellctl serve with 0.
 """
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -96,12 +100,21 @@ try:
     page.log_in(token)
     state("Idle", wait)
 
+    # Before any job: the cell as serve read it when it started (nothing moved), every device listed.
+    page.until(lambda: re.fullmatch(r"-?\d+\.\d{3}", page.table("axes")[0][2]), "x's SCU position before any job")
+    assert re.fullmatch(r"-?\d+\.\d{3}", page.table("axes")[0][3]), page.table("axes")
+    assert [d[0] for d in page.table("devices")] == ["scu", "spindle", "encoder"], page.table("devices")
+    assert "as read when cellctl serve started" in text("board-age"), text("board-age")
+    page.screenshot("idle-before-jobs")
+
     # The Start list: each recipe of the folder, with its steps and planned time, or why not.
     page.until(lambda: len(Select(driver.find_element(By.ID, "recipe")).options) == 3, "the recipe list")
     options = {o.get_attribute("value"): (o.text, o.is_enabled())
                for o in Select(driver.find_element(By.ID, "recipe")).options}
-    assert options["short"] == ("short — 6 steps, planned ≥ 1.6 s", True), options
-    assert options["slow"] == ("slow — 10 steps, planned ≥ 36000 s", True), options
+    # The planner's time from where the emulated axes stand (0 mm; tests/integration/planned_time_test.cpp
+    # checks it against runs); the converter's ramps are the emulator's.
+    assert options["short"] == ("short — 6 steps, planned 5.5 s", True), options
+    assert options["slow"] == ("slow — 10 steps, planned 36000 s", True), options
     assert options["bad-recipe"][0].startswith("bad-recipe — not valid: ") and not options["bad-recipe"][1], options
 
     # Idle takes no hold (the button says why); a dismissed confirmation sends nothing.
@@ -173,6 +186,7 @@ try:
     state("Execute", wait)
     page.click_confirmed("abort", "emergency stop", "abort: ")
     state("Aborted", wait)
+    page.screenshot("aborted")
     page.button_disabled_because("reset", "clear first")
     page.button_disabled_because("abort", "aborting or aborted already")
     page.click_confirmed("clear", "clear the cell?", "clear: ")
