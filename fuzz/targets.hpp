@@ -20,6 +20,7 @@ void dp_diagnosis(std::span<const std::uint8_t> bytes);
 void dp_parameters(std::span<const std::uint8_t> bytes);
 void yaml_config(std::span<const std::uint8_t> bytes);
 void yaml_recipe(std::span<const std::uint8_t> bytes);
+void command_payload(std::span<const std::uint8_t> bytes);
 
 struct NamedTarget {
   std::string_view name;  // also the folder of its corpus and findings
@@ -36,6 +37,7 @@ inline constexpr NamedTarget kTargets[] = {
     {"dp_parameters", dp_parameters},
     {"yaml_config", yaml_config},
     {"yaml_recipe", yaml_recipe},
+    {"command_payload", command_payload},
 };
 
 }  // namespace cellctl::fuzz
