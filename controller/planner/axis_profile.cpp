@@ -363,6 +363,13 @@ bool AxisProfile::feasible(double T) const noexcept {
 bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
   out = brake_;
   const double main = std::max(T - brake_.duration(), reach_);
+  if (symmetric_) {
+    // From rest to rest with symmetric limits: in closed form (rest_to_rest.hpp).
+    std::array<JerkSegment, kFarthestJerkSigns.size()> pieces;
+    if (!rest_to_rest_pieces(main, T == min_duration_, target_offset_, limits_, pieces)) return false;
+    out.append(pieces.data(), pieces.size());
+    return arrives_at(out, target_, target_offset_, limits_);
+  }
   const double j = limits_.jerk;
   std::array<JerkSegment, 2 * kFarthestJerkSigns.size() - 1> pieces;  // the first n are set
   std::size_t n = 0;
@@ -373,22 +380,19 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
   // the blend then ends on the target.
   SevenDurations up{};
   SevenDurations down{};
-  // Symmetric from rest to rest the nearest profile is the farthest one mirrored.
-  const double far_symmetric = symmetric_ ? rest_to_rest_farthest(main, limits_, up) : 0.0;
   if (T == min_duration_ && min_side_ >= 0) {
     const auto side = static_cast<std::size_t>(min_side_);
     const double sign = side == 0 ? 1.0 : -1.0;
     SevenDurations d = up;
-    const double reached = symmetric_ ? far_symmetric : extreme(side).position(main, d);
+    const double reached = extreme(side).position(main, d);
     if (std::abs(sign * reached - target_offset_) <= 1e-13 * (1.0 + std::abs(target_offset_))) {
       for (std::size_t i = 0; i < d.size(); ++i) pieces[n++] = {sign * kFarthestJerkSigns[i] * j, d[i]};
       out.append(pieces.data(), n);
-      return arrives(out);
+      return arrives_at(out, target_, target_offset_, limits_);
     }
   }
-  const double far = symmetric_ ? far_symmetric : extreme(0).position(main, up);
-  if (symmetric_) down = up;
-  const double near = symmetric_ ? -far : -extreme(1).position(main, down);
+  const double far = extreme(0).position(main, up);
+  const double near = -extreme(1).position(main, down);
   const bool has_up = !std::isnan(far);
   const bool has_down = !std::isnan(near);
   if (!has_up && !has_down) return false;
@@ -399,13 +403,7 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
   } else if (has_down && far - near > 0.0) {
     share = std::clamp((target_offset_ - near) / (far - near), 0.0, 1.0);
   }
-  if (symmetric_ && share != 1.0 && share != 0.0) {
-    // Both extremes switch at the same times: the blend is the farthest profile scaled, no merge
-    // (the same jerks, bit for bit, as the merge below gives; it cost the most of a rest-to-rest plan).
-    for (std::size_t i = 0; i < up.size(); ++i) {
-      pieces[n++] = {j * (share * kFarthestJerkSigns[i] - (1.0 - share) * kFarthestJerkSigns[i]), up[i]};
-    }
-  } else if (share == 1.0 || share == 0.0) {
+  if (share == 1.0 || share == 0.0) {
     const bool use_up = share == 1.0;
     const SevenDurations& d = use_up ? up : down;
     const double sign = use_up ? 1.0 : -1.0;
@@ -426,17 +424,7 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
     }
   }
   out.append(pieces.data(), n);
-  return arrives(out);
-}
-
-bool AxisProfile::arrives(const JerkProfile& p) const noexcept {
-  const MotionState& e = p.end();
-  const double scale = 1.0 + std::abs(target_offset_);
-  return std::abs(e.position - target_.position) <= 1e-9 * scale &&
-         std::abs(e.velocity - target_.velocity) <=
-             1e-9 * (1.0 + limits_.max_velocity - limits_.min_velocity) &&
-         std::abs(e.acceleration - target_.acceleration) <=
-             1e-9 * (1.0 + limits_.max_acceleration - limits_.min_acceleration);
+  return arrives_at(out, target_, target_offset_, limits_);
 }
 
 }  // namespace cellctl::planner

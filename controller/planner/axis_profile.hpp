@@ -24,6 +24,7 @@
 // followed (none seen in millions of random problems).
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "planner/axis_limits.hpp"
@@ -66,6 +67,18 @@ enum class AxisStatus : std::uint8_t {
   return {};
 }
 
+// Whether `p` ends in `target` up to rounding, its start (after any brake) `offset` short of the
+// target's position: the safety net every built profile passes (a miss is unsupported_target).
+[[nodiscard]] inline bool arrives_at(const JerkProfile& p, const MotionState& target, double offset,
+                                     const AxisLimits& l) noexcept {
+  const MotionState& e = p.end();
+  const double scale = 1.0 + std::abs(offset);
+  return std::abs(e.position - target.position) <= 1e-9 * scale &&
+         std::abs(e.velocity - target.velocity) <= 1e-9 * (1.0 + l.max_velocity - l.min_velocity) &&
+         std::abs(e.acceleration - target.acceleration) <=
+             1e-9 * (1.0 + l.max_acceleration - l.min_acceleration);
+}
+
 class AxisProfile {
  public:
   static constexpr std::size_t kMaxBlocked = 3;
@@ -94,7 +107,6 @@ class AxisProfile {
     double dip_hi = 0.0;
     bool gap = false;  // some duration searched had no extreme profile
   };
-  [[nodiscard]] bool arrives(const JerkProfile& p) const noexcept;
   // The short set of one side, searched from t0 (the reach time, or the end of a velocity gap), for a
   // target not at rest (plan() handles one at rest, which has no dip).
   [[nodiscard]] ShortSet short_set(const FarthestProfile& f, double target, double slope,

@@ -89,4 +89,36 @@ double rest_to_rest_farthest(double T, const AxisLimits& limits, SevenDurations&
   return peak * half;
 }
 
+bool rest_to_rest_pieces(double T, bool shortest, double distance, const AxisLimits& limits,
+                         std::array<JerkSegment, kFarthestJerkSigns.size()>& pieces) noexcept {
+  SevenDurations up{};
+  const double far = rest_to_rest_farthest(T, limits, up);
+  const double j = limits.jerk;
+  // The shortest duration's profile is the farthest one on the distance's side: no blend (whose
+  // share of the other side would only be rounding), unless it misses the distance by more than
+  // rounding (then the blend ends on it).
+  if (shortest) {
+    const double sign = distance >= 0.0 ? 1.0 : -1.0;
+    if (std::abs(sign * far - distance) <= 1e-13 * (1.0 + std::abs(distance))) {
+      for (std::size_t i = 0; i < up.size(); ++i) pieces[i] = {sign * kFarthestJerkSigns[i] * j, up[i]};
+      return true;
+    }
+  }
+  if (std::isnan(far)) return false;
+  const double near = -far;
+  // The share of the farthest profile's jerk in the blend that ends exactly at the distance. Both
+  // extremes switch at the same times: the blend is the farthest profile scaled.
+  double share = 1.0;
+  if (far - near > 0.0) share = std::clamp((distance - near) / (far - near), 0.0, 1.0);
+  if (share != 1.0 && share != 0.0) {
+    for (std::size_t i = 0; i < up.size(); ++i) {
+      pieces[i] = {j * (share * kFarthestJerkSigns[i] - (1.0 - share) * kFarthestJerkSigns[i]), up[i]};
+    }
+  } else {
+    const double sign = share == 1.0 ? 1.0 : -1.0;
+    for (std::size_t i = 0; i < up.size(); ++i) pieces[i] = {sign * kFarthestJerkSigns[i] * j, up[i]};
+  }
+  return true;
+}
+
 }  // namespace cellctl::planner

@@ -4,8 +4,12 @@
 // direction of travel, braking the opposite acceleration bound (max_acceleration/min_acceleration
 // may differ).
 
+#include <array>
+#include <cstddef>
+
 #include "planner/axis_limits.hpp"
 #include "planner/farthest_profile.hpp"
+#include "planner/jerk_profile.hpp"
 
 namespace cellctl::planner {
 
@@ -19,5 +23,13 @@ namespace cellctl::planner {
 // the cruise. Why: every recipe move is one, and FarthestProfile's general set-up and case search
 // were most of its plan.
 [[nodiscard]] double rest_to_rest_farthest(double T, const AxisLimits& limits, SevenDurations& t) noexcept;
+
+// The profile from rest to rest over `distance` (signed) of duration T, with symmetric limits: where
+// T is the shortest duration (`shortest`) and the farthest profile on the distance's side gets there
+// to rounding, that profile; otherwise the blend of the farthest and the nearest profile (the
+// farthest mirrored: the farthest profile scaled) that ends on the distance. Its 7 pieces (some may
+// be empty); false when T has no profile (below the shortest duration).
+[[nodiscard]] bool rest_to_rest_pieces(double T, bool shortest, double distance, const AxisLimits& limits,
+                                       std::array<JerkSegment, kFarthestJerkSigns.size()>& pieces) noexcept;
 
 }  // namespace cellctl::planner

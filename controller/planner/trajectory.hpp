@@ -23,6 +23,7 @@
 #include "planner/axis_profile.hpp"
 #include "planner/input.hpp"
 #include "planner/jerk_profile.hpp"
+#include "planner/rest_to_rest.hpp"
 #include "planner/result.hpp"
 #include "planner/travel_fit.hpp"
 
@@ -116,6 +117,13 @@ class Trajectory {
     }
   }
   [[nodiscard]] bool plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept;
+  [[nodiscard]] bool plan_rest_to_rest(const Input<N>& in) noexcept;
+  // Whether axis i's profile p keeps its travel (up to rounding; an unbounded travel always).
+  [[nodiscard]] static bool inside_travel(const Input<N>& in, int i, const JerkProfile& p) noexcept {
+    if (in.min_position[i] == -kInf && in.max_position[i] == kInf) return true;
+    const double slack = 1e-9 * (1.0 + std::abs(in.target_position[i]));
+    return travel_excess(p, in.min_position[i], in.max_position[i]).by <= slack;
+  }
   // Every axis's motion inside its travel (see travel_fit.hpp), or outside_travel naming the axis
   // and the least excess the planner found. `longer` > 0: a time-synchronised axis keeps its travel
   // only with a longer duration than the common one (the caller raises it and rebuilds).
@@ -226,17 +234,58 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
   return true;
 }
 
+// From rest to rest on every enabled axis with symmetric limits (every recipe move from a
+// standstill, the commonest plan): each axis's shortest duration and its profile in closed form
+// (rest_to_rest.hpp), without an AxisProfile, whose general set-up (brake, extremes, blocked
+// intervals) was most of such a plan. The same durations and segments, bit for bit, as the general
+// path gives. False where it does not apply or the general path has more to say (a profile that
+// leaves the travel or misses its target): that path then plans it from the start.
+template <int N>
+bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in) noexcept {
+  if (in.synchronization == Synchronization::phase) return false;
+  double common = 0.0;
+  for (int i = 0; i < N; ++i) {
+    if (!in.enabled[idx(i)]) continue;
+    const AxisLimits l = limits_of(in, i);
+    if (!(in.current_velocity[i] == 0.0 && in.current_acceleration[i] == 0.0 &&
+          in.target_velocity[i] == 0.0 && in.target_acceleration[i] == 0.0 &&
+          l.min_velocity == -l.max_velocity && l.min_acceleration == -l.max_acceleration)) {
+      return false;
+    }
+    min_duration_[idx(i)] = rest_to_rest_time(in.target_position[i] - in.current_position[i], l);
+    blocked_count_[idx(i)] = 0;
+    common = std::max(common, min_duration_[idx(i)]);
+  }
+  for (int i = 0; i < N; ++i) {
+    if (!in.enabled[idx(i)]) continue;
+    const double T = synchronization_ == Synchronization::none ? min_duration_[idx(i)] : common;
+    std::array<JerkSegment, kFarthestJerkSigns.size()> pieces;
+    const double distance = in.target_position[i] - in.current_position[i];
+    const AxisLimits l = limits_of(in, i);
+    if (!rest_to_rest_pieces(T, T == min_duration_[idx(i)], distance, l, pieces)) return false;
+    JerkProfile& p = profiles_[idx(i)];
+    // The states as given (a velocity of -0.0 is at rest too, and integrates as it did there).
+    p = JerkProfile(MotionState{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]});
+    p.append(pieces.data(), pieces.size());
+    const MotionState target{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]};
+    if (!arrives_at(p, target, distance, l) || !inside_travel(in, i, p)) {
+      return false;
+    }
+  }
+  duration_ = common;
+  return true;
+}
+
 template <int N>
 Result Trajectory<N>::keep_travel(const Input<N>& in, const std::array<AxisProfile, kN>& axes, bool planned,
                                   int& error_axis, TravelExcess* excess, double& longer) noexcept {
   for (int i = 0; i < N; ++i) {
-    if (!in.enabled[idx(i)] || (in.min_position[i] == -kInf && in.max_position[i] == kInf)) continue;
+    if (!in.enabled[idx(i)] || inside_travel(in, i, profiles_[idx(i)])) continue;
     const double lo = in.min_position[i];
     const double hi = in.max_position[i];
     const double slack = 1e-9 * (1.0 + std::abs(in.target_position[i]));
     JerkProfile& p = profiles_[idx(i)];
     const TravelExcess e = travel_excess(p, lo, hi);
-    if (e.by <= slack) continue;
     TravelExcess least = e;  // what the motion the planner could make leaves the travel by
     const auto consider = [&](const TravelExcess& x) {
       if (x.by < least.by) least = x;
@@ -302,6 +351,10 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
   Trajectory t;
   t.enabled_ = in.enabled;
   t.synchronization_ = in.synchronization;
+  if (t.plan_rest_to_rest(in)) {
+    out = t;
+    return Result::working;
+  }
   bool planned = false;
   if (in.synchronization == Synchronization::phase) {
     Result r = Result::working;
