@@ -25,14 +25,17 @@ Emulator::Emulator(link::Link& link, const EmulatorConfig& config) : link_(link)
   }
 }
 
-plant::Actuator& Emulator::actuator(int a) {
+std::size_t Emulator::present_index(int a) const {
   if (!present(a)) throw std::out_of_range("scu emulator: no actuator " + std::to_string(a));
-  return actuators_[index(a)];
+  return index(a);
+}
+
+plant::Actuator& Emulator::actuator(int a) {
+  return actuators_[present_index(a)];
 }
 
 const plant::Actuator& Emulator::actuator(int a) const {
-  if (!present(a)) throw std::out_of_range("scu emulator: no actuator " + std::to_string(a));
-  return actuators_[index(a)];
+  return actuators_[present_index(a)];
 }
 
 std::int32_t Emulator::position_edges(int a) const {

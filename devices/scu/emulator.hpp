@@ -89,6 +89,8 @@ class Emulator {
   // data), emulator_faults.cpp (the error word, injected faults, a power cycle).
 
   static std::size_t index(int one_based) noexcept { return static_cast<std::size_t>(one_based - 1); }
+  // index(a) of an actuator the config has; throws std::out_of_range for any other a.
+  [[nodiscard]] std::size_t present_index(int a) const;
   // User positions structure (0x2001..): for each of 4 users Memory 1..4, Intermediate In/Out, then the
   // virtual limits. The emulator's defaults are fractions of the stroke, the same for every user: the
   // remote position's default, the targets of RE Memory/Intermediate, and what RG reads.

@@ -29,15 +29,14 @@ void Emulator::raise_error(int bit) {
 }
 
 void Emulator::inject_actuator_fault(int a) {
-  if (!present(a)) throw std::out_of_range("scu emulator: no actuator " + std::to_string(a));
+  const auto i = present_index(a);
   raise_error(error_bit::actuator_fault(a));
-  ++actuator_errors_[index(a)];
-  actuators_[index(a)].stop(false);
+  ++actuator_errors_[i];
+  actuators_[i].stop(false);
 }
 
 void Emulator::set_actuator_fault(int a, bool on) {
-  if (!present(a)) throw std::out_of_range("scu emulator: no actuator " + std::to_string(a));
-  lasting_fault_[index(a)] = on;
+  lasting_fault_[present_index(a)] = on;
   if (on) inject_actuator_fault(a);
 }
 

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
 #include <vector>
 
 #include "scu/data_list.hpp"
@@ -275,6 +276,10 @@ TEST(ScuEmulator, ALastingActuatorFaultStopsEveryMotionStartUntilItIsGone) {
   EXPECT_FALSE(m.emulator.error_word().actuator_fault(1));
   EXPECT_TRUE(m.emulator.actuator(1).active());
   EXPECT_THROW(m.emulator.set_actuator_fault(3, true), std::out_of_range);
+  // Every way a test names an actuator the config does not have is refused alike.
+  EXPECT_THROW((void)m.emulator.actuator(3), std::out_of_range);
+  EXPECT_THROW((void)std::as_const(m.emulator).actuator(0), std::out_of_range);
+  EXPECT_THROW(m.emulator.inject_actuator_fault(7), std::out_of_range);
   EXPECT_FALSE(m.emulator.has_actuator(3));
   EXPECT_TRUE(m.emulator.has_actuator(2));
 }
