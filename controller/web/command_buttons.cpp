@@ -17,11 +17,6 @@ constexpr std::array kStates{State::idle,      State::starting,  State::execute,
                              State::aborting,  State::aborted,   State::completing, State::complete,
                              State::resetting, State::clearing};
 
-nlohmann::json button(std::string_view reason) {
-  if (reason.empty()) return {{"enabled", true}};
-  return {{"enabled", false}, {"reason", std::string(reason)}};
-}
-
 }  // namespace
 
 std::optional<State> state_named(std::string_view name) noexcept {
@@ -30,8 +25,8 @@ std::optional<State> state_named(std::string_view name) noexcept {
   return std::nullopt;
 }
 
-nlohmann::json command_buttons(std::string_view state, bool starts_jobs) {
-  nlohmann::json out = nlohmann::json::object();
+std::vector<schema::CommandButton> command_buttons(std::string_view state, bool starts_jobs) {
+  std::vector<schema::CommandButton> out;
   const auto s = state_named(state);
   for (const auto c :
        {Command::hold, Command::unhold, Command::stop, Command::abort, Command::reset, Command::clear}) {
@@ -41,13 +36,13 @@ nlohmann::json command_buttons(std::string_view state, bool starts_jobs) {
                                : brings_to_rest
                                    ? std::string()
                                    : fmt::format("the cell's state ({}) is not known yet", state);
-    out[std::string(supervisor::to_string(c))] = button(reason);
+    out.push_back({std::string(supervisor::to_string(c)), reason});
   }
   const std::string start = !starts_jobs
                                 ? "this cellctl drives one run (cellctl run): jobs start under cellctl serve"
                             : s ? std::string(supervisor::refusal(*s, Command::start))
                                 : fmt::format("the cell's state ({}) is not known yet", state);
-  for (const auto* job : {"start", "home", "teach-in"}) out[job] = button(start);
+  for (const auto* job : {"start", "home", "teach-in"}) out.push_back({job, start});
   return out;
 }
 

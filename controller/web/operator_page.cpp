@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <variant>
 
+#include "schema/page_payloads.hpp"
 #include "schema/plant_tags.hpp"
 #include "web/answer_status.hpp"
 #include "web/cell_board.hpp"
@@ -237,7 +238,8 @@ void OperatorPage::route() {
       for (std::size_t i = 0; view && i < view->axes && i < start.size(); ++i)
         if (view->position_known[i]) start[i] = view->position_mm[i];
     }
-    res.set_content(recipe_list(options_.recipes, cell_, options_.plan, start).dump(), "application/json");
+    res.set_content(schema::recipe_list_json(recipe_list(options_.recipes, cell_, options_.plan, start)),
+                    "application/json");
   });
   s.Get("/runs", [this](const httplib::Request&, httplib::Response& res) {
     res.set_content(schema::run_history_json(run_history(options_.runs)), "application/json");
@@ -332,13 +334,13 @@ std::string OperatorPage::board_payload() {
   // Between jobs (cellctl serve) the last job's view, marked as not live.
   if (live) last_view_ = live->view;
   const bool read_at_start = !last_view_ && at_rest;
-  auto board = web::board_payload(axis_names_, read_at_start ? at_rest : last_view_, live.has_value());
-  if (read_at_start) board["read_at_start"] = true;
-  board["state"] = mirror_.state();
-  board["state_current"] = mirror_.state_tag().state_current;  // PackML's number for it
-  board["buttons"] = command_buttons(mirror_.state(), static_cast<bool>(run_.start));
-  board["history"] = !options_.runs.empty();
-  return board.dump();
+  auto board = board_view(axis_names_, read_at_start ? at_rest : last_view_, live.has_value());
+  board.read_at_start = read_at_start;
+  board.state = mirror_.state();
+  board.state_current = mirror_.state_tag().state_current;  // PackML's number for it
+  board.buttons = command_buttons(mirror_.state(), static_cast<bool>(run_.start));
+  board.history = !options_.runs.empty();
+  return schema::board_json(board);
 }
 
 std::string OperatorPage::admin_payload() {

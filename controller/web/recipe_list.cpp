@@ -24,9 +24,9 @@ std::string problem_of(const recipe::RecipeErrors& e) {
 
 }  // namespace
 
-nlohmann::json recipe_list(const std::filesystem::path& folder, const config::CellCore& cell,
-                           const recipe::ProgramTimer& timer,
-                           std::span<const std::optional<double>> start_mm) {
+schema::RecipeList recipe_list(const std::filesystem::path& folder, const config::CellCore& cell,
+                               const recipe::ProgramTimer& timer,
+                               std::span<const std::optional<double>> start_mm) {
   std::vector<std::filesystem::path> files;
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
@@ -36,28 +36,30 @@ nlohmann::json recipe_list(const std::filesystem::path& folder, const config::Ce
       files.push_back(p);
   }
   std::sort(files.begin(), files.end());
-  nlohmann::json list = nlohmann::json::array();
+  schema::RecipeList list;
   for (std::size_t i = 0; i < files.size() && i < kMaxListedRecipes; ++i) {
-    nlohmann::json r{{"name", files[i].stem().string()}};
+    schema::RecipeEntry r;
+    r.name = files[i].stem().string();
     try {
       if (std::filesystem::file_size(files[i]) > kMaxRecipeBytes)
         throw std::runtime_error(fmt::format("larger than {} bytes", kMaxRecipeBytes));
       const auto loaded = recipe::load_recipe(files[i], cell);
       const auto program = recipe::unroll(loaded);
-      r["steps"] = program.instructions.size();
+      r.steps = program.instructions.size();
       if (timer) {
         const auto planned = timer(program, start_mm);
-        r["planned_s"] = std::round(planned.seconds * 10.0) / 10.0;
-        if (planned.not_counted > 0) r["not_counted"] = planned.not_counted;
+        r.planned_s = std::round(planned.seconds * 10.0) / 10.0;
+        r.not_counted = planned.not_counted;
       }
     } catch (const recipe::RecipeErrors& e) {
-      r["problem"] = problem_of(e);
+      r.problem = problem_of(e);
     } catch (const std::exception& e) {
-      r["problem"] = e.what();
+      r.problem = e.what();
     }
-    list.push_back(std::move(r));
+    list.recipes.push_back(std::move(r));
   }
-  return {{"recipes", std::move(list)}, {"more", files.size() > kMaxListedRecipes}};
+  list.more = files.size() > kMaxListedRecipes;
+  return list;
 }
 
 }  // namespace cellctl::web

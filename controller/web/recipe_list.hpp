@@ -8,17 +8,16 @@
 // by the command line as a recipe::ProgramTimer (the page does not see the planner), from where the
 // page last saw the axes stand; the steps only the run can time are counted apart (not_counted).
 //
-// {"recipes":[{"name":"demo","steps":12,"planned_s":34.5,"not_counted":1},{"name":"bad","problem":"…"}],
-//  "more":false} (no planned_s without a timer; no not_counted when it is 0)
+// Without a timer no planned time is claimed. The JSON is the schema's (schema/page_payloads.hpp).
 
 #include <cstddef>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 
 #include "config/cell_core.hpp"
 #include "recipe/planned_time.hpp"
+#include "schema/page_payloads.hpp"
 
 namespace cellctl::web {
 
@@ -27,8 +26,8 @@ inline constexpr std::size_t kMaxListedRecipes = 100;
 inline constexpr std::uintmax_t kMaxRecipeBytes = 1u << 20;
 
 // `start_mm`: where each of the cell's axes stands (nullopt: not known).
-[[nodiscard]] nlohmann::json recipe_list(const std::filesystem::path& folder, const config::CellCore& cell,
-                                         const recipe::ProgramTimer& timer,
-                                         std::span<const std::optional<double>> start_mm);
+[[nodiscard]] schema::RecipeList recipe_list(const std::filesystem::path& folder,
+                                             const config::CellCore& cell, const recipe::ProgramTimer& timer,
+                                             std::span<const std::optional<double>> start_mm);
 
 }  // namespace cellctl::web

@@ -5,10 +5,19 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 
 namespace cellctl::web {
 namespace {
+
+// The buttons as the board carries them (schema/page_payloads.hpp), read back.
+nlohmann::json command_buttons(std::string_view state, bool starts_jobs) {
+  schema::Board board;
+  board.buttons = web::command_buttons(state, starts_jobs);
+  return nlohmann::json::parse(schema::board_json(board))["buttons"];
+}
 
 bool enabled(const nlohmann::json& b, const char* cmd) {
   return b.at(cmd).at("enabled").get<bool>();

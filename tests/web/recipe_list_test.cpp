@@ -9,6 +9,7 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <string>
@@ -49,7 +50,14 @@ TEST_F(RecipeFolder, ListsEachRecipeByNameWithStepsAndPlannedTimeOrItsProblem) {
     return recipe::PlannedTime{static_cast<double>(p.instructions.size()) + 0.04, 2};
   };
   const std::array<std::optional<double>, 2> start{12.5, std::nullopt};
-  const auto list = recipe_list(dir_, cell_, timer, start);
+  const auto typed = recipe_list(dir_, cell_, timer, start);
+  // As the page sends it: the same bytes as before its JSON moved into the schema.
+  EXPECT_EQ(
+      schema::recipe_list_json(typed),
+      R"({"more":false,"recipes":[{"name":"bad","problem":")" + (dir_ / "bad.yaml").string() +
+          R"(:13:15: steps[0].move.to.x: 250 is out of range [0, 180]"},{"name":"huge","problem":"larger )"
+          R"(than 1048576 bytes"},{"name":"short","not_counted":2,"planned_s":6.0,"steps":6}]})");
+  const auto list = nlohmann::json::parse(schema::recipe_list_json(typed));
   ASSERT_EQ(list["recipes"].size(), 3u) << list.dump();
   const auto& bad = list["recipes"][0];
   EXPECT_EQ(bad["name"], "bad");
@@ -69,7 +77,7 @@ TEST_F(RecipeFolder, ListsEachRecipeByNameWithStepsAndPlannedTimeOrItsProblem) {
 }
 
 TEST_F(RecipeFolder, WithoutATimerNoPlannedTimeIsClaimed) {
-  const auto list = recipe_list(dir_, cell_, {}, {});
+  const auto list = nlohmann::json::parse(schema::recipe_list_json(recipe_list(dir_, cell_, {}, {})));
   const auto& short_recipe = list["recipes"][2];
   EXPECT_EQ(short_recipe["steps"], 6);
   EXPECT_FALSE(short_recipe.contains("planned_s")) << short_recipe;
@@ -77,7 +85,8 @@ TEST_F(RecipeFolder, WithoutATimerNoPlannedTimeIsClaimed) {
 }
 
 TEST_F(RecipeFolder, AFolderThatIsNotThereListsNothing) {
-  const auto list = recipe_list(dir_ / "missing", cell_, {}, {});
+  const auto list =
+      nlohmann::json::parse(schema::recipe_list_json(recipe_list(dir_ / "missing", cell_, {}, {})));
   EXPECT_TRUE(list["recipes"].empty());
 }
 
