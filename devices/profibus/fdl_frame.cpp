@@ -3,6 +3,7 @@
 #include "profibus/fdl_codes.hpp"
 #include "wire/byte_reader.hpp"
 #include "wire/byte_writer.hpp"
+#include "wire/octet_sum.hpp"
 
 namespace cellctl::profibus {
 
@@ -82,18 +83,14 @@ bool is_start_delimiter(std::uint8_t b) noexcept {
   return b == kSd1 || b == kSd2 || b == kSd3 || b == kSd4 || b == kShortAck;
 }
 
-// DA SA FC [DSAP SSAP] DU, and the FCS over exactly those octets.
-void write_body(const FdlFrame& f, wire::ByteWriter& w, std::uint8_t& fcs) noexcept {
-  auto put = [&](std::uint8_t b) {
-    w.u8(b);
-    fcs = static_cast<std::uint8_t>(fcs + b);
-  };
-  put(static_cast<std::uint8_t>(f.da | (f.dsap ? kAddressExtension : 0u)));
-  put(static_cast<std::uint8_t>(f.sa | (f.ssap ? kAddressExtension : 0u)));
-  put(f.fc);
-  if (f.dsap) put(*f.dsap);
-  if (f.ssap) put(*f.ssap);
-  for (auto b : f.data.view()) put(b);
+// DA SA FC [DSAP SSAP] DU: the octets the FCS covers.
+void write_body(const FdlFrame& f, wire::ByteWriter& w) noexcept {
+  w.u8(static_cast<std::uint8_t>(f.da | (f.dsap ? kAddressExtension : 0u)));
+  w.u8(static_cast<std::uint8_t>(f.sa | (f.ssap ? kAddressExtension : 0u)));
+  w.u8(f.fc);
+  if (f.dsap) w.u8(*f.dsap);
+  if (f.ssap) w.u8(*f.ssap);
+  for (auto b : f.data.view()) w.u8(b);
 }
 
 }  // namespace
@@ -142,9 +139,9 @@ std::size_t encode(const FdlFrame& frame, std::span<std::uint8_t> out) noexcept 
       w.u8(kSd2);
     }
   }
-  std::uint8_t fcs = 0;
-  write_body(frame, w, fcs);
-  w.u8(fcs);
+  const std::size_t body_start = w.size();
+  write_body(frame, w);
+  w.u8(wire::octet_sum(w.written().subspan(body_start)));
   w.u8(kEndDelimiter);
   return w.ok() ? w.size() : 0;
 }
@@ -183,12 +180,6 @@ FdlParse parse_body(std::span<const std::uint8_t> body, FrameKind kind, std::siz
   return p;
 }
 
-std::uint8_t checksum(std::span<const std::uint8_t> body) noexcept {
-  std::uint8_t fcs = 0;
-  for (auto b : body) fcs = static_cast<std::uint8_t>(fcs + b);
-  return fcs;
-}
-
 // A frame whose body is bytes[offset, offset+len) followed by FCS and ED.
 FdlParse parse_framed(std::span<const std::uint8_t> bytes, std::size_t offset, std::size_t len,
                       FrameKind kind) noexcept {
@@ -196,7 +187,7 @@ FdlParse parse_framed(std::span<const std::uint8_t> bytes, std::size_t offset, s
   if (bytes.size() < total) return {};
   if (bytes[total - 1] != kEndDelimiter) return error(FdlError::bad_end_delimiter, 1);
   const auto body = bytes.subspan(offset, len);
-  if (checksum(body) != bytes[offset + len]) return error(FdlError::bad_fcs, total);
+  if (wire::octet_sum(body) != bytes[offset + len]) return error(FdlError::bad_fcs, total);
   return parse_body(body, kind, total);
 }
 

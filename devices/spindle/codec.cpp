@@ -5,6 +5,7 @@
 #include "wire/byte_reader.hpp"
 #include "wire/byte_writer.hpp"
 #include "wire/hex.hpp"
+#include "wire/octet_sum.hpp"
 
 namespace cellctl::spindle {
 namespace {
@@ -125,9 +126,7 @@ std::string_view to_string(DecodeError e) noexcept {
 }
 
 std::uint8_t Codec::checksum(std::span<const std::uint8_t> text) noexcept {
-  unsigned sum = 0;
-  for (auto c : text) sum += c;
-  return static_cast<std::uint8_t>(sum & 0xFFu);
+  return wire::octet_sum(text);
 }
 
 std::size_t Codec::encode(const Message& message, std::span<std::uint8_t> out) noexcept {
