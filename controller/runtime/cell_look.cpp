@@ -25,7 +25,7 @@ bool answered(const cell::CellState& s, const CellDevices& devices) noexcept {
     const auto& l = s.links[d->slot()];
     if (!l.active || l.counts.good_replies == 0) return false;
   }
-  if (s.devices[cell::slot(cell::Device::scu)].size() > 0 && !(s.scu_remote && s.scu_status2_known))
+  if (!s.devices[cell::slot(cell::Device::scu)].empty() && !(s.scu_remote && s.scu_status2_known))
     return false;
   return s.devices[cell::slot(cell::Device::encoder)].empty() || s.encoder.data_exchange;
 }
@@ -73,9 +73,11 @@ CellLook look_at_cell(const config::CellConfig& cell, LookOptions options) {
   cell::CellState state;
   state.axis_count = static_cast<std::uint8_t>(cell.axes.size());
   const auto start = clock.now();
-  const auto bound =
-      std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(options.answer_within_s));
-  SafeStop rest(*parts.devices, bound, start);
+  const auto seconds = [](double s) {
+    return std::chrono::duration_cast<link::Duration>(std::chrono::duration<double>(s));
+  };
+  const auto bound = seconds(options.answer_within_s);
+  SafeStop rest(*parts.devices, seconds(options.shutdown_timeout_s), start);
   std::atomic<bool> stop{false};
   bool read = false;
   parts.devices->activate(start);
@@ -101,6 +103,11 @@ CellLook look_at_cell(const config::CellConfig& cell, LookOptions options) {
       stop);
   emulators_stop.store(true);
   if (emulators.joinable()) emulators.join();
+  // Said loudly, as after a job (the scheduler blocks no start for it: the look started nothing, and
+  // the first job's own start-up and stop judge the device again).
+  for (const auto& v : rest.verdicts())
+    if (v && v->safe == Safe::unknown)
+      look.words += fmt::format("; {} safe state UNKNOWN: {}", v->device, v->evidence);
   return look;
 }
 

@@ -35,6 +35,9 @@ struct LookOptions {
   std::optional<emulation::EmulatorSetup> emulators;
   // How long, on the mode's clock, the devices have to answer before the cell is taken as read.
   double answer_within_s = 5.0;
+  // How long a stop is sent again to a device that has not confirmed it (as a run's,
+  // RunOptions::shutdown_timeout_s).
+  double shutdown_timeout_s = 5.0;
   std::span<const device_seam::DeviceKind> device_kinds = device_seam::cell_device_kinds();
 };
 
@@ -42,7 +45,7 @@ struct CellLook {
   status::StatusView view;  // Idle, no step: the cell as read (link figures of the look itself)
   journal::Sample sample;   // each axis planned where it stands, no spindle speed asked for
   bool answered = false;    // every device answered within the bound
-  std::string words;        // what was read, or which device did not answer
+  std::string words;        // what was read, which device did not answer, a safe state unknown
 };
 
 // Throws what a run's set-up throws before it moves (runtime/cell_parts.hpp: a port that does not
