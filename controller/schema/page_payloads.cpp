@@ -68,4 +68,8 @@ std::string recipe_list_json(const RecipeList& list) {
   return nlohmann::json{{"recipes", std::move(recipes)}, {"more", list.more}}.dump();
 }
 
+std::string page_reply_json(bool ok, std::string_view text) {
+  return nlohmann::json{{"ok", ok}, {ok ? "outcome" : "reason", text}}.dump();
+}
+
 }  // namespace cellctl::schema

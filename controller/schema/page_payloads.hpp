@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace cellctl::schema {
@@ -82,5 +83,10 @@ struct RecipeList {
 };
 
 [[nodiscard]] std::string recipe_list_json(const RecipeList& list);
+
+// The page's own replies that answer no command (a login, a logout, a request refused before any
+// command is read, an internal error): {"ok":true,"outcome":…} or {"ok":false,"reason":…}, the shape
+// of a command's answer (command_answer.hpp), so the page reads both alike.
+[[nodiscard]] std::string page_reply_json(bool ok, std::string_view text);
 
 }  // namespace cellctl::schema

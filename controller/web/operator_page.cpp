@@ -35,7 +35,7 @@ std::string sse(std::string_view event, const std::string& payload) {
 void refuse(httplib::Response& res, const Verdict& v) {
   res.status = v.status;
   if (v.retry_after_s > 0) res.set_header("Retry-After", std::to_string(v.retry_after_s));
-  res.set_content(nlohmann::json{{"ok", false}, {"reason", v.reason}}.dump(), "application/json");
+  res.set_content(schema::page_reply_json(false, v.reason), "application/json");
 }
 
 // The request's body into `body`, at most kMaxBody of it (a chunked body has no length to judge
@@ -136,27 +136,25 @@ void OperatorPage::route() {
   s.Get("/page.js", [](const httplib::Request&, httplib::Response& res) {
     res.set_content(std::string(operator_page_script()), "text/javascript; charset=utf-8");
   });
-  s.Post("/login",
+  s.Post("/login", [this](const httplib::Request& req, httplib::Response& res,
+                          const httplib::ContentReader& read) {
+    std::string ignored;
+    if (!read_body(read, ignored, res)) return;
+    const auto result = guard_.login(req);
+    if (const auto* refused = std::get_if<Verdict>(&result)) return refuse(res, *refused);
+    const auto& session = std::get<SessionStore::Opened>(result);
+    res.set_header("Set-Cookie", guard_.session_cookie(session.id));
+    res.set_content(schema::page_reply_json(true, fmt::format("logged in (session #{})", session.number)),
+                    "application/json");
+  });
+  s.Post("/logout",
          [this](const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& read) {
            std::string ignored;
            if (!read_body(read, ignored, res)) return;
-           const auto result = guard_.login(req);
-           if (const auto* refused = std::get_if<Verdict>(&result)) return refuse(res, *refused);
-           const auto& session = std::get<SessionStore::Opened>(result);
-           res.set_header("Set-Cookie", guard_.session_cookie(session.id));
-           res.set_content(nlohmann::json{{"ok", true},
-                                          {"outcome", fmt::format("logged in (session #{})", session.number)}}
-                               .dump(),
-                           "application/json");
+           guard_.logout(req);
+           res.set_header("Set-Cookie", guard_.session_cookie(""));
+           res.set_content(schema::page_reply_json(true, "logged out"), "application/json");
          });
-  s.Post("/logout", [this](const httplib::Request& req, httplib::Response& res,
-                           const httplib::ContentReader& read) {
-    std::string ignored;
-    if (!read_body(read, ignored, res)) return;
-    guard_.logout(req);
-    res.set_header("Set-Cookie", guard_.session_cookie(""));
-    res.set_content(nlohmann::json{{"ok", true}, {"outcome", "logged out"}}.dump(), "application/json");
-  });
   s.Get("/events", [this](const httplib::Request& req, httplib::Response& res) {
     const auto caller = guard_.caller(req);
     if (!caller) return refuse(res, {401, "the session has ended: log in again"});
@@ -287,7 +285,8 @@ void OperatorPage::pump() {
 }
 
 schema::CommandAnswer OperatorPage::command(const std::string& word, const std::string& body,
-                                            const command::CommandSource& source, command::SteadyTime received) {
+                                            const command::CommandSource& source,
+                                            command::SteadyTime received) {
   // The desk bounds the body before it parses it; the page's own id is the one its answer is found by.
   std::uint64_t id = 0;
   std::string state;

@@ -4,9 +4,9 @@
 #include <httplib.h>
 
 #include <chrono>
-#include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "schema/page_payloads.hpp"
 #include "web/request_guard.hpp"
 
 namespace cellctl::web {
@@ -50,7 +50,7 @@ std::unique_ptr<httplib::Server> make_page_server(const PageOptions& options) {
   server->set_default_headers(security_headers());
   server->set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
     res.status = 500;
-    res.set_content(nlohmann::json{{"ok", false}, {"reason", "internal error"}}.dump(), "application/json");
+    res.set_content(schema::page_reply_json(false, "internal error"), "application/json");
   });
   return server;
 }
