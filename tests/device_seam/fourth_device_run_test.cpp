@@ -63,13 +63,13 @@ TEST_F(FourthDeviceRun, ItsValveFollowsTheSpindleAndTheSummaryJudgesItBesideTheC
   EXPECT_GT(s["links"]["dio"]["replies"].get<long>(), 0) << s["links"]["dio"];
 
   // The operator page's board lists it among the devices, by its name, with its link's health.
-  const auto board = web::board_payload({"x", "z"}, run.status().read(), true);
-  const auto& devices = board["devices"];
+  const auto board = web::board_view({"x", "z"}, run.status().read(), true);
+  const auto& devices = board.devices;
   const auto dio =
-      std::find_if(devices.begin(), devices.end(), [](const auto& d) { return d["name"] == "dio"; });
-  ASSERT_NE(dio, devices.end()) << board.dump();
-  EXPECT_EQ(devices.size(), 4u) << board.dump();
-  EXPECT_GT((*dio)["replies"].get<long>(), 0) << dio->dump();
+      std::find_if(devices.begin(), devices.end(), [](const auto& d) { return d.name == "dio"; });
+  ASSERT_NE(dio, devices.end()) << schema::board_json(board);
+  EXPECT_EQ(devices.size(), 4u) << schema::board_json(board);
+  EXPECT_GT(dio->replies, 0u) << schema::board_json(board);
 
   // And the page's /metrics, scraped as Prometheus does, has a series for it (by its name).
   command::Arbiter arbiter(std::chrono::milliseconds(1000), {});
