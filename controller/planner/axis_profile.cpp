@@ -368,7 +368,7 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
     std::array<JerkSegment, kFarthestJerkSigns.size()> pieces;
     if (!rest_to_rest_pieces(main, T == min_duration_, target_offset_, limits_, pieces)) return false;
     out.append(pieces.data(), pieces.size());
-    return arrives_at(out, target_, target_offset_, limits_);
+    return arrives_at(out.end(), target_, target_offset_, limits_);
   }
   const double j = limits_.jerk;
   std::array<JerkSegment, 2 * kFarthestJerkSigns.size() - 1> pieces;  // the first n are set
@@ -388,7 +388,7 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
     if (std::abs(sign * reached - target_offset_) <= 1e-13 * (1.0 + std::abs(target_offset_))) {
       for (std::size_t i = 0; i < d.size(); ++i) pieces[n++] = {sign * kFarthestJerkSigns[i] * j, d[i]};
       out.append(pieces.data(), n);
-      return arrives_at(out, target_, target_offset_, limits_);
+      return arrives_at(out.end(), target_, target_offset_, limits_);
     }
   }
   const double far = extreme(0).position(main, up);
@@ -424,7 +424,7 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
     }
   }
   out.append(pieces.data(), n);
-  return arrives_at(out, target_, target_offset_, limits_);
+  return arrives_at(out.end(), target_, target_offset_, limits_);
 }
 
 }  // namespace cellctl::planner

@@ -67,11 +67,11 @@ enum class AxisStatus : std::uint8_t {
   return {};
 }
 
-// Whether `p` ends in `target` up to rounding, its start (after any brake) `offset` short of the
-// target's position: the safety net every built profile passes (a miss is unsupported_target).
-[[nodiscard]] inline bool arrives_at(const JerkProfile& p, const MotionState& target, double offset,
+// Whether a profile that ends in `e` arrives in `target` up to rounding, its start (after any brake)
+// `offset` short of the target's position: the safety net every built profile passes (a miss is
+// unsupported_target).
+[[nodiscard]] inline bool arrives_at(const MotionState& e, const MotionState& target, double offset,
                                      const AxisLimits& l) noexcept {
-  const MotionState& e = p.end();
   const double scale = 1.0 + std::abs(offset);
   return std::abs(e.position - target.position) <= 1e-9 * scale &&
          std::abs(e.velocity - target.velocity) <= 1e-9 * (1.0 + l.max_velocity - l.min_velocity) &&

@@ -67,10 +67,28 @@ class JerkProfile {
   }
   ~JerkProfile() = default;
 
+  // Where `n` segments take a motion from `from` after `elapsed` seconds: its end state and the
+  // time then (empty segments skipped, as append() skips them).
+  struct Reached {
+    MotionState end;
+    double time;
+  };
+  [[nodiscard]] static Reached reached(const MotionState& from, double elapsed, const JerkSegment* segments,
+                                       std::size_t n) noexcept {
+    Reached r{from, elapsed};
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!(segments[i].duration > 0.0)) continue;
+      r.end = integrate(r.end, segments[i].jerk, segments[i].duration);
+      r.time += segments[i].duration;
+    }
+    return r;
+  }
+
   // Adds segments after the last one; zero-length segments are dropped. Precondition: they fit in
   // kMaxSegments (the shapes are built by code that knows their length). Several at once keep the
   // state in registers: one at a time it went through memory, a stall per segment.
   void append(const JerkSegment* segments, std::size_t n) noexcept {
+    // One loop, not reached() and then the stores: two loops cost 2 % of a moving plan.
     MotionState end = end_;
     double duration = duration_;
     std::size_t count = count_;
@@ -84,6 +102,19 @@ class JerkProfile {
     }
     end_ = end;
     duration_ = duration;
+    count_ = count;
+  }
+  // The same with their end known already (reached() from this profile's end): a caller can check
+  // it before the profile is touched.
+  void append(const JerkSegment* segments, std::size_t n, const Reached& r) noexcept {
+    std::size_t count = count_;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!(segments[i].duration > 0.0)) continue;
+      assert(count < kMaxSegments);
+      segments_[count++] = segments[i];
+    }
+    end_ = r.end;
+    duration_ = r.time;
     count_ = count;
   }
   void append(JerkSegment segment) noexcept { append(&segment, 1); }

@@ -111,9 +111,13 @@ bool rest_to_rest_pieces(double T, bool shortest, double distance, const AxisLim
   double share = 1.0;
   if (far - near > 0.0) share = std::clamp((distance - near) / (far - near), 0.0, 1.0);
   if (share != 1.0 && share != 0.0) {
-    for (std::size_t i = 0; i < up.size(); ++i) {
-      pieces[i] = {j * (share * kFarthestJerkSigns[i] - (1.0 - share) * kFarthestJerkSigns[i]), up[i]};
-    }
+    // j (share s - (1 - share) s) for the signs s = 1, 0, -1, worked out once per sign (the same
+    // values, bit for bit: s = +-1 only negates exactly, s = 0 gives 0).
+    const double rise = j * (share - (1.0 - share));
+    const double fall = j * ((1.0 - share) - share);
+    pieces = {JerkSegment{rise, up[0]}, JerkSegment{0.0, up[1]},  JerkSegment{fall, up[2]},
+              JerkSegment{0.0, up[3]},  JerkSegment{fall, up[4]}, JerkSegment{0.0, up[5]},
+              JerkSegment{rise, up[6]}};
   } else {
     const double sign = share == 1.0 ? 1.0 : -1.0;
     for (std::size_t i = 0; i < up.size(); ++i) pieces[i] = {sign * kFarthestJerkSigns[i] * j, up[i]};

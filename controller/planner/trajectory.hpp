@@ -117,13 +117,7 @@ class Trajectory {
     }
   }
   [[nodiscard]] bool plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept;
-  [[nodiscard]] bool plan_rest_to_rest(const Input<N>& in) noexcept;
-  // Whether axis i's profile p keeps its travel (up to rounding; an unbounded travel always).
-  [[nodiscard]] static bool inside_travel(const Input<N>& in, int i, const JerkProfile& p) noexcept {
-    if (in.min_position[i] == -kInf && in.max_position[i] == kInf) return true;
-    const double slack = 1e-9 * (1.0 + std::abs(in.target_position[i]));
-    return travel_excess(p, in.min_position[i], in.max_position[i]).by <= slack;
-  }
+  [[nodiscard]] static bool plan_rest_to_rest(const Input<N>& in, Trajectory& out) noexcept;
   // Every axis's motion inside its travel (see travel_fit.hpp), or outside_travel naming the axis
   // and the least excess the planner found. `longer` > 0: a time-synchronised axis keeps its travel
   // only with a longer duration than the common one (the caller raises it and rebuilds).
@@ -237,42 +231,69 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
 // From rest to rest on every enabled axis with symmetric limits (every recipe move from a
 // standstill, the commonest plan): each axis's shortest duration and its profile in closed form
 // (rest_to_rest.hpp), without an AxisProfile, whose general set-up (brake, extremes, blocked
-// intervals) was most of such a plan. The same durations and segments, bit for bit, as the general
-// path gives. False where it does not apply or the general path has more to say (a profile that
-// leaves the travel or misses its target): that path then plans it from the start.
+// intervals) was most of such a plan, and straight into `out`, without the scratch copy (its copy
+// was a tenth of such a plan): every check is made before `out` is touched. The same durations and
+// segments, bit for bit, as the general path gives. False (and `out` as it was) where it does not
+// apply or the general path has more to say (a travel that does not hold the start and the target,
+// a missed arrival): that path then plans it from the start.
 template <int N>
-bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in) noexcept {
+bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, Trajectory& out) noexcept {
   if (in.synchronization == Synchronization::phase) return false;
   double common = 0.0;
+  // Only the enabled axes' are set.
+  std::array<AxisLimits, kN> limits;
+  std::array<double, kN> shortest;
+  std::array<std::array<JerkSegment, kFarthestJerkSigns.size()>, kN> pieces;
+  std::array<JerkProfile::Reached, kN> reached;
   for (int i = 0; i < N; ++i) {
     if (!in.enabled[idx(i)]) continue;
-    const AxisLimits l = limits_of(in, i);
+    // The states first: a moving plan is told at the first axis, for a few instructions.
     if (!(in.current_velocity[i] == 0.0 && in.current_acceleration[i] == 0.0 &&
-          in.target_velocity[i] == 0.0 && in.target_acceleration[i] == 0.0 &&
-          l.min_velocity == -l.max_velocity && l.min_acceleration == -l.max_acceleration)) {
+          in.target_velocity[i] == 0.0 && in.target_acceleration[i] == 0.0)) {
       return false;
     }
-    min_duration_[idx(i)] = rest_to_rest_time(in.target_position[i] - in.current_position[i], l);
-    blocked_count_[idx(i)] = 0;
-    common = std::max(common, min_duration_[idx(i)]);
+    const AxisLimits l = limits_of(in, i);
+    const double from = in.current_position[i];
+    const double to = in.target_position[i];
+    // Moving only one way (the farthest profile scaled), the motion's positions lie between the start
+    // and the target (to rounding, far below keep_travel's slack): the travel holds it if it holds both.
+    if (!(l.min_velocity == -l.max_velocity && l.min_acceleration == -l.max_acceleration &&
+          in.min_position[i] <= std::min(from, to) && std::max(from, to) <= in.max_position[i])) {
+      return false;
+    }
+    limits[idx(i)] = l;
+    shortest[idx(i)] = rest_to_rest_time(to - from, l);
+    common = std::max(common, shortest[idx(i)]);
   }
   for (int i = 0; i < N; ++i) {
     if (!in.enabled[idx(i)]) continue;
-    const double T = synchronization_ == Synchronization::none ? min_duration_[idx(i)] : common;
-    std::array<JerkSegment, kFarthestJerkSigns.size()> pieces;
+    const double T = in.synchronization == Synchronization::none ? shortest[idx(i)] : common;
     const double distance = in.target_position[i] - in.current_position[i];
-    const AxisLimits l = limits_of(in, i);
-    if (!rest_to_rest_pieces(T, T == min_duration_[idx(i)], distance, l, pieces)) return false;
-    JerkProfile& p = profiles_[idx(i)];
+    const AxisLimits& l = limits[idx(i)];
+    if (!rest_to_rest_pieces(T, T == shortest[idx(i)], distance, l, pieces[idx(i)])) return false;
     // The states as given (a velocity of -0.0 is at rest too, and integrates as it did there).
-    p = JerkProfile(MotionState{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]});
-    p.append(pieces.data(), pieces.size());
+    const MotionState start{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]};
+    reached[idx(i)] = JerkProfile::reached(start, 0.0, pieces[idx(i)].data(), pieces[idx(i)].size());
     const MotionState target{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]};
-    if (!arrives_at(p, target, distance, l) || !inside_travel(in, i, p)) {
-      return false;
-    }
+    if (!arrives_at(reached[idx(i)].end, target, distance, l)) return false;
   }
-  duration_ = common;
+  for (int i = 0; i < N; ++i) {
+    JerkProfile& p = out.profiles_[idx(i)];
+    if (!in.enabled[idx(i)]) {
+      p = JerkProfile();  // as the general path's scratch copy leaves it
+      out.min_duration_[idx(i)] = 0.0;
+      out.blocked_count_[idx(i)] = 0;
+      continue;
+    }
+    p = JerkProfile(MotionState{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]});
+    p.append(pieces[idx(i)].data(), pieces[idx(i)].size(), reached[idx(i)]);
+    out.min_duration_[idx(i)] = shortest[idx(i)];
+    out.blocked_count_[idx(i)] = 0;
+  }
+  out.enabled_ = in.enabled;
+  out.synchronization_ = in.synchronization;
+  out.note_ = {};
+  out.duration_ = common;
   return true;
 }
 
@@ -280,12 +301,13 @@ template <int N>
 Result Trajectory<N>::keep_travel(const Input<N>& in, const std::array<AxisProfile, kN>& axes, bool planned,
                                   int& error_axis, TravelExcess* excess, double& longer) noexcept {
   for (int i = 0; i < N; ++i) {
-    if (!in.enabled[idx(i)] || inside_travel(in, i, profiles_[idx(i)])) continue;
+    if (!in.enabled[idx(i)] || (in.min_position[i] == -kInf && in.max_position[i] == kInf)) continue;
     const double lo = in.min_position[i];
     const double hi = in.max_position[i];
     const double slack = 1e-9 * (1.0 + std::abs(in.target_position[i]));
     JerkProfile& p = profiles_[idx(i)];
     const TravelExcess e = travel_excess(p, lo, hi);
+    if (e.by <= slack) continue;
     TravelExcess least = e;  // what the motion the planner could make leaves the travel by
     const auto consider = [&](const TravelExcess& x) {
       if (x.by < least.by) least = x;
@@ -347,14 +369,11 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
                         limits_of(in, i));
     }
   };
+  if (plan_rest_to_rest(in, out)) return Result::working;
   // Plan into a scratch copy: a refused plan leaves `out` as it was.
   Trajectory t;
   t.enabled_ = in.enabled;
   t.synchronization_ = in.synchronization;
-  if (t.plan_rest_to_rest(in)) {
-    out = t;
-    return Result::working;
-  }
   bool planned = false;
   if (in.synchronization == Synchronization::phase) {
     Result r = Result::working;
