@@ -3,7 +3,8 @@
 // and the config it was found with. Homed is a fact the next process checks against the devices
 // before any motion (check_homed): the SCU still initialised (a power loss or reset clears it), the
 // encoder and the SCU still in the relation they had at home (a replaced, re-preset or slipped
-// encoder breaks it), the config unchanged. Plain data, no I/O: runtime/home_record_file.hpp reads and writes it.
+// encoder breaks it), the config unchanged. Plain data, no I/O: runtime/home_record_file.hpp reads and writes
+// it.
 
 #include <array>
 #include <cstdint>

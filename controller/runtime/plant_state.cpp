@@ -28,7 +28,8 @@ PlantState load_plant_state(const std::filesystem::path& path) {
   const auto& kept = std::get<schema::PlantStateFile>(read);
   for (const auto& a : kept.scu_actuators) {
     if (a.actuator < 1 || a.actuator > scu::kActuatorCount) throw not_the_state("actuator out of range");
-    state.actuators[static_cast<std::size_t>(a.actuator - 1)] = PlantState::Actuator{a.position_mm, a.initialised};
+    state.actuators[static_cast<std::size_t>(a.actuator - 1)] =
+        PlantState::Actuator{a.position_mm, a.initialised};
   }
   if (kept.spindle) {
     state.spindle_converter_hours = kept.spindle->converter_hours;
@@ -44,7 +45,8 @@ bool save_plant_state(const std::filesystem::path& path, const PlantState& state
       if (const auto& a = state.actuators[i])
         kept.scu_actuators.push_back({static_cast<int>(i + 1), a->position_mm, a->initialised});
     if (state.spindle_converter_hours && state.spindle_motor_hours)
-      kept.spindle = schema::PlantStateFile::Spindle{*state.spindle_converter_hours, *state.spindle_motor_hours};
+      kept.spindle =
+          schema::PlantStateFile::Spindle{*state.spindle_converter_hours, *state.spindle_motor_hours};
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
     config::replace_file(path, schema::plant_state_json(kept));
     return true;

@@ -67,7 +67,8 @@ class OperatorPage {
   [[nodiscard]] std::string board_payload();
   [[nodiscard]] std::string metrics_text();
   [[nodiscard]] schema::CommandAnswer command(const std::string& word, const std::string& body,
-                                              const command::CommandSource& source, command::SteadyTime received);
+                                              const command::CommandSource& source,
+                                              command::SteadyTime received);
 
   PageOptions options_;
   const config::CellCore& cell_;
@@ -80,7 +81,8 @@ class OperatorPage {
   std::vector<std::string> axis_names_;
   std::optional<status::StatusView> last_view_;  // the run's, kept by the pump: the last job's between jobs
   plant_link::CommandDesk desk_;
-  std::vector<schema::CommandAnswer> answers_;  // the run's answers, until the request waiting for each takes it
+  std::vector<schema::CommandAnswer>
+      answers_;  // the run's answers, until the request waiting for each takes it
   std::uint64_t next_id_ = 1;
   std::uint64_t admin_version_ = 0;
   std::uint64_t commands_ = 0, refused_ = 0;

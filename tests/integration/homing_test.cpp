@@ -10,8 +10,8 @@
 
 #include "encoder/eeprom_file.hpp"
 #include "journal/record_header.hpp"
-#include "runtime/home_record_file.hpp"
 #include "run_fixture.hpp"
+#include "runtime/home_record_file.hpp"
 
 namespace cellctl::testing {
 namespace {
@@ -36,7 +36,7 @@ class HomingTest : public RunFixture {
   }
   routines::HomeRecord record() const {
     return runtime::load_home_record(runtime::home_record_path(dir_ / "state", "virtual-time"), cell_,
-                                      journal::file_sha256(cell_.source));
+                                     journal::file_sha256(cell_.source));
   }
   // A new process with new emulators: the SCU's actuators as the emulator config says (after a
   // power loss: not initialised), the encoder's EEPROM from its file.
