@@ -5,8 +5,8 @@
 //   every axis's blocked intervals); each axis then re-profiled to end exactly then;
 // - phase: one scalar profile s: 0 -> 1 along the straight line from the current to the target
 //   positions, with the tightest scaled limits of all axes — possible only when the current and
-//   target velocities and accelerations are all on that line; otherwise time synchronisation and
-//   a note;
+//   target velocities and accelerations are all on that line and the target keeps the line's
+//   limits; otherwise time synchronisation and a note;
 // - none: every axis on its own shortest profile.
 // Every axis's motion (overshoot included) must stay in its travel, or the plan is refused. An
 // axis whose time-synchronised blend leaves it gets a profile of the common duration that keeps it
@@ -34,6 +34,9 @@ inline constexpr double kInf = std::numeric_limits<double>::infinity();
 inline constexpr std::string_view kPhaseFallbackNote =
     "phase synchronisation impossible (the current or target velocities and accelerations are not on the "
     "line between the positions): time-synchronised instead";
+inline constexpr std::string_view kPhaseLimitsNote =
+    "phase synchronisation impossible (the target's velocity and acceleration break the limits along the "
+    "line, which take each bound from the axis it binds most): time-synchronised instead";
 inline constexpr std::string_view kPhaseTravelNote =
     "phase synchronisation impossible (the straight-line motion leaves an axis's travel): "
     "time-synchronised instead";
@@ -160,7 +163,8 @@ Result Trajectory<N>::validate(const Input<N>& in, int& axis) noexcept {
   return Result::working;
 }
 
-// Phase synchronisation: true when planned (r says how), false when the states are not on a line.
+// Phase synchronisation: true when planned (r says how); false, with the reason in note_, when the
+// states are not on a line or the target breaks the limits along it (no note: nothing to move).
 template <int N>
 bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept {
   // The line's direction and the scalar start/target state (progress s, its velocity and acceleration).
@@ -188,6 +192,7 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
         !on_line(in.current_acceleration[i], s0.acceleration) ||
         !on_line(in.target_velocity[i], sf.velocity) ||
         !on_line(in.target_acceleration[i], sf.acceleration)) {
+      note_ = kPhaseFallbackNote;
       return false;
     }
     if (d[i] == 0.0) continue;
@@ -204,6 +209,13 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
   }
   AxisProfile scalar;
   const AxisStatus st = scalar.plan(s0, sf, sl);
+  // The line's bounds come from different axes (one's jerk, another's velocity), so a target every
+  // axis can reach on its own may break them (arriving accelerated, the velocity before it): each
+  // axis then plans with its own limits.
+  if (st == AxisStatus::target_outside_limits) {
+    note_ = kPhaseLimitsNote;
+    return false;
+  }
   if (st != AxisStatus::ok) {
     error_axis = lead;
     r = status_result(st);
@@ -378,27 +390,10 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
   if (in.synchronization == Synchronization::phase) {
     Result r = Result::working;
     planned = t.plan_phase(in, error_axis, r);
-    if (r == Result::target_outside_limits) {
-      // Along the line the scaled limits are the tightest of all axes': the axis whose own limits
-      // the target breaks, if one does (limit none: only the line's).
-      for (int i = 0; i < N && refusal != nullptr; ++i) {
-        if (!in.enabled[idx(i)]) continue;
-        refused_target(i);
-        if (refusal->limit != TargetLimit::none) {
-          error_axis = i;
-          break;
-        }
-      }
-    }
     if (is_error(r)) return r;
-    if (!planned) {
-      t.synchronization_ = Synchronization::time;
-      bool any_motion = false;
-      for (int i = 0; i < N; ++i) {
-        any_motion = any_motion || (in.enabled[idx(i)] && in.target_position[i] != in.current_position[i]);
-      }
-      if (any_motion) t.note_ = kPhaseFallbackNote;
-    }
+    // Not on a line, or beyond the line's limits: time synchronisation, plan_phase's note saying why
+    // (none when nothing moves).
+    if (!planned) t.synchronization_ = Synchronization::time;
   }
   std::array<AxisProfile, kN> axes;  // not {}: that zeroed their brakes' unused segment slots
   double common = 0.0;

@@ -174,6 +174,29 @@ TEST(PhaseSync, OffTheLineFallsBackToTimeSyncWithANote) {
   EXPECT_DOUBLE_EQ(planner.trajectory().duration(), t.duration());
 }
 
+TEST(PhaseSync, ATargetBeyondTheLinesLimitsFallsBackToTimeSyncWithANote) {
+  // Along (1, 1) the line's jerk is axis 0's (10) and its lowest velocity axis 1's (-0.01). Arriving
+  // at 0.5 m/s^2 along the line needs 0.5^2 / (2 * 10) = 0.0125 m/s less velocity just before: below
+  // the line's -0.01. Each axis alone can (axis 0 down to -1, axis 1 needs only 0.00125 at jerk 100).
+  Input<2> in;
+  in.target_position = Vector<2>{1.0, 1.0};
+  in.target_acceleration = Vector<2>{0.5, 0.5};
+  in.max_acceleration = Vector<2>{2.0, 2.0};
+  in.max_jerk = Vector<2>{10.0, 100.0};
+  in.min_velocity = Vector<2>{-1.0, -0.01};
+  in.synchronization = Synchronization::phase;
+  Trajectory<2> t;
+  int axis = -1;
+  ASSERT_EQ(Trajectory<2>::calculate(in, t, axis), Result::working) << axis;
+  EXPECT_EQ(t.synchronization(), Synchronization::time);
+  EXPECT_EQ(t.note(), kPhaseLimitsNote);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_NEAR(t.profile(i).end().position, 1.0, 1e-9);
+    EXPECT_NEAR(t.profile(i).end().acceleration, 0.5, 1e-9);
+    EXPECT_NEAR(t.profile(i).duration(), t.duration(), 1e-12);
+  }
+}
+
 TEST(Input, PrintsItselfForErrorMessages) {
   Input<2> in;
   in.current_position = Vector<2>{1.25, 0.0};
