@@ -133,59 +133,72 @@ std::string describe(const oracle::Problem& p, long i, std::uint64_t seed) {
   return buf;
 }
 
-// Returns how many plans were refused. A refusal is not a failure by itself, so that a run counts
-// them all; the tests expect none (the oracle plans every problem drawn: no start is beyond
-// recovery, no target beyond the limits, the travel unbounded).
-long run_random(Start start, Target target, long fallback_count, std::uint64_t fallback_seed) {
+// Each random test runs in kParts parts, ctest cases of their own: the parts check consecutive
+// blocks of one seeded sequence of problems (a problem's number and what it is do not depend on the
+// parts), so two cores share a test and no part comes near ctest's time limit under ASan on a loaded
+// machine (a whole test took up to 240 s there).
+constexpr int kParts = 4;
+
+// Returns how many plans of part `part` were refused. A refusal is not a failure by itself, so that a
+// run counts them all; the tests expect none (the oracle plans every problem drawn: no start is
+// beyond recovery, no target beyond the limits, the travel unbounded).
+long run_random(Start start, Target target, long fallback_count, std::uint64_t fallback_seed, int part) {
   const long count = testing::problem_count(fallback_count);
   const std::uint64_t seed = testing::problem_seed(fallback_seed);
+  const long first = count * part / kParts;
+  const long end = count * (part + 1) / kParts;
   std::mt19937_64 rng(seed);
-  // The stretched durations from a generator of their own: the problems drawn are the same
-  // whatever is refused (a refusal draws no stretch).
-  std::mt19937_64 stretches(seed + 1000);
   long refused = 0;
   long braked = 0;
-  for (long i = 0; i < count; ++i) {
+  for (long i = 0; i < end; ++i) {
     const oracle::Problem p = testing::random_problem(rng, start, target);
+    if (i < first) continue;  // another part's: drawn, so that this part's are the same problems
     braked += oracle::braked(p).delay > 0.0 ? 1 : 0;
+    // The stretched duration from a generator of the problem's own: the same whatever part runs it
+    // and whatever was refused before it.
+    std::mt19937_64 stretches(seed + 1000 + static_cast<std::uint64_t>(i));
     if (!check_problem(p, stretches, describe(p, i, seed))) {
       if (refused == 0) std::printf("first refusal: %s\n", describe(p, i, seed).c_str());
       ++refused;
     }
     if (::testing::Test::HasFailure()) break;
     // Progress for long runs (CELLCTL_PLANNER_PROBLEMS in the millions).
-    if ((i + 1) % 250000 == 0) {
-      std::printf("  %ld problems passed so far\n", i + 1);
+    if ((i + 1 - first) % 250000 == 0) {
+      std::printf("  %ld problems passed so far\n", i + 1 - first);
       std::fflush(stdout);
     }
   }
-  std::printf("%ld problems (seed %llu), %ld braked first, %ld refused\n", count,
-              static_cast<unsigned long long>(seed), braked, refused);
+  std::printf("problems %ld to %ld of %ld (seed %llu): %ld braked first, %ld refused\n", first, end - 1,
+              count, static_cast<unsigned long long>(seed), braked, refused);
   return refused;
 }
 
-// 4 x 35 000 problems and 10 000 starts beyond the limits (CELLCTL_PLANNER_PROBLEMS sets the count per
-// test, CELLCTL_PLANNER_SEED the seed).
-TEST(AxisProfileRandom, RestToRestMatchesTheIndependentOptimum) {
-  EXPECT_EQ(run_random(Start::at_rest, Target::at_rest, 35000, 1), 0);
+class AxisProfileRandom : public ::testing::TestWithParam<int> {};
+
+// 4 x 35 000 problems and 10 000 starts beyond the limits, each in kParts parts
+// (CELLCTL_PLANNER_PROBLEMS sets the count per test, CELLCTL_PLANNER_SEED the seed).
+TEST_P(AxisProfileRandom, RestToRestMatchesTheIndependentOptimum) {
+  EXPECT_EQ(run_random(Start::at_rest, Target::at_rest, 35000, 1, GetParam()), 0);
 }
 // Moving starts anywhere within the bounds: those that must overshoot are braked first.
-TEST(AxisProfileRandom, MovingStartMatchesTheIndependentOptimum) {
-  EXPECT_EQ(run_random(Start::moving, Target::at_rest, 35000, 2), 0);
+TEST_P(AxisProfileRandom, MovingStartMatchesTheIndependentOptimum) {
+  EXPECT_EQ(run_random(Start::moving, Target::at_rest, 35000, 2, GetParam()), 0);
 }
-TEST(AxisProfileRandom, MovingTargetMatchesTheIndependentOptimum) {
-  EXPECT_EQ(run_random(Start::moving, Target::moving, 35000, 3), 0);
+TEST_P(AxisProfileRandom, MovingTargetMatchesTheIndependentOptimum) {
+  EXPECT_EQ(run_random(Start::moving, Target::moving, 35000, 3, GetParam()), 0);
 }
 // With a target acceleration too: every plan optimal and exact, none refused (velocity gaps are
 // blocked intervals, see velocity_gap).
-TEST(AxisProfileRandom, AcceleratingTargetMatchesTheIndependentOptimum) {
-  EXPECT_EQ(run_random(Start::moving, Target::accelerating, 35000, 4), 0);
+TEST_P(AxisProfileRandom, AcceleratingTargetMatchesTheIndependentOptimum) {
+  EXPECT_EQ(run_random(Start::moving, Target::accelerating, 35000, 4, GetParam()), 0);
 }
 // Starts beyond the limits, velocity and acceleration either side: braked, then optimal. Fewer in the
 // suite: the brake oracle searches each start (about 6 ms a problem under ASan, 227 s for 35 000).
-TEST(AxisProfileRandom, StartBeyondTheLimitsMatchesTheIndependentOptimum) {
-  EXPECT_EQ(run_random(Start::beyond_limits, Target::moving, 10000, 7), 0);
+TEST_P(AxisProfileRandom, StartBeyondTheLimitsMatchesTheIndependentOptimum) {
+  EXPECT_EQ(run_random(Start::beyond_limits, Target::moving, 10000, 7, GetParam()), 0);
 }
+
+INSTANTIATE_TEST_SUITE_P(Part, AxisProfileRandom, ::testing::Range(0, kParts));
 
 }  // namespace
 }  // namespace cellctl::planner
