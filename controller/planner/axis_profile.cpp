@@ -361,18 +361,37 @@ bool AxisProfile::feasible(double T) const noexcept {
 }
 
 bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
-  out = brake_;
+  Built built;
+  if (!prepare(T, built)) return false;
+  write(built, out);
+  return true;
+}
+
+bool AxisProfile::prepare(double T, Built& built) const noexcept {
+  // The pieces as JerkProfile::append() takes them (empty ones dropped), integrated from the brake's
+  // end in the same order: the same end state, bit for bit, with the state kept in registers.
+  std::size_t n = 0;
+  JerkProfile::Reached r{brake_.end(), brake_.duration()};
+  const auto add = [&](double jerk, double duration) {
+    if (!(duration > 0.0)) return;
+    built.pieces[n++] = {jerk, duration};
+    r.end = integrate(r.end, jerk, duration);
+    r.time += duration;
+  };
+  const auto done = [&] {
+    built.n = n;
+    built.reached = r;
+    return arrives_at(r.end, target_, target_offset_, limits_);
+  };
   const double main = std::max(T - brake_.duration(), reach_);
   if (symmetric_) {
     // From rest to rest with symmetric limits: in closed form (rest_to_rest.hpp).
     std::array<JerkSegment, kFarthestJerkSigns.size()> pieces;
     if (!rest_to_rest_pieces(main, T == min_duration_, target_offset_, limits_, pieces)) return false;
-    out.append(pieces.data(), pieces.size());
-    return arrives_at(out.end(), target_, target_offset_, limits_);
+    for (const JerkSegment& p : pieces) add(p.jerk, p.duration);
+    return done();
   }
   const double j = limits_.jerk;
-  std::array<JerkSegment, 2 * kFarthestJerkSigns.size() - 1> pieces;  // the first n are set
-  std::size_t n = 0;
   // The shortest duration to a target at rest is the extreme profile on the target's side: no blend
   // (whose share of the other extreme would only be rounding, yet its merge cost the most here).
   // Unless that profile misses the target by more than rounding (the shortest duration lies a few
@@ -386,9 +405,8 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
     SevenDurations d = up;
     const double reached = extreme(side).position(main, d);
     if (std::abs(sign * reached - target_offset_) <= 1e-13 * (1.0 + std::abs(target_offset_))) {
-      for (std::size_t i = 0; i < d.size(); ++i) pieces[n++] = {sign * kFarthestJerkSigns[i] * j, d[i]};
-      out.append(pieces.data(), n);
-      return arrives_at(out.end(), target_, target_offset_, limits_);
+      for (std::size_t i = 0; i < d.size(); ++i) add(sign * kFarthestJerkSigns[i] * j, d[i]);
+      return done();
     }
   }
   const double far = extreme(0).position(main, up);
@@ -407,24 +425,25 @@ bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
     const bool use_up = share == 1.0;
     const SevenDurations& d = use_up ? up : down;
     const double sign = use_up ? 1.0 : -1.0;
-    for (std::size_t i = 0; i < d.size(); ++i) pieces[n++] = {sign * kFarthestJerkSigns[i] * j, d[i]};
+    for (std::size_t i = 0; i < d.size(); ++i) add(sign * kFarthestJerkSigns[i] * j, d[i]);
   } else {
     // Merge the two switching sequences; in each piece the jerk is the blend of both.
     std::size_t iu = 0;
     std::size_t id = 0;
+    std::size_t merged = 0;
     double left_u = up[0];
     double left_d = down[0];
-    while (iu < up.size() && id < down.size() && n < pieces.size()) {
+    while (iu < up.size() && id < down.size() && merged < built.pieces.size()) {
       const double piece = std::min(left_u, left_d);
-      pieces[n++] = {j * (share * kFarthestJerkSigns[iu] - (1.0 - share) * kFarthestJerkSigns[id]), piece};
+      add(j * (share * kFarthestJerkSigns[iu] - (1.0 - share) * kFarthestJerkSigns[id]), piece);
+      ++merged;
       left_u -= piece;
       left_d -= piece;
       if (left_u <= 0.0 && ++iu < up.size()) left_u = up[iu];
       if (left_d <= 0.0 && ++id < down.size()) left_d = down[id];
     }
   }
-  out.append(pieces.data(), n);
-  return arrives_at(out.end(), target_, target_offset_, limits_);
+  return done();
 }
 
 }  // namespace cellctl::planner

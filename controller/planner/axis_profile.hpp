@@ -95,6 +95,20 @@ class AxisProfile {
   // The brake then the profile ending in the target exactly at T (a feasible duration). False
   // (and `out` unusable) when the profile misses the target: an unsupported_target case.
   [[nodiscard]] bool build(double T, JerkProfile& out) const noexcept;
+  // build() in two steps, so that a caller can check every axis before it writes one (a trajectory
+  // then plans straight into the caller's, without a scratch copy): prepare() makes the pieces after
+  // the brake (none empty) and integrates them as it goes, false when they miss the target; write()
+  // stores the brake and them.
+  struct Built {
+    std::array<JerkSegment, 2 * kFarthestJerkSigns.size() - 1> pieces;  // the first n are set
+    std::size_t n;
+    JerkProfile::Reached reached;
+  };
+  [[nodiscard]] bool prepare(double T, Built& built) const noexcept;
+  void write(const Built& built, JerkProfile& out) const noexcept {
+    out = brake_;
+    out.append_first(built.pieces, built.n, built.reached);
+  }
   [[nodiscard]] const JerkProfile& brake() const noexcept { return brake_; }
 
  private:

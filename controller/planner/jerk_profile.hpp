@@ -7,6 +7,7 @@
 #include <array>
 #include <cassert>
 #include <cstddef>
+#include <cstring>
 
 namespace cellctl::planner {
 
@@ -118,6 +119,17 @@ class JerkProfile {
     count_ = count;
   }
   void append(JerkSegment segment) noexcept { append(&segment, 1); }
+  // The same for the first n of `segments`, none of them empty: all M slots copied at once (a
+  // fixed-size copy; a loop over them, each tested for its duration, cost as much as building them),
+  // the first n kept. Precondition: size() + M <= kMaxSegments.
+  template <std::size_t M>
+  void append_first(const std::array<JerkSegment, M>& segments, std::size_t n, const Reached& r) noexcept {
+    assert(count_ + M <= kMaxSegments && n <= M);
+    std::memcpy(&segments_[count_], segments.data(), sizeof(segments));
+    end_ = r.end;
+    duration_ = r.time;
+    count_ += n;
+  }
 
   [[nodiscard]] const MotionState& start() const noexcept { return start_; }
   [[nodiscard]] const MotionState& end() const noexcept { return end_; }

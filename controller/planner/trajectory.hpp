@@ -121,6 +121,29 @@ class Trajectory {
   }
   [[nodiscard]] bool plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept;
   [[nodiscard]] static bool plan_rest_to_rest(const Input<N>& in, Trajectory& out) noexcept;
+  // Whether an enabled axis has a travel to keep (an end that is finite).
+  static bool bounded(const Input<N>& in) noexcept {
+    for (int i = 0; i < N; ++i) {
+      if (in.enabled[idx(i)] && !(in.min_position[i] == -kInf && in.max_position[i] == kInf)) return true;
+    }
+    return false;
+  }
+  // Time synchronisation: `common` moved out of every axis's blocked intervals. Then each enabled
+  // axis prepared (AxisProfile::prepare) at `common`, or at its own shortest duration without
+  // synchronisation; false, with `error_axis`, when one misses its target (only with a non-zero
+  // target acceleration, see axis_profile.hpp).
+  [[nodiscard]] static bool build_axes(const Input<N>& in, const std::array<AxisProfile, kN>& axes,
+                                       Synchronization sync, double& common,
+                                       std::array<AxisProfile::Built, kN>& built, int& error_axis) noexcept;
+  // The prepared axes written: profiles, shortest durations, blocked intervals, the duration.
+  void store(const Input<N>& in, const std::array<AxisProfile, kN>& axes,
+             const std::array<AxisProfile::Built, kN>& built, double common) noexcept;
+  // A disabled axis as a fresh trajectory has it.
+  void clear_axis(std::size_t i) noexcept {
+    profiles_[i] = JerkProfile();
+    min_duration_[i] = 0.0;
+    blocked_count_[i] = 0;
+  }
   // Every axis's motion inside its travel (see travel_fit.hpp), or outside_travel naming the axis
   // and the least excess the planner found. `longer` > 0: a time-synchronised axis keeps its travel
   // only with a longer duration than the common one (the caller raises it and rebuilds).
@@ -292,9 +315,7 @@ bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, Trajectory& out) noexc
   for (int i = 0; i < N; ++i) {
     JerkProfile& p = out.profiles_[idx(i)];
     if (!in.enabled[idx(i)]) {
-      p = JerkProfile();  // as the general path's scratch copy leaves it
-      out.min_duration_[idx(i)] = 0.0;
-      out.blocked_count_[idx(i)] = 0;
+      out.clear_axis(idx(i));
       continue;
     }
     p = JerkProfile(MotionState{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]});
@@ -307,6 +328,55 @@ bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, Trajectory& out) noexc
   out.note_ = {};
   out.duration_ = common;
   return true;
+}
+
+template <int N>
+bool Trajectory<N>::build_axes(const Input<N>& in, const std::array<AxisProfile, kN>& axes,
+                               Synchronization sync, double& common,
+                               std::array<AxisProfile::Built, kN>& built, int& error_axis) noexcept {
+  if (sync == Synchronization::time) {
+    // Out of every blocked interval; each move to an interval's end can only land in a later one.
+    for (int pass = 0; pass <= 2 * N * static_cast<int>(AxisProfile::kMaxBlocked); ++pass) {
+      bool moved = false;
+      for (int i = 0; i < N; ++i) {
+        if (!in.enabled[idx(i)]) continue;
+        for (std::size_t b = 0; b < axes[idx(i)].blocked_count(); ++b) {
+          if (axes[idx(i)].blocked(b).contains(common)) {
+            common = axes[idx(i)].blocked(b).hi;
+            moved = true;
+          }
+        }
+      }
+      if (!moved) break;
+    }
+  }
+  for (int i = 0; i < N; ++i) {
+    if (!in.enabled[idx(i)]) continue;
+    const AxisProfile& a = axes[idx(i)];
+    if (!a.prepare(sync == Synchronization::none ? a.min_duration() : common, built[idx(i)])) {
+      error_axis = i;
+      return false;
+    }
+  }
+  return true;
+}
+
+template <int N>
+void Trajectory<N>::store(const Input<N>& in, const std::array<AxisProfile, kN>& axes,
+                          const std::array<AxisProfile::Built, kN>& built, double common) noexcept {
+  for (int i = 0; i < N; ++i) {
+    if (!in.enabled[idx(i)]) {
+      clear_axis(idx(i));
+      continue;
+    }
+    const AxisProfile& a = axes[idx(i)];
+    a.write(built[idx(i)], profiles_[idx(i)]);
+    min_duration_[idx(i)] = a.min_duration();
+    blocked_count_[idx(i)] = a.blocked_count();
+    for (std::size_t b = 0; b < a.blocked_count(); ++b) blocked_[idx(i)][b] = a.blocked(b);
+  }
+  enabled_ = in.enabled;
+  duration_ = common;
 }
 
 template <int N>
@@ -382,19 +452,6 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
     }
   };
   if (plan_rest_to_rest(in, out)) return Result::working;
-  // Plan into a scratch copy: a refused plan leaves `out` as it was.
-  Trajectory t;
-  t.enabled_ = in.enabled;
-  t.synchronization_ = in.synchronization;
-  bool planned = false;
-  if (in.synchronization == Synchronization::phase) {
-    Result r = Result::working;
-    planned = t.plan_phase(in, error_axis, r);
-    if (is_error(r)) return r;
-    // Not on a line, or beyond the line's limits: time synchronisation, plan_phase's note saying why
-    // (none when nothing moves).
-    if (!planned) t.synchronization_ = Synchronization::time;
-  }
   std::array<AxisProfile, kN> axes;  // not {}: that zeroed their brakes' unused segment slots
   double common = 0.0;
   // Each axis on its own: its shortest duration and blocked intervals; `common` their maximum.
@@ -409,14 +466,35 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
         if (st == AxisStatus::target_outside_limits) refused_target(i);
         return status_result(st);
       }
-      t.min_duration_[idx(i)] = axes[idx(i)].min_duration();
-      t.blocked_count_[idx(i)] = axes[idx(i)].blocked_count();
-      for (std::size_t b = 0; b < axes[idx(i)].blocked_count(); ++b)
-        t.blocked_[idx(i)][b] = axes[idx(i)].blocked(b);
       common = std::max(common, axes[idx(i)].min_duration());
     }
     return Result::working;
   };
+  std::array<AxisProfile::Built, kN> built;  // only the enabled axes' are set
+  // Without a travel to keep, nothing after the build refuses a time- or un-synchronised plan: it goes
+  // straight into `out` once every axis is built and has arrived, without the scratch copy.
+  if (in.synchronization != Synchronization::phase && !bounded(in)) {
+    if (const Result r = plan_axes(); is_error(r)) return r;
+    if (!build_axes(in, axes, in.synchronization, common, built, error_axis))
+      return Result::unsupported_target;
+    out.store(in, axes, built, common);
+    out.synchronization_ = in.synchronization;
+    out.note_ = {};
+    return Result::working;
+  }
+  // Plan into a scratch copy: a refused plan leaves `out` as it was.
+  Trajectory t;
+  t.enabled_ = in.enabled;
+  t.synchronization_ = in.synchronization;
+  bool planned = false;
+  if (in.synchronization == Synchronization::phase) {
+    Result r = Result::working;
+    planned = t.plan_phase(in, error_axis, r);
+    if (is_error(r)) return r;
+    // Not on a line, or beyond the line's limits: time synchronisation, plan_phase's note saying why
+    // (none when nothing moves).
+    if (!planned) t.synchronization_ = Synchronization::time;
+  }
   if (!planned) {
     if (const Result r = plan_axes(); is_error(r)) return r;
   }
@@ -426,31 +504,9 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
   // fallbacks (travel_fit.hpp) may keep it, with a note.
   for (int attempt = 0;; ++attempt) {
     if (!planned) {
-      if (t.synchronization_ == Synchronization::time) {
-        // Out of every blocked interval; each move to an interval's end can only land in a later one.
-        for (int pass = 0; pass <= 2 * N * static_cast<int>(AxisProfile::kMaxBlocked); ++pass) {
-          bool moved = false;
-          for (int i = 0; i < N; ++i) {
-            if (!in.enabled[idx(i)]) continue;
-            for (std::size_t b = 0; b < t.blocked_count_[idx(i)]; ++b) {
-              if (t.blocked_[idx(i)][b].contains(common)) {
-                common = t.blocked_[idx(i)][b].hi;
-                moved = true;
-              }
-            }
-          }
-          if (!moved) break;
-        }
-      }
-      for (int i = 0; i < N; ++i) {
-        if (!in.enabled[idx(i)]) continue;
-        const bool own = t.synchronization_ == Synchronization::none;
-        if (!axes[idx(i)].build(own ? axes[idx(i)].min_duration() : common, t.profiles_[idx(i)])) {
-          error_axis = i;  // only with a non-zero target acceleration (see axis_profile.hpp)
-          return Result::unsupported_target;
-        }
-      }
-      t.duration_ = common;
+      if (!build_axes(in, axes, t.synchronization_, common, built, error_axis))
+        return Result::unsupported_target;
+      t.store(in, axes, built, common);
     }
     double longer = 0.0;
     const Result r = t.keep_travel(in, axes, planned, error_axis, excess, longer);
