@@ -397,12 +397,13 @@ bool AxisProfile::prepare(double T, Built& built) const noexcept {
   // Unless that profile misses the target by more than rounding (the shortest duration lies a few
   // ulps past the root; where the position's slope is steep, 2 in 10^5 problems missed by 1e-11 m):
   // the blend then ends on the target.
-  SevenDurations up{};
-  SevenDurations down{};
+  // Not zeroed: position() sets all seven (or says NaN, and they are not used).
+  SevenDurations up;
+  SevenDurations down;
   if (T == min_duration_ && min_side_ >= 0) {
     const auto side = static_cast<std::size_t>(min_side_);
     const double sign = side == 0 ? 1.0 : -1.0;
-    SevenDurations d = up;
+    SevenDurations d;
     const double reached = extreme(side).position(main, d);
     if (std::abs(sign * reached - target_offset_) <= 1e-13 * (1.0 + std::abs(target_offset_))) {
       for (std::size_t i = 0; i < d.size(); ++i) add(sign * kFarthestJerkSigns[i] * j, d[i]);

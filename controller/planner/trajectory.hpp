@@ -110,7 +110,8 @@ class Trajectory {
         in.min_acceleration[i] == in.min_acceleration[i] ? in.min_acceleration[i] : -in.max_acceleration[i];
     return AxisLimits{in.max_velocity[i], vmin, in.max_acceleration[i], amin, in.max_jerk[i]};
   }
-  static Result validate(const Input<N>& in, int& axis) noexcept;
+  // Checks every enabled axis's states and limits, and sets its limits in `limits` (the others unset).
+  static Result validate(const Input<N>& in, int& axis, std::array<AxisLimits, kN>& limits) noexcept;
   static Result status_result(AxisStatus s) noexcept {
     switch (s) {
       case AxisStatus::target_outside_limits:
@@ -120,7 +121,8 @@ class Trajectory {
     }
   }
   [[nodiscard]] bool plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept;
-  [[nodiscard]] static bool plan_rest_to_rest(const Input<N>& in, Trajectory& out) noexcept;
+  [[nodiscard]] static bool plan_rest_to_rest(const Input<N>& in, const std::array<AxisLimits, kN>& limits,
+                                              Trajectory& out) noexcept;
   // Whether an enabled axis has a travel to keep (an end that is finite).
   static bool bounded(const Input<N>& in) noexcept {
     for (int i = 0; i < N; ++i) {
@@ -163,7 +165,7 @@ class Trajectory {
 };
 
 template <int N>
-Result Trajectory<N>::validate(const Input<N>& in, int& axis) noexcept {
+Result Trajectory<N>::validate(const Input<N>& in, int& axis, std::array<AxisLimits, kN>& limits) noexcept {
   for (int i = 0; i < N; ++i) {
     if (!in.enabled[idx(i)]) continue;
     axis = i;
@@ -181,6 +183,7 @@ Result Trajectory<N>::validate(const Input<N>& in, int& axis) noexcept {
     // Every bound finite and > 0; the travel's ends not NaN (infinite: no travel limit) and ordered.
     if (!(bounds == 0.0 && least > 0.0 && in.min_position[i] <= in.max_position[i]))
       return Result::invalid_limits;
+    limits[idx(i)] = l;
   }
   axis = -1;
   return Result::working;
@@ -272,11 +275,11 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
 // apply or the general path has more to say (a travel that does not hold the start and the target,
 // a missed arrival): that path then plans it from the start.
 template <int N>
-bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, Trajectory& out) noexcept {
+bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, const std::array<AxisLimits, kN>& limits,
+                                      Trajectory& out) noexcept {
   if (in.synchronization == Synchronization::phase) return false;
   double common = 0.0;
   // Only the enabled axes' are set.
-  std::array<AxisLimits, kN> limits;
   std::array<double, kN> shortest;
   std::array<std::array<JerkSegment, kFarthestJerkSigns.size()>, kN> pieces;
   std::array<JerkProfile::Reached, kN> reached;
@@ -287,7 +290,7 @@ bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, Trajectory& out) noexc
           in.target_velocity[i] == 0.0 && in.target_acceleration[i] == 0.0)) {
       return false;
     }
-    const AxisLimits l = limits_of(in, i);
+    const AxisLimits& l = limits[idx(i)];
     const double from = in.current_position[i];
     const double to = in.target_position[i];
     // Moving only one way (the farthest profile scaled), the motion's positions lie between the start
@@ -296,7 +299,6 @@ bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, Trajectory& out) noexc
           in.min_position[i] <= std::min(from, to) && std::max(from, to) <= in.max_position[i])) {
       return false;
     }
-    limits[idx(i)] = l;
     shortest[idx(i)] = rest_to_rest_time(to - from, l);
     common = std::max(common, shortest[idx(i)]);
   }
@@ -442,16 +444,17 @@ template <int N>
 Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_axis, TravelExcess* excess,
                                 TargetExcess* refusal) noexcept {
   error_axis = -1;
-  if (const Result r = validate(in, error_axis); is_error(r)) return r;
+  std::array<AxisLimits, kN> limits;  // only the enabled axes' are set
+  if (const Result r = validate(in, error_axis, limits); is_error(r)) return r;
   // Which limit a refused target breaks, and by how much: worked out only once refused.
   const auto refused_target = [&](int i) {
     if (refusal != nullptr) {
       *refusal =
           target_excess(MotionState{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]},
-                        limits_of(in, i));
+                        limits[idx(i)]);
     }
   };
-  if (plan_rest_to_rest(in, out)) return Result::working;
+  if (plan_rest_to_rest(in, limits, out)) return Result::working;
   std::array<AxisProfile, kN> axes;  // not {}: that zeroed their brakes' unused segment slots
   double common = 0.0;
   // Each axis on its own: its shortest duration and blocked intervals; `common` their maximum.
@@ -460,7 +463,7 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
       if (!in.enabled[idx(i)]) continue;
       const MotionState start{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]};
       const MotionState target{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]};
-      const AxisStatus st = axes[idx(i)].plan(start, target, limits_of(in, i));
+      const AxisStatus st = axes[idx(i)].plan(start, target, limits[idx(i)]);
       if (st != AxisStatus::ok) {
         error_axis = i;
         if (st == AxisStatus::target_outside_limits) refused_target(i);
