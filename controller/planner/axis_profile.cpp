@@ -44,8 +44,11 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   if (!target_within(target, limits)) return AxisStatus::target_outside_limits;
   // Every start has a brake into the safe states: none is refused (see brake.hpp). A start at rest
   // needs none (the limits are > 0): not asked, the commonest start.
-  brake_ =
-      start.velocity == 0.0 && start.acceleration == 0.0 ? JerkProfile(start) : brake_profile(start, limits);
+  if (start.velocity == 0.0 && start.acceleration == 0.0) {
+    brake_ = JerkProfile(start);
+  } else {
+    brake_profile(start, limits, brake_);
+  }
   const MotionState s = brake_.end();
   main_start_ = {s.position, std::clamp(s.velocity, limits.min_velocity, limits.max_velocity),
                  std::clamp(s.acceleration, limits.min_acceleration, limits.max_acceleration)};

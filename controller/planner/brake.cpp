@@ -61,7 +61,13 @@ bool is_safe(double v, double a, const AxisLimits& l) noexcept {
 }
 
 JerkProfile brake_profile(const MotionState& start, const AxisLimits& l) noexcept {
-  JerkProfile profile(start);
+  JerkProfile profile;
+  brake_profile(start, l, profile);
+  return profile;
+}
+
+void brake_profile(const MotionState& start, const AxisLimits& l, JerkProfile& profile) noexcept {
+  profile = JerkProfile(start);
   const double a = start.acceleration;
   if (a > l.max_acceleration) profile.append({-l.jerk, (a - l.max_acceleration) / l.jerk});
   if (a < l.min_acceleration) profile.append({l.jerk, (l.min_acceleration - a) / l.jerk});
@@ -74,7 +80,6 @@ JerkProfile brake_profile(const MotionState& start, const AxisLimits& l) noexcep
   } else if (under) {
     brake_velocity(profile, l.mirrored(), -1.0);
   }
-  return profile;
 }
 
 }  // namespace cellctl::planner

@@ -29,5 +29,7 @@ namespace cellctl::planner {
 
 // Empty (duration 0) when the start is safe; otherwise it ends in a safe state (up to rounding).
 [[nodiscard]] JerkProfile brake_profile(const MotionState& start, const AxisLimits& limits) noexcept;
+// The same made in `out` (an axis's own brake, without a copy of it per plan).
+void brake_profile(const MotionState& start, const AxisLimits& limits, JerkProfile& out) noexcept;
 
 }  // namespace cellctl::planner

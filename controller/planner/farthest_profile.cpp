@@ -91,13 +91,14 @@ Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits
 
 FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
                                  const AxisLimits& limits) noexcept
-    : v0_(v0), a0_(a0), vf_(vf), af_(af), lim_(limits), cruise_shape_{} {
+    : v0_(v0), a0_(a0), vf_(vf), af_(af), lim_(limits) {
   const double j = lim_.jerk;
   inv_jerk_ = 1.0 / j;
   const double amax = lim_.max_acceleration;
   const double amin = lim_.min_acceleration;
   const double vmax = lim_.max_velocity;
-  SevenDurations& t = cruise_shape_;
+  SevenDurations& t = cruise_shape_;  // each set once below (not zeroed first)
+  t[3] = 0.0;
   // Up to (max_velocity, 0): +J to a1 = sqrt(x), hold, -J to 0. (Where the level is capped, as in
   // most long moves, its root is not needed.)
   const double rise = vmax - v0;
@@ -105,6 +106,7 @@ FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
   if (x1 <= amax * amax) {
     const double a1 = std::max(std::sqrt(std::max(0.0, x1)), std::max(a0, 0.0));
     t[0] = (a1 - a0) * inv_jerk_;
+    t[1] = 0.0;
     t[2] = a1 * inv_jerk_;
   } else {
     t[0] = (amax - a0) * inv_jerk_;
@@ -117,6 +119,7 @@ FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
   if (x3 <= amin * amin) {
     const double a3 = std::min(-std::sqrt(std::max(0.0, x3)), std::min(af, 0.0));
     t[4] = -a3 * inv_jerk_;
+    t[5] = 0.0;
     t[6] = (af - a3) * inv_jerk_;
   } else {
     t[4] = -amin * inv_jerk_;
@@ -376,7 +379,9 @@ double FarthestProfile::position_of(const SevenDurations& t) const noexcept {
 }
 
 double FarthestProfile::position(double T) const noexcept {
-  SevenDurations t{};
+  // Cruising, linear in T (as position(T, t) has it, without the durations).
+  if (T >= cruise_from_) return cruise_position_ + lim_.max_velocity * (T - cruise_from_);
+  SevenDurations t;
   return position(T, t);
 }
 
