@@ -376,10 +376,7 @@ bool AxisProfile::prepare(double T, Built& built) const noexcept {
   std::size_t n = 0;
   JerkProfile::Reached r{brake_.end(), brake_.duration()};
   const auto add = [&](double jerk, double duration) {
-    if (!(duration > 0.0)) return;
-    built.pieces[n++] = {jerk, duration};
-    r.end = integrate(r.end, jerk, duration);
-    r.time += duration;
+    JerkProfile::keep(built.pieces.data(), n, r, {jerk, duration});
   };
   const auto done = [&] {
     built.n = n;

@@ -107,7 +107,7 @@ class AxisProfile {
   [[nodiscard]] bool prepare(double T, Built& built) const noexcept;
   void write(const Built& built, JerkProfile& out) const noexcept {
     out = brake_;
-    out.append_first(built.pieces, built.n, built.reached);
+    out.append_kept(built.pieces, built.n, built.reached);
   }
   [[nodiscard]] const JerkProfile& brake() const noexcept { return brake_; }
 

@@ -68,21 +68,20 @@ class JerkProfile {
   }
   ~JerkProfile() = default;
 
-  // Where `n` segments take a motion from `from` after `elapsed` seconds: its end state and the
-  // time then (empty segments skipped, as append() skips them).
+  // Where segments take a motion: its end state and the time then.
   struct Reached {
     MotionState end;
     double time;
   };
-  [[nodiscard]] static Reached reached(const MotionState& from, double elapsed, const JerkSegment* segments,
-                                       std::size_t n) noexcept {
-    Reached r{from, elapsed};
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!(segments[i].duration > 0.0)) continue;
-      r.end = integrate(r.end, segments[i].jerk, segments[i].duration);
-      r.time += segments[i].duration;
-    }
-    return r;
+  // Segments made before the profile they go to is touched (its caller checks where they lead
+  // first): keeps `segment` in `kept` (the first n set) unless it is empty, and moves `r` on by it as
+  // append() does (the same end, bit for bit, the state kept in registers); append_kept() then
+  // copies them in at once.
+  static void keep(JerkSegment* kept, std::size_t& n, Reached& r, JerkSegment segment) noexcept {
+    if (!(segment.duration > 0.0)) return;
+    kept[n++] = segment;
+    r.end = integrate(r.end, segment.jerk, segment.duration);
+    r.time += segment.duration;
   }
 
   // Adds segments after the last one; zero-length segments are dropped. Precondition: they fit in
@@ -105,25 +104,12 @@ class JerkProfile {
     duration_ = duration;
     count_ = count;
   }
-  // The same with their end known already (reached() from this profile's end): a caller can check
-  // it before the profile is touched.
-  void append(const JerkSegment* segments, std::size_t n, const Reached& r) noexcept {
-    std::size_t count = count_;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!(segments[i].duration > 0.0)) continue;
-      assert(count < kMaxSegments);
-      segments_[count++] = segments[i];
-    }
-    end_ = r.end;
-    duration_ = r.time;
-    count_ = count;
-  }
   void append(JerkSegment segment) noexcept { append(&segment, 1); }
-  // The same for the first n of `segments`, none of them empty: all M slots copied at once (a
-  // fixed-size copy; a loop over them, each tested for its duration, cost as much as building them),
-  // the first n kept. Precondition: size() + M <= kMaxSegments.
+  // The first n of `segments` kept by keep() from this profile's end, which took it to `r`: all M
+  // slots copied at once (a fixed-size copy; a loop over them, each tested for its duration, cost as
+  // much as building them), the first n kept. Precondition: size() + M <= kMaxSegments.
   template <std::size_t M>
-  void append_first(const std::array<JerkSegment, M>& segments, std::size_t n, const Reached& r) noexcept {
+  void append_kept(const std::array<JerkSegment, M>& segments, std::size_t n, const Reached& r) noexcept {
     assert(count_ + M <= kMaxSegments && n <= M);
     std::memcpy(&segments_[count_], segments.data(), sizeof(segments));
     end_ = r.end;

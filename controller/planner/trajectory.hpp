@@ -281,7 +281,8 @@ bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, const std::array<AxisL
   double common = 0.0;
   // Only the enabled axes' are set.
   std::array<double, kN> shortest;
-  std::array<std::array<JerkSegment, kFarthestJerkSigns.size()>, kN> pieces;
+  std::array<std::array<JerkSegment, kFarthestJerkSigns.size()>, kN> kept;  // the pieces not empty
+  std::array<std::size_t, kN> kept_count;
   std::array<JerkProfile::Reached, kN> reached;
   for (int i = 0; i < N; ++i) {
     if (!in.enabled[idx(i)]) continue;
@@ -307,12 +308,17 @@ bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, const std::array<AxisL
     const double T = in.synchronization == Synchronization::none ? shortest[idx(i)] : common;
     const double distance = in.target_position[i] - in.current_position[i];
     const AxisLimits& l = limits[idx(i)];
-    if (!rest_to_rest_pieces(T, T == shortest[idx(i)], distance, l, pieces[idx(i)])) return false;
+    std::array<JerkSegment, kFarthestJerkSigns.size()> pieces;
+    if (!rest_to_rest_pieces(T, T == shortest[idx(i)], distance, l, pieces)) return false;
     // The states as given (a velocity of -0.0 is at rest too, and integrates as it did there).
     const MotionState start{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]};
-    reached[idx(i)] = JerkProfile::reached(start, 0.0, pieces[idx(i)].data(), pieces[idx(i)].size());
+    JerkProfile::Reached r{start, 0.0};
+    std::size_t n = 0;
+    for (const JerkSegment& piece : pieces) JerkProfile::keep(kept[idx(i)].data(), n, r, piece);
     const MotionState target{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]};
-    if (!arrives_at(reached[idx(i)].end, target, distance, l)) return false;
+    if (!arrives_at(r.end, target, distance, l)) return false;
+    kept_count[idx(i)] = n;
+    reached[idx(i)] = r;
   }
   for (int i = 0; i < N; ++i) {
     JerkProfile& p = out.profiles_[idx(i)];
@@ -321,7 +327,7 @@ bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, const std::array<AxisL
       continue;
     }
     p = JerkProfile(MotionState{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]});
-    p.append(pieces[idx(i)].data(), pieces[idx(i)].size(), reached[idx(i)]);
+    p.append_kept(kept[idx(i)], kept_count[idx(i)], reached[idx(i)]);
     out.min_duration_[idx(i)] = shortest[idx(i)];
     out.blocked_count_[idx(i)] = 0;
   }
