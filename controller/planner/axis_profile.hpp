@@ -93,7 +93,7 @@ class AxisProfile {
   // Whether a profile of total duration T exists (T >= min_duration, outside every blocked interval).
   [[nodiscard]] bool feasible(double T) const noexcept;
   // The brake then the profile ending in the target exactly at T (a feasible duration). False
-  // (and `out` unusable) when the profile misses the target: an unsupported_target case.
+  // (and `out` as it was) when the profile misses the target: an unsupported_target case.
   [[nodiscard]] bool build(double T, JerkProfile& out) const noexcept;
   // build() in two steps, so that a caller can check every axis before it writes one (a trajectory
   // then plans straight into the caller's, without a scratch copy): prepare() makes the pieces after
