@@ -54,9 +54,9 @@ class JerkProfile {
 
   JerkProfile() = default;
   explicit JerkProfile(const MotionState& start) noexcept : start_(start), end_(start) {}
-  // Copies only the segments in use: planning copies profiles several times each (a brake into its
-  // axis, into the built profile, the trajectory into the caller's), and a whole copy cost more than
-  // building them.
+  // Copies only the segments in use: planning copies profiles (an axis's brake into each profile
+  // built from it; with a travel or phase synchronisation the scratch trajectory into the caller's),
+  // and a whole copy cost more than building them.
   JerkProfile(const JerkProfile& other) noexcept { *this = other; }
   JerkProfile& operator=(const JerkProfile& other) noexcept {
     start_ = other.start_;
@@ -88,7 +88,7 @@ class JerkProfile {
   // kMaxSegments (the shapes are built by code that knows their length). Several at once keep the
   // state in registers: one at a time it went through memory, a stall per segment.
   void append(const JerkSegment* segments, std::size_t n) noexcept {
-    // One loop, not reached() and then the stores: two loops cost 2 % of a moving plan.
+    // One loop, not an integration pass and then the stores: two loops cost 2 % of a moving plan.
     MotionState end = end_;
     double duration = duration_;
     std::size_t count = count_;

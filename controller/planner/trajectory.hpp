@@ -37,6 +37,10 @@ inline constexpr std::string_view kPhaseFallbackNote =
 inline constexpr std::string_view kPhaseLimitsNote =
     "phase synchronisation impossible (the target's velocity and acceleration break the limits along the "
     "line, which take each bound from the axis it binds most): time-synchronised instead";
+inline constexpr std::string_view kPhaseBrakeNote =
+    "phase synchronisation impossible (the start is beyond the limits along the line, which take each bound "
+    "from the axis it binds most, so a brake along it could take an axis past its own): time-synchronised, "
+    "each axis braking within its own limits";
 inline constexpr std::string_view kPhaseTravelNote =
     "phase synchronisation impossible (the straight-line motion leaves an axis's travel): "
     "time-synchronised instead";
@@ -190,7 +194,8 @@ Result Trajectory<N>::validate(const Input<N>& in, int& axis, std::array<AxisLim
 }
 
 // Phase synchronisation: true when planned (r says how); false, with the reason in note_, when the
-// states are not on a line or the target breaks the limits along it (no note: nothing to move).
+// states are not on a line, the start or the target breaks the limits along it (no note: nothing
+// moves at all).
 template <int N>
 bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept {
   // The line's direction and the scalar start/target state (progress s, its velocity and acceleration).
@@ -201,7 +206,16 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
     d[i] = in.target_position[i] - in.current_position[i];
     if (lead < 0 || std::abs(d[i]) > std::abs(d[lead])) lead = i;
   }
-  if (lead < 0 || d[lead] == 0.0) return false;  // nothing to move along: time sync handles it
+  if (lead < 0 || d[lead] == 0.0) {
+    // No displacement, no line: time synchronisation, with the note where an axis moves all the same.
+    for (int i = 0; i < N; ++i) {
+      if (in.enabled[idx(i)] && (in.current_velocity[i] != 0.0 || in.current_acceleration[i] != 0.0 ||
+                                 in.target_velocity[i] != 0.0 || in.target_acceleration[i] != 0.0)) {
+        note_ = kPhaseFallbackNote;
+      }
+    }
+    return false;
+  }
   const double ds = d[lead];
   const MotionState s0{0.0, in.current_velocity[lead] / ds, in.current_acceleration[lead] / ds};
   const MotionState sf{1.0, in.target_velocity[lead] / ds, in.target_acceleration[lead] / ds};
@@ -246,6 +260,14 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
     error_axis = lead;
     r = status_result(st);
     return true;
+  }
+  // A start beyond the line's limits, whose bounds come from different axes too: its brake along the
+  // line, at the line's jerk, could take an axis past its own velocity limit where that axis alone,
+  // at its own jerk, keeps it (v 0.009 and a 0.3 on both axes, one of jerk 10, the other of velocity
+  // limit 0.01: 0.0135 along the line). Each axis then brakes on its own.
+  if (scalar.brake().duration() > 0.0) {
+    note_ = kPhaseBrakeNote;
+    return false;
   }
   JerkProfile s;
   if (!scalar.build(scalar.min_duration(), s)) {
@@ -501,7 +523,7 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
     planned = t.plan_phase(in, error_axis, r);
     if (is_error(r)) return r;
     // Not on a line, or beyond the line's limits: time synchronisation, plan_phase's note saying why
-    // (none when nothing moves).
+    // (none when nothing moves at all).
     if (!planned) t.synchronization_ = Synchronization::time;
   }
   if (!planned) {

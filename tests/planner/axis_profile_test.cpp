@@ -136,7 +136,8 @@ std::string describe(const oracle::Problem& p, long i, std::uint64_t seed) {
 // Each random test runs in kParts parts, ctest cases of their own: the parts check consecutive
 // blocks of one seeded sequence of problems (a problem's number and what it is do not depend on the
 // parts), so two cores share a test and no part comes near ctest's time limit under ASan on a loaded
-// machine (a whole test took up to 240 s there).
+// machine (two whole tests took 241 s together there, and 300 s each, ctest's limit, in the
+// dev tree at -O0 under load).
 constexpr int kParts = 4;
 
 // Returns how many plans of part `part` were refused. A refusal is not a failure by itself, so that a

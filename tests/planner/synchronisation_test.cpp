@@ -197,6 +197,47 @@ TEST(PhaseSync, ATargetBeyondTheLinesLimitsFallsBackToTimeSyncWithANote) {
   }
 }
 
+TEST(PhaseSync, AStartBeyondTheLinesLimitsBrakesEachAxisWithinItsOwn) {
+  // On the line (1, 1), both axes at v 0.009 and a 0.3. Axis 1 alone (jerk 100) ramps its
+  // acceleration out within 0.3^2 / 200 = 0.00045 of velocity: 0.00945, under its limit of 0.01.
+  // Along the line the jerk is axis 0's 10, and the velocity limit axis 1's: a brake along the line
+  // took axis 1 to 0.0135.
+  Input<2> in;
+  in.current_velocity = Vector<2>{0.009, 0.009};
+  in.current_acceleration = Vector<2>{0.3, 0.3};
+  in.target_position = Vector<2>{1.0, 1.0};
+  in.max_velocity = Vector<2>{1.0, 0.01};
+  in.max_acceleration = Vector<2>{2.0, 2.0};
+  in.max_jerk = Vector<2>{10.0, 100.0};
+  in.synchronization = Synchronization::phase;
+  Trajectory<2> t;
+  int axis = -1;
+  ASSERT_EQ(Trajectory<2>::calculate(in, t, axis), Result::working) << axis;
+  EXPECT_EQ(t.synchronization(), Synchronization::time);
+  EXPECT_EQ(t.note(), kPhaseBrakeNote);
+  double fastest = 0.0;
+  for (int k = 0; k <= 20000; ++k) {
+    fastest = std::max(fastest, t.profile(1).at(t.duration() * k / 20000.0).velocity);
+  }
+  EXPECT_LE(fastest, 0.01 + 1e-9);
+  EXPECT_NEAR(t.profile(1).end().position, 1.0, 1e-9);
+}
+
+TEST(PhaseSync, NoDisplacementButMovingIsTimeSynchronisedWithANote) {
+  Input<2> in;
+  in.current_velocity = Vector<2>{0.5, -0.2};
+  in.synchronization = Synchronization::phase;
+  Trajectory<2> t;
+  int axis = -1;
+  ASSERT_EQ(Trajectory<2>::calculate(in, t, axis), Result::working);
+  EXPECT_EQ(t.synchronization(), Synchronization::time);
+  EXPECT_EQ(t.note(), kPhaseFallbackNote);
+  // At rest where it is: nothing moves, no note.
+  in.current_velocity = Vector<2>{0.0, 0.0};
+  ASSERT_EQ(Trajectory<2>::calculate(in, t, axis), Result::working);
+  EXPECT_TRUE(t.note().empty());
+}
+
 TEST(Input, PrintsItselfForErrorMessages) {
   Input<2> in;
   in.current_position = Vector<2>{1.25, 0.0};

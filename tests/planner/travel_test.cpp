@@ -286,6 +286,15 @@ TEST(TargetLimits, ARefusedTargetSaysWhichLimitAndByHowMuch) {
   EXPECT_EQ(axis, 1);
   EXPECT_EQ(excess.limit, TargetLimit::max_velocity);
   EXPECT_NEAR(excess.by, 0.5, 1e-12);
+  // The same under phase synchronisation: the axis and its own limit, not the line's.
+  in.synchronization = Synchronization::phase;
+  excess = {};
+  axis = -1;
+  EXPECT_EQ(Trajectory<2>::calculate(in, t, axis, nullptr, &excess), Result::target_outside_limits);
+  EXPECT_EQ(axis, 1);
+  EXPECT_EQ(excess.limit, TargetLimit::max_velocity);
+  EXPECT_NEAR(excess.by, 0.5, 1e-12);
+  in.synchronization = Synchronization::time;
   // An acceleration beyond its bound, through the planner's output.
   in.target_velocity = Vector<2>{0.0, 0.0};
   in.target_acceleration = Vector<2>{-3.0, 0.0};
