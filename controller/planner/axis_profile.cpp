@@ -315,6 +315,20 @@ AxisProfile::ShortSet AxisProfile::short_set(const FarthestProfile& f, double ta
       if (set.gap) return set;
       found = g(t_min) < shallow;
     }
+    // A dip can also lie between two samples that both rise, behind a crest between the ones before
+    // (seed 4 problem 1088174 of the accelerating targets: g rises from its root at 0.316 s to a crest
+    // at 0.35 s, falls 2.7e-4 m short from 0.419 s to 0.477 s, and the samples at 0.318, 0.409 and
+    // 0.590 s all rise). A sample where g falls has a minimum after it, before the next sample
+    // that is higher: refined the same way.
+    for (int k = first; !found && k < kSamples; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      if (!(gs[i + 1] > gs[i])) continue;  // falling on to the next sample: `lowest` and `valley` cover it
+      double rate = 0.0;                   // g's slope at the sample
+      if (std::isnan(f.position_and_slope(at[i], rate)) || !(rate < 0.0)) continue;
+      t_min = golden_minimum(g, std::max(at[i], left), at[i + 1], shallow);
+      if (set.gap) return set;
+      found = g(t_min) < shallow;
+    }
     if (!found) return set;
   }
   // The dip's ends: the last non-short point before t_min, the first after it.

@@ -246,6 +246,23 @@ TEST(BlockedInterval, ADipBetweenTwoSamplesIsFound) {
   plan_checked(start, target, l, "problem 507850 of seed 3");
 }
 
+// Random problem 1088174 of seed 4 (AxisProfileRandom.AcceleratingTarget, the ten-million run of
+// 2026-11-28 session 13): from its root at 0.316 s the farthest profile rises to a crest at 0.35 s,
+// then falls 2.7e-4 m short of the target from 0.419 s to 0.478 s. The samples at 0.318, 0.409 and
+// 0.590 s all rise, so neither the lowest sample nor a valley showed the dip: no blocked interval was
+// found, and a duration of 0.4267 s, inside the dip, was taken as feasible and could not be built.
+TEST(BlockedInterval, ADipBehindACrestBetweenRisingSamplesIsFound) {
+  const AxisLimits l = AxisLimits::symmetric(2.8183156034967971, 6.83141711972171, 21.392831240929432);
+  const MotionState start{4.5499571449741509, -0.45633871723943287, 3.6556053864565197};
+  const MotionState target{4.6044621074751788, 0.84206223023881543, 5.8758126944048978};
+  const oracle::Problem p = problem(start, target, l);
+  AxisProfile axis;
+  ASSERT_EQ(axis.plan(start, target, l), AxisStatus::ok);
+  const Interval b = expect_one_oracle_blocked_interval(axis, p, target);
+  EXPECT_TRUE(b.contains(0.42665489551203095)) << b.lo << ".." << b.hi;
+  plan_checked(start, target, l, "problem 1088174 of seed 4");
+}
+
 // Short of the target at the reach time and again until 1.218 s, yet reaching it between two
 // samples: the mirrored extreme rises 2.6e-4 m above the target from 0.7097 to 0.7357 s. Missed
 // (1.218 s planned) until the short stretch's samples were searched for such a bump; found by the
