@@ -60,12 +60,6 @@ bool is_safe(double v, double a, const AxisLimits& l) noexcept {
          !over_max(-v, -a, l.mirrored());
 }
 
-JerkProfile brake_profile(const MotionState& start, const AxisLimits& l) noexcept {
-  JerkProfile profile;
-  brake_profile(start, l, profile);
-  return profile;
-}
-
 void brake_profile(const MotionState& start, const AxisLimits& l, JerkProfile& profile) noexcept {
   profile = JerkProfile(start);
   const double a = start.acceleration;

@@ -27,9 +27,8 @@ namespace cellctl::planner {
 // acceleration to zero at full jerk crosses neither max_velocity (a > 0) nor min_velocity (a < 0).
 [[nodiscard]] bool is_safe(double v, double a, const AxisLimits& limits) noexcept;
 
-// Empty (duration 0) when the start is safe; otherwise it ends in a safe state (up to rounding).
-[[nodiscard]] JerkProfile brake_profile(const MotionState& start, const AxisLimits& limits) noexcept;
-// The same made in `out` (an axis's own brake, without a copy of it per plan).
+// Made in `out` (an axis's own brake, without a copy of it per plan): empty (duration 0) when the
+// start is safe; otherwise it ends in a safe state (up to rounding).
 void brake_profile(const MotionState& start, const AxisLimits& limits, JerkProfile& out) noexcept;
 
 }  // namespace cellctl::planner
