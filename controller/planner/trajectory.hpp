@@ -114,6 +114,13 @@ class Trajectory {
         in.min_acceleration[i] == in.min_acceleration[i] ? in.min_acceleration[i] : -in.max_acceleration[i];
     return AxisLimits{in.max_velocity[i], vmin, in.max_acceleration[i], amin, in.max_jerk[i]};
   }
+  // An axis's start and target states, as given.
+  static MotionState start_of(const Input<N>& in, int i) noexcept {
+    return MotionState{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]};
+  }
+  static MotionState target_of(const Input<N>& in, int i) noexcept {
+    return MotionState{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]};
+  }
   // Checks every enabled axis's states and limits, and sets its limits in `limits` (the others unset).
   static Result validate(const Input<N>& in, int& axis, std::array<AxisLimits, kN>& limits) noexcept;
   static Result status_result(AxisStatus s) noexcept {
@@ -124,7 +131,8 @@ class Trajectory {
         return Result::unsupported_target;
     }
   }
-  [[nodiscard]] bool plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept;
+  [[nodiscard]] bool plan_phase(const Input<N>& in, const std::array<AxisLimits, kN>& limits, int& error_axis,
+                                Result& r) noexcept;
   [[nodiscard]] static bool plan_rest_to_rest(const Input<N>& in, const std::array<AxisLimits, kN>& limits,
                                               Trajectory& out) noexcept;
   // Whether an enabled axis has a travel to keep (an end that is finite).
@@ -153,8 +161,9 @@ class Trajectory {
   // Every axis's motion inside its travel (see travel_fit.hpp), or outside_travel naming the axis
   // and the least excess the planner found. `longer` > 0: a time-synchronised axis keeps its travel
   // only with a longer duration than the common one (the caller raises it and rebuilds).
-  [[nodiscard]] Result keep_travel(const Input<N>& in, const std::array<AxisProfile, kN>& axes, bool planned,
-                                   int& error_axis, TravelExcess* excess, double& longer) noexcept;
+  [[nodiscard]] Result keep_travel(const Input<N>& in, const std::array<AxisLimits, kN>& limits,
+                                   const std::array<AxisProfile, kN>& axes, bool planned, int& error_axis,
+                                   TravelExcess* excess, double& longer) noexcept;
 
   // Default-initialised, not value-initialised ({}): that zeroed every profile's unused segment
   // slots on each plan (see JerkSegment).
@@ -197,7 +206,8 @@ Result Trajectory<N>::validate(const Input<N>& in, int& axis, std::array<AxisLim
 // states are not on a line, the start or the target breaks the limits along it (no note: nothing
 // moves at all).
 template <int N>
-bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) noexcept {
+bool Trajectory<N>::plan_phase(const Input<N>& in, const std::array<AxisLimits, kN>& limits, int& error_axis,
+                               Result& r) noexcept {
   // The line's direction and the scalar start/target state (progress s, its velocity and acceleration).
   Vector<N> d = Vector<N>::Zero();
   int lead = -1;
@@ -236,7 +246,7 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
       return false;
     }
     if (d[i] == 0.0) continue;
-    const AxisLimits l = limits_of(in, i);
+    const AxisLimits& l = limits[idx(i)];
     const double m = std::abs(d[i]);
     const bool forward = d[i] > 0.0;
     sl.max_velocity = std::min(sl.max_velocity, (forward ? l.max_velocity : -l.min_velocity) / m);
@@ -278,7 +288,7 @@ bool Trajectory<N>::plan_phase(const Input<N>& in, int& error_axis, Result& r) n
   for (int i = 0; i < N; ++i) {
     if (!in.enabled[idx(i)]) continue;
     JerkProfile& p = profiles_[idx(i)];
-    p = JerkProfile(MotionState{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]});
+    p = JerkProfile(start_of(in, i));
     for (std::size_t k = 0; k < s.size(); ++k) p.append({d[i] * s.segment(k).jerk, s.segment(k).duration});
     min_duration_[idx(i)] = scalar.min_duration();
     blocked_count_[idx(i)] = 0;
@@ -333,11 +343,11 @@ bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, const std::array<AxisL
     std::array<JerkSegment, kFarthestJerkSigns.size()> pieces;
     if (!rest_to_rest_pieces(T, T == shortest[idx(i)], distance, l, pieces)) return false;
     // The states as given (a velocity of -0.0 is at rest too, and integrates as it did there).
-    const MotionState start{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]};
+    const MotionState start = start_of(in, i);
     JerkProfile::Reached r{start, 0.0};
     std::size_t n = 0;
     for (const JerkSegment& piece : pieces) JerkProfile::keep(kept[idx(i)].data(), n, r, piece);
-    const MotionState target{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]};
+    const MotionState target = target_of(in, i);
     if (!arrives_at(r.end, target, distance, l)) return false;
     kept_count[idx(i)] = n;
     reached[idx(i)] = r;
@@ -348,7 +358,7 @@ bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, const std::array<AxisL
       out.clear_axis(idx(i));
       continue;
     }
-    p = JerkProfile(MotionState{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]});
+    p = JerkProfile(start_of(in, i));
     p.append_kept(kept[idx(i)], kept_count[idx(i)], reached[idx(i)]);
     out.min_duration_[idx(i)] = shortest[idx(i)];
     out.blocked_count_[idx(i)] = 0;
@@ -410,8 +420,9 @@ void Trajectory<N>::store(const Input<N>& in, const std::array<AxisProfile, kN>&
 }
 
 template <int N>
-Result Trajectory<N>::keep_travel(const Input<N>& in, const std::array<AxisProfile, kN>& axes, bool planned,
-                                  int& error_axis, TravelExcess* excess, double& longer) noexcept {
+Result Trajectory<N>::keep_travel(const Input<N>& in, const std::array<AxisLimits, kN>& limits,
+                                  const std::array<AxisProfile, kN>& axes, bool planned, int& error_axis,
+                                  TravelExcess* excess, double& longer) noexcept {
   for (int i = 0; i < N; ++i) {
     if (!in.enabled[idx(i)] || (in.min_position[i] == -kInf && in.max_position[i] == kInf)) continue;
     const double lo = in.min_position[i];
@@ -443,9 +454,9 @@ Result Trajectory<N>::keep_travel(const Input<N>& in, const std::array<AxisProfi
     // The fastest turn against the start's velocity, then the shortest motion from there (which end
     // this blend or that shortest motion leaves may differ: the turn is only ever against the velocity).
     JerkProfile turned;
-    const MotionState start{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]};
-    const MotionState target{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]};
-    if (!planned && turn_first(start, target, limits_of(in, i), start.velocity > 0.0, turned) &&
+    const MotionState start = start_of(in, i);
+    const MotionState target = target_of(in, i);
+    if (!planned && turn_first(start, target, limits[idx(i)], start.velocity > 0.0, turned) &&
         consider(travel_excess(turned, lo, hi))) {
       if (synchronization_ == Synchronization::none) {
         p = turned;
@@ -477,9 +488,7 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
   // Which limit a refused target breaks, and by how much: worked out only once refused.
   const auto refused_target = [&](int i) {
     if (refusal != nullptr) {
-      *refusal =
-          target_excess(MotionState{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]},
-                        limits[idx(i)]);
+      *refusal = target_excess(target_of(in, i), limits[idx(i)]);
     }
   };
   if (plan_rest_to_rest(in, limits, out)) return Result::working;
@@ -489,8 +498,8 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
   const auto plan_axes = [&]() {
     for (int i = 0; i < N; ++i) {
       if (!in.enabled[idx(i)]) continue;
-      const MotionState start{in.current_position[i], in.current_velocity[i], in.current_acceleration[i]};
-      const MotionState target{in.target_position[i], in.target_velocity[i], in.target_acceleration[i]};
+      const MotionState start = start_of(in, i);
+      const MotionState target = target_of(in, i);
       const AxisStatus st = axes[idx(i)].plan(start, target, limits[idx(i)]);
       if (st != AxisStatus::ok) {
         error_axis = i;
@@ -520,7 +529,7 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
   bool planned = false;
   if (in.synchronization == Synchronization::phase) {
     Result r = Result::working;
-    planned = t.plan_phase(in, error_axis, r);
+    planned = t.plan_phase(in, limits, error_axis, r);
     if (is_error(r)) return r;
     // Not on a line, or beyond the line's limits: time synchronisation, plan_phase's note saying why
     // (none when nothing moves at all).
@@ -540,7 +549,7 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
       t.store(in, axes, built, common);
     }
     double longer = 0.0;
-    const Result r = t.keep_travel(in, axes, planned, error_axis, excess, longer);
+    const Result r = t.keep_travel(in, limits, axes, planned, error_axis, excess, longer);
     if (!is_error(r)) break;
     if (planned) {
       planned = false;
