@@ -7,18 +7,41 @@ namespace cellctl::planner {
 namespace {
 
 // Time to change the velocity by v (> 0) from and to zero acceleration, peak acceleration `a`:
-// a trapezoid when v reaches a^2 / J, a triangle otherwise. The distance covered while changing
-// from 0 to v is v times half this time (the shape is point-symmetric about its middle).
+// a trapezoid (a / J + v / a) when v reaches a^2 / J, a triangle (2 sqrt(v / J)) otherwise. The
+// distance covered while changing from 0 to v is v times half this time (the shape is
+// point-symmetric about its middle). Written as its ramp min(a / J, sqrt(v / J)) plus the larger of
+// v / a and sqrt(v / J) (the same sums): a min and a max where a branch on a^2 / J was mispredicted
+// on a third of the calls (the limits differ from axis to axis).
 double change_time(double v, double a, double j) noexcept {
-  return v >= a * a / j ? v / a + a / j : 2.0 * std::sqrt(v / j);
+  const double s = std::sqrt(v / j);
+  return std::min(a / j, s) + std::max(v / a, s);
+}
+
+// rest_to_rest_time with one acceleration bound `a` both ways (symmetric limits: every plan of
+// Trajectory::plan_rest_to_rest). Both velocity changes are then one shape, and each case has its
+// duration in a form without cancellation: a third of the divisions of the general form, which sat
+// on the plan's critical path (a third of a plan from rest in time, a tenth in instructions).
+double symmetric_time(double d, double vmax, double a, double j) noexcept {
+  const double ramp = a / j;  // ramping the acceleration in (or out)
+  const double to_vmax = change_time(vmax, a, j);
+  // Reaching max_velocity (to_vmax there, as long back) covers vmax to_vmax; the rest is cruised.
+  if (vmax * to_vmax <= d) return to_vmax + d / vmax;
+  // Below max_velocity at a peak v: with x = v / a (the plateau's time plus one ramp),
+  // d = a x (x + ramp) and T = 2 (x + ramp) = ramp + sqrt(ramp^2 + 4 d / a); where the peak is
+  // too low for a plateau (d < 2 a ramp^2), triangles: d = 2 J tau^3, T = 4 tau.
+  if (d < 2.0 * a * ramp * ramp) return 4.0 * std::cbrt(d / (2.0 * j));
+  return ramp + std::sqrt(ramp * ramp + 4.0 * d / a);
 }
 
 }  // namespace
 
 double rest_to_rest_time(double distance, const AxisLimits& limits) noexcept {
   if (distance == 0.0) return 0.0;
-  const bool forward = distance > 0.0;
   const double d = std::abs(distance);
+  // Tested before the direction, which a symmetric axis does not need (its sign is a coin toss).
+  if (limits.min_velocity == -limits.max_velocity && limits.min_acceleration == -limits.max_acceleration)
+    return symmetric_time(d, limits.max_velocity, limits.max_acceleration, limits.jerk);
+  const bool forward = distance > 0.0;
   const double vmax = forward ? limits.max_velocity : -limits.min_velocity;
   const double a_up = forward ? limits.max_acceleration : -limits.min_acceleration;
   const double a_down = forward ? -limits.min_acceleration : limits.max_acceleration;
@@ -68,9 +91,10 @@ double rest_to_rest_farthest(double T, const AxisLimits& limits, SevenDurations&
   double ramp = 0.0;
   double hold = 0.0;
   if (T >= 2.0 * to_vmax) {
-    const bool plateau = vmax >= amax * amax / j;
-    ramp = plateau ? amax / j : std::sqrt(vmax / j);
-    hold = plateau ? vmax / amax - amax / j : 0.0;
+    // The ramp and the hold of change_time, each without a branch (where the hold is none it comes
+    // out below zero).
+    ramp = std::min(amax / j, std::sqrt(vmax / j));
+    hold = std::max(0.0, vmax / amax - amax / j);
     const double cruise = T - 2.0 * to_vmax;
     t = SevenDurations{ramp, hold, ramp, cruise, ramp, hold, ramp};
     return vmax * (to_vmax + cruise);
@@ -93,35 +117,25 @@ bool rest_to_rest_pieces(double T, bool shortest, double distance, const AxisLim
                          std::array<JerkSegment, kFarthestJerkSigns.size()>& pieces) noexcept {
   SevenDurations up{};
   const double far = rest_to_rest_farthest(T, limits, up);
-  const double j = limits.jerk;
-  // The shortest duration's profile is the farthest one on the distance's side: no blend (whose
-  // share of the other side would only be rounding), unless it misses the distance by more than
-  // rounding (then the blend ends on it).
-  if (shortest) {
-    const double sign = distance >= 0.0 ? 1.0 : -1.0;
-    if (std::abs(sign * far - distance) <= 1e-13 * (1.0 + std::abs(distance))) {
-      for (std::size_t i = 0; i < up.size(); ++i) pieces[i] = {sign * kFarthestJerkSigns[i] * j, up[i]};
-      return true;
-    }
-  }
   if (std::isnan(far)) return false;
-  const double near = -far;
-  // The share of the farthest profile's jerk in the blend that ends exactly at the distance. Both
-  // extremes switch at the same times: the blend is the farthest profile scaled.
-  double share = 1.0;
-  if (far - near > 0.0) share = std::clamp((distance - near) / (far - near), 0.0, 1.0);
-  if (share != 1.0 && share != 0.0) {
-    // j (share s - (1 - share) s) for the signs s = 1, 0, -1, worked out once per sign (the same
-    // values, bit for bit: s = +-1 only negates exactly, s = 0 gives 0).
-    const double rise = j * (share - (1.0 - share));
-    const double fall = j * ((1.0 - share) - share);
-    pieces = {JerkSegment{rise, up[0]}, JerkSegment{0.0, up[1]},  JerkSegment{fall, up[2]},
-              JerkSegment{0.0, up[3]},  JerkSegment{fall, up[4]}, JerkSegment{0.0, up[5]},
-              JerkSegment{rise, up[6]}};
-  } else {
-    const double sign = share == 1.0 ? 1.0 : -1.0;
-    for (std::size_t i = 0; i < up.size(); ++i) pieces[i] = {sign * kFarthestJerkSigns[i] * j, up[i]};
-  }
+  // The share of the farthest profile's jerk in the blend that ends exactly at the distance (the
+  // nearest profile is the farthest one mirrored, so the blend is the farthest profile scaled). The
+  // shortest duration's profile is the farthest one on the distance's side, share 1 or 0 exactly
+  // (the other side's share would only be rounding), unless it misses the distance by more than
+  // rounding (then the blend ends on it). One formula for all three (which axis is the slowest,
+  // and which way each moves, are coin tosses to a branch predictor).
+  const double blend = far > 0.0 ? std::clamp((distance + far) / (far + far), 0.0, 1.0) : 1.0;
+  const bool own = shortest && std::abs(std::abs(distance) - far) <= 1e-13 * (1.0 + std::abs(distance));
+  const double side = distance >= 0.0 ? 1.0 : 0.0;
+  const double share = own ? side : blend;
+  // j (share s - (1 - share) s) for the signs s = 1, 0, -1, worked out once per sign (share 1 or 0
+  // gives j and -j exactly).
+  const double j = limits.jerk;
+  const double rise = j * (share - (1.0 - share));
+  const double fall = j * ((1.0 - share) - share);
+  pieces = {JerkSegment{rise, up[0]}, JerkSegment{0.0, up[1]},  JerkSegment{fall, up[2]},
+            JerkSegment{0.0, up[3]},  JerkSegment{fall, up[4]}, JerkSegment{0.0, up[5]},
+            JerkSegment{rise, up[6]}};
   return true;
 }
 
