@@ -80,9 +80,11 @@ class FarthestProfile {
   // cruise. Solved over the peak velocity vp instead of the duration: below the cruise the farthest
   // profile rises from (v0, a0) to (vp, 0) and falls from there to rest, each half in closed form
   // (a trapezoid or a triangle of acceleration), so a Newton step costs a few multiplications where
-  // one over the duration solved its case of active bounds first. NaN where that parametrisation
-  // does not hold the root or is ill-conditioned there (a rise that starts by lowering the
-  // acceleration, a peak acceleration or velocity near zero): the caller then searches the durations.
+  // one over the duration solved its case of active bounds first; where both halves hold their
+  // acceleration bound (most roots) the position is quadratic in vp and the root comes in closed
+  // form, without a step. NaN where that parametrisation does not hold the root or is
+  // ill-conditioned there (a rise that starts by lowering the acceleration, a peak acceleration or
+  // velocity near zero): the caller then searches the durations.
   [[nodiscard]] double duration_to_rest(double target) const noexcept;
 
  private:
