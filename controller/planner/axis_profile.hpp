@@ -15,7 +15,8 @@
 // regula falsi on T to the last bit, the shortest duration to a target at rest by Newton steps over
 // the extreme's peak velocity (FarthestProfile::duration_to_rest; where that does not apply, over T on
 // the extreme's position and slope, root_search.hpp); the optimum itself is an extreme profile, any other
-// feasible duration a blend of the two.
+// feasible duration a blend of the two, or to a target at rest of the extreme on its side and the
+// fastest stop held at rest (see prepare()).
 //
 // A non-zero target acceleration can make its velocity and acceleration alone unreachable for a
 // span of durations after the reach time (velocity_gap, in closed form): the search then runs
@@ -157,6 +158,9 @@ class AxisProfile {
   bool symmetric_ = false;  // the second extreme is the first one mirrored: computed once
   int min_side_ = -1;       // the extreme whose profile is the shortest duration's (-1: a blend)
   double reach_ = 0.0;
+  // To a target at rest: the fastest stop from the main start (the reach profile; none from rest),
+  // which prepare() blends with the extreme on the target's side.
+  Reach stop_;
   double min_duration_ = 0.0;                    // brake included
   std::array<Interval, kMaxBlocked> blocked_{};  // brake included
   std::size_t blocked_count_ = 0;

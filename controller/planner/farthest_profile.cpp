@@ -46,13 +46,16 @@ Rise rise(double v0, double a0, double vf, double af, double a_cap, double j) no
   return rise;
 }
 
-// The distance a rise from (v0, a0) to af covers.
-double distance(const Rise& rise, double v0, double a0, double af, double j) noexcept {
+// The reach profile made by a rise from (v0, a0) to af, all three given in the frame `direction`
+// (1 ours, -1 mirrored), and the distance it covers, in ours.
+Reach reach_by(const Rise& rise, double v0, double a0, double af, double j, double direction) noexcept {
+  const double ramp_in = (rise.peak - a0) / j;
+  const double ramp_out = (rise.peak - af) / j;
   MotionState s{0.0, v0, a0};
-  s = integrate(s, j, (rise.peak - a0) / j);
+  s = integrate(s, j, ramp_in);
   s = integrate(s, 0.0, rise.hold);
-  s = integrate(s, -j, (rise.peak - af) / j);
-  return s.position;
+  s = integrate(s, -j, ramp_out);
+  return {rise.time, direction * s.position, direction, ramp_in, rise.hold, ramp_out};
 }
 
 // The gap for a0, af >= 0 (see velocity_gap): dv the velocity change, amin < 0.
@@ -84,9 +87,9 @@ Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits
   const double j = limits.jerk;
   const Rise up = rise(v0, a0, vf, af, limits.max_acceleration, j);
   const Rise down = rise(-v0, -a0, -vf, -af, -limits.min_acceleration, j);
-  if (down.time < up.time) return {down.time, -distance(down, -v0, -a0, -af, j)};
-  if (std::isinf(up.time)) return {up.time, std::numeric_limits<double>::quiet_NaN()};
-  return {up.time, distance(up, v0, a0, af, j)};
+  if (down.time < up.time) return reach_by(down, -v0, -a0, -af, j, -1.0);
+  if (std::isinf(up.time)) return {up.time, std::numeric_limits<double>::quiet_NaN(), 1.0, 0.0, 0.0, 0.0};
+  return reach_by(up, v0, a0, af, j, 1.0);
 }
 
 FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,

@@ -29,9 +29,16 @@ using SevenDurations = std::array<double, 7>;
 // the distance covered in it: only one profile is that fast, so the farthest and the nearest
 // position at the reach time are this one. Both states must be inside the limits (see is_safe in
 // brake.hpp); the time is infinite (the distance NaN) when no such change exists.
+// The profile itself is kept too (an axis blends its stop to rest with an extreme, see
+// AxisProfile::prepare): jerk direction * J for ramp_in, its peak acceleration held for `hold`,
+// -direction * J for ramp_out (direction -1 when the acceleration falls first).
 struct Reach {
   double time = 0.0;
   double position = 0.0;
+  double direction = 1.0;
+  double ramp_in = 0.0;
+  double hold = 0.0;
+  double ramp_out = 0.0;
 };
 [[nodiscard]] Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept;
 

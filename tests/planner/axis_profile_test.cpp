@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 
 #include "planner/brake_oracle.hpp"
 #include "planner/optimum_oracle.hpp"
@@ -172,6 +175,91 @@ long run_random(Start start, Target target, long fallback_count, std::uint64_t f
   std::printf("problems %ld to %ld of %ld (seed %llu): %ld braked first, %ld refused\n", first, end - 1,
               count, static_cast<unsigned long long>(seed), braked, refused);
   return refused;
+}
+
+// The fastest stop from (v0, a0) held at rest until T, as Reach describes it, from position 0.
+JerkProfile stop_held(double v0, double a0, const Reach& stop, double T, const AxisLimits& l) {
+  JerkProfile held(MotionState{0.0, v0, a0});
+  const double jerk = stop.direction * l.jerk;
+  const std::array<JerkSegment, 4> pieces{
+      {{jerk, stop.ramp_in}, {0.0, stop.hold}, {-jerk, stop.ramp_out}, {0.0, T - stop.time}}};
+  held.append(pieces.data(), pieces.size());
+  return held;
+}
+
+// To a target at rest, a duration longer than the shortest is the blend of the extreme profile on
+// the target's side with the fastest stop held at rest (AxisProfile::prepare): both made here from
+// their definitions, the share from where they end, and every piece of the built profile has their
+// blended jerk. It keeps the limits, arrives, and is not refused.
+TEST(AxisProfileBlend, ALongerDurationToATargetAtRestBlendsTheExtremeWithTheFastestStop) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> stretch(1.0, 3.0);
+  int blended = 0;  // with a share strictly between 0 and 1
+  for (int n = 0; n < 3000; ++n) {
+    const oracle::Problem p = testing::random_problem(rng, Start::moving, Target::at_rest);
+    const std::string what = describe(p, n, 23);
+    const AxisLimits l = limits_of(p);
+    const MotionState target{p.pf, 0.0, 0.0};
+    AxisProfile axis;
+    ASSERT_EQ(axis.plan({p.p0, p.v0, p.a0}, target, l), AxisStatus::ok) << what;
+    if (axis.brake().duration() > 0.0) continue;  // the same from the brake's end: not re-derived here
+    const double T = axis.min_duration() * stretch(rng) + 1e-3;
+    JerkProfile built;
+    ASSERT_TRUE(axis.build(T, built)) << what << ": refused at " << T;
+    expect_within(built, target, l, 0.0, what);
+    // The stop: the fastest change to rest, then held.
+    const Reach stop = reach(p.v0, p.a0, 0.0, 0.0, l);
+    const JerkProfile held = stop_held(p.v0, p.a0, stop, T, l);
+    const MotionState stopped = held.at(stop.time);
+    EXPECT_NEAR(stopped.position, stop.position, 1e-9 * (1.0 + std::abs(stop.position))) << what;
+    EXPECT_NEAR(stopped.velocity, 0.0, 1e-9 * (1.0 + p.limits.vmax)) << what;
+    EXPECT_NEAR(stopped.acceleration, 0.0, 1e-9 * (1.0 + p.limits.amax)) << what;
+    // The extreme on the target's side (beyond the stop's end).
+    const double offset = p.pf - p.p0;
+    const double sign = offset > stop.position ? 1.0 : -1.0;
+    const FarthestProfile extreme = sign > 0.0 ? FarthestProfile(p.v0, p.a0, 0.0, 0.0, l)
+                                               : FarthestProfile(-p.v0, -p.a0, 0.0, 0.0, l.mirrored());
+    SevenDurations d{};
+    const double reached = sign * extreme.position(T, d);
+    ASSERT_FALSE(std::isnan(reached)) << what;
+    JerkProfile far(MotionState{0.0, p.v0, p.a0});
+    for (std::size_t i = 0; i < d.size(); ++i) far.append({sign * kFarthestJerkSigns[i] * l.jerk, d[i]});
+    const double width = reached - stop.position;
+    const double share = width != 0.0 ? std::clamp((offset - stop.position) / width, 0.0, 1.0) : 0.0;
+    blended += share > 0.0 && share < 1.0 ? 1 : 0;
+    double t = 0.0;
+    for (std::size_t i = 0; i < built.size(); ++i) {
+      const JerkSegment& seg = built.segment(i);
+      const double mid = t + seg.duration / 2.0;
+      t += seg.duration;
+      if (seg.duration < 1e-9) continue;  // its middle may lie on the other side of a rounded switch
+      EXPECT_NEAR(seg.jerk, share * far.jerk_at(mid) + (1.0 - share) * held.jerk_at(mid), 1e-9 * l.jerk)
+          << what << " at " << T << " s, segment " << i << " (share " << share << ")";
+    }
+    if (::testing::Test::HasFailure()) break;
+  }
+  EXPECT_GT(blended, 2000);
+}
+
+// A target where the fastest stop ends: the blend's share of the extreme is 0, the stop then a hold.
+TEST(AxisProfileBlend, ATargetWhereTheFastestStopEndsIsThatStopHeld) {
+  const AxisLimits l = AxisLimits::symmetric(1.0, 2.0, 10.0);
+  const MotionState start{0.0, 0.6, 1.5};  // at 0: the target's offset is the stop's distance exactly
+  const Reach stop = reach(start.velocity, start.acceleration, 0.0, 0.0, l);
+  const MotionState target{stop.position, 0.0, 0.0};
+  AxisProfile axis;
+  ASSERT_EQ(axis.plan(start, target, l), AxisStatus::ok);
+  EXPECT_EQ(axis.min_duration(), stop.time);
+  const double T = stop.time + 0.5;
+  JerkProfile built;
+  ASSERT_TRUE(axis.build(T, built));
+  expect_within(built, target, l, 0.0, "the stop held");
+  const JerkProfile held = stop_held(start.velocity, start.acceleration, stop, T, l);
+  for (int k = 0; k <= 100; ++k) {
+    const double t = T * k / 100.0;
+    EXPECT_NEAR(built.at(t).position, held.at(t).position, 1e-12) << t;
+    EXPECT_NEAR(built.at(t).velocity, held.at(t).velocity, 1e-12) << t;
+  }
 }
 
 class AxisProfileRandom : public ::testing::TestWithParam<int> {};
