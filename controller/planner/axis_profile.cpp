@@ -9,6 +9,7 @@
 #include "planner/brake.hpp"
 #include "planner/rest_to_rest.hpp"
 #include "planner/root_search.hpp"
+#include "planner/stop_blend.hpp"
 
 namespace cellctl::planner {
 namespace {
@@ -440,45 +441,7 @@ bool AxisProfile::prepare(double T, Built& built) const noexcept {
       const double p = stop_.position;
       const double width = reached - p;
       const double share = width != 0.0 ? std::clamp((target_offset_ - p) / width, 0.0, 1.0) : 0.0;
-      // The two switching sequences merged in time order, one switch per step: 7 of the extreme's
-      // and 3 of the stop's (then at rest until T, where the extreme ends), 10 steps that do not
-      // branch on which switch comes next: that order is data, and the merge that branched on it
-      // left prepare() about 3.9 mispredicts per axis of a moving 3-DoF plan (callgrind), 0.65 so.
-      // Where two switches coincide a step makes an empty piece: stored and integrated (which
-      // changes nothing) but not counted, as keep() drops it.
-      const double stop_jerk = (1.0 - share) * stop_.direction * j;
-      const std::array<double, 4> stop_jerks{stop_jerk, 0.0, -stop_jerk, 0.0};
-      const double stop_peak = stop_.ramp_in + stop_.hold;
-      const std::array<double, 4> stop_ends{stop_.ramp_in, stop_peak, stop_peak + stop_.ramp_out, kInfinity};
-      // The extreme's switches, then its end repeated: after k steps its index is at most k, so
-      // these 10 hold every one read. Each with the extreme's share of the jerk.
-      std::array<double, kFarthestJerkSigns.size() + 3> ends;
-      std::array<double, kFarthestJerkSigns.size() + 3> jerks;
-      double sum = 0.0;
-      for (std::size_t i = 0; i < d.size(); ++i) {
-        sum += d[i];
-        ends[i] = sum;
-        jerks[i] = share * sign * kFarthestJerkSigns[i] * j;
-      }
-      for (std::size_t i = d.size(); i < ends.size(); ++i) {
-        ends[i] = sum;
-        jerks[i] = 0.0;
-      }
-      std::size_t ie = 0;
-      std::size_t is = 0;
-      double from = 0.0;
-      for (std::size_t k = 0; k < ends.size(); ++k) {
-        const double to = std::min(ends[ie], stop_ends[is]);
-        const double piece = to - from;
-        const double jerk = jerks[ie] + stop_jerks[is];
-        built.pieces[n] = {jerk, piece};
-        n += piece > 0.0 ? 1U : 0U;
-        r.end = integrate(r.end, jerk, piece);
-        r.time += piece;
-        ie += ends[ie] <= to ? 1U : 0U;
-        is += stop_ends[is] <= to ? 1U : 0U;
-        from = to;
-      }
+      blend_with_stop(d, share * sign * j, stop_, (1.0 - share) * stop_.direction * j, built.pieces, n, r);
       return done();
     }
   }
