@@ -183,7 +183,12 @@ inline Braked braked(const Problem& p) {
   // In S up to rounding: snapped into it (reach() takes no start outside, by an ulp neither).
   const auto snapped = [&l](Problem q) {
     q.a0 = std::clamp(q.a0, l.amin, l.amax);
-    q.v0 = std::clamp(q.v0, lowest_safe(q.a0, l), highest_safe(q.a0, l));
+    // Where S is a point at this acceleration up to rounding (tight limits: vmax - vmin about
+    // a^2 / J), its bounds can cross by an ulp, and std::clamp requires them ordered (a build with
+    // _GLIBCXX_ASSERTIONS aborted here): the point is then their middle.
+    const double lo = lowest_safe(q.a0, l);
+    const double hi = highest_safe(q.a0, l);
+    q.v0 = lo <= hi ? std::clamp(q.v0, lo, hi) : 0.5 * (lo + hi);
     return q;
   };
   if (in_safe_set(p.v0, p.a0, l)) return Braked{snapped(p), 0.0};
