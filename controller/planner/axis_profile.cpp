@@ -42,6 +42,7 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
                              const AxisLimits& limits) noexcept {
   limits_ = limits;
   blocked_count_ = 0;
+  min_known_ = true;
   if (!target_within(target, limits)) return AxisStatus::target_outside_limits;
   // Every start has a brake into the safe states: none is refused (see brake.hpp). A start at rest
   // needs none (the limits are > 0): not asked, the commonest start.
@@ -65,6 +66,7 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   // The extremes are constructed on first use (extreme()): none symmetric from rest to rest (build()
   // has them in closed form, rest_to_rest_farthest), one for the shortest duration to a target at rest.
   constructed_ = {false, false};
+  checked_main_ = -1.0;  // no evaluation kept (main durations are >= 0)
   if (rest_to_rest) {
     // From rest to rest: closed form, and never a blocked interval.
     reach_ = 0.0;
@@ -86,18 +88,14 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
     // side at most, which then falls short until its root. Nor is there a velocity gap after the
     // reach time (one before it ends there), so it is not computed: its end was the reach time up
     // to rounding (the same durations, bit for bit, in 65 million random problems).
-    const double from = reach_;
+    // The search for the first duration at which the extreme on its side gets there is left to
+    // min_duration() (settle_min_duration): a synchronised axis may not need it (see reaches_by).
     const double p = fastest.position;
     if (std::isnan(p)) return AxisStatus::unsupported_target;
-    double t = from;
     min_side_ = p > target_offset_ ? 1 : 0;
-    if (p < target_offset_) {
-      t = shortest(extreme(0), target_offset_, limits.max_velocity, from, p - target_offset_);
-    } else if (p > target_offset_) {
-      t = shortest(extreme(1), -target_offset_, -limits.min_velocity, from, target_offset_ - p);
-    }
-    min_duration_ = brake + t;
-    return std::isfinite(min_duration_) ? AxisStatus::ok : AxisStatus::unsupported_target;
+    min_duration_ = brake + reach_;
+    min_known_ = p == target_offset_;
+    return AxisStatus::ok;
   }
   // A target acceleration may leave a gap of durations with no way to its velocity and
   // acceleration (see velocity_gap): the search then runs before it (a window) and after it.
@@ -373,11 +371,38 @@ double AxisProfile::shortest(const FarthestProfile& f, double target, double slo
 }
 
 bool AxisProfile::feasible(double T) const noexcept {
-  if (T < min_duration_) return false;
+  if (T < min_duration()) return false;
   for (std::size_t i = 0; i < blocked_count_; ++i) {
     if (blocked_[i].contains(T)) return false;
   }
   return true;
+}
+
+void AxisProfile::settle_min_duration() const noexcept {
+  const double from = reach_;
+  const double p = stop_.position;
+  const double t =
+      min_side_ == 0 ? shortest(extreme(0), target_offset_, limits_.max_velocity, from, p - target_offset_)
+                     : shortest(extreme(1), -target_offset_, -limits_.min_velocity, from, target_offset_ - p);
+  min_duration_ = brake_.duration() + t;
+  min_known_ = true;
+}
+
+bool AxisProfile::reaches_by(double T) const noexcept {
+  if (min_known_) return min_duration_ <= T;
+  // In the mirrored frame (side 1) the target is at -target_offset_.
+  const auto side = static_cast<std::size_t>(min_side_);
+  const double target = (1.0 - 2.0 * static_cast<double>(side)) * target_offset_;
+  checked_main_ = std::max(T - brake_.duration(), reach_);
+  checked_position_ = extreme(side).position(checked_main_, checked_);
+  return checked_position_ >= target;
+}
+
+double AxisProfile::min_duration_guess() const noexcept {
+  // Indexed, not branched on: which side the target lies is a coin toss.
+  const std::array<double, 2> speed_of{limits_.max_velocity, -limits_.min_velocity};
+  const double speed = speed_of[static_cast<std::size_t>(min_side_)];
+  return min_duration_ + std::abs(target_offset_ - stop_.position) / speed;
 }
 
 bool AxisProfile::build(double T, JerkProfile& out) const noexcept {
@@ -400,6 +425,8 @@ bool AxisProfile::prepare(double T, Built& built) const noexcept {
     built.reached = r;
     return arrives_at(r.end, target_, target_offset_, limits_);
   };
+  // An infinite T is a failed search for the shortest duration (min_duration()): no profile.
+  if (!std::isfinite(T)) return false;
   const double main = std::max(T - brake_.duration(), reach_);
   if (symmetric_) {
     // From rest to rest with symmetric limits: in closed form (rest_to_rest.hpp).
@@ -426,13 +453,20 @@ bool AxisProfile::prepare(double T, Built& built) const noexcept {
     // instructions per axis of a moving 3-DoF plan, with the stop about 525.
     const auto side = static_cast<std::size_t>(min_side_);
     const double sign = 1.0 - 2.0 * static_cast<double>(side);  // not a branch: which side is data
-    SevenDurations& d = side == 0 ? up : down;
-    const double reached = sign * extreme(side).position(main, d);
+    // Evaluated already where reaches_by() checked this duration.
+    const SevenDurations* at = &checked_;
+    double position = checked_position_;
+    if (main != checked_main_) {
+      position = extreme(side).position(main, up);
+      at = &up;
+    }
+    const SevenDurations& d = *at;
+    const double reached = sign * position;
     // The shortest duration is the extreme profile itself: no blend (whose share of the stop would
     // only be rounding). Unless that profile misses the target by more than rounding (the shortest
     // duration lies a few ulps past the root; where the position's slope is steep, 2 in 10^5 problems
     // missed by 1e-11 m): the blend then ends on the target.
-    if (T == min_duration_ &&
+    if (min_known_ && T == min_duration_ &&
         std::abs(reached - target_offset_) <= 1e-13 * (1.0 + std::abs(target_offset_))) {
       for (std::size_t i = 0; i < d.size(); ++i) add(sign * kFarthestJerkSigns[i] * j, d[i]);
       return done();

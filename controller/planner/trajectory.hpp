@@ -58,6 +58,9 @@ class Trajectory {
   Trajectory& operator=(const Trajectory& other) noexcept {
     profiles_ = other.profiles_;
     min_duration_ = other.min_duration_;
+    for (std::size_t i = 0; i < kN; ++i) {
+      if (std::isnan(min_duration_[i])) problems_[i] = other.problems_[i];
+    }
     blocked_count_ = other.blocked_count_;
     for (std::size_t i = 0; i < kN; ++i) {
       for (std::size_t b = 0; b < blocked_count_[i]; ++b) blocked_[i][b] = other.blocked_[i][b];
@@ -92,7 +95,15 @@ class Trajectory {
     return profiles_[idx(axis)].extrema();
   }
   // Each axis on its own: its shortest duration and the durations it cannot do (brake included).
-  [[nodiscard]] double axis_min_duration(int axis) const noexcept { return min_duration_[idx(axis)]; }
+  // An axis's shortest duration that did not set the common one is searched on this call (calculate()
+  // leaves it, see AxisProfile::reaches_by).
+  [[nodiscard]] double axis_min_duration(int axis) const noexcept {
+    const double known = min_duration_[idx(axis)];
+    if (!std::isnan(known)) return known;
+    const AxisProblem& p = problems_[idx(axis)];
+    AxisProfile a;
+    return a.plan(p.start, p.target, p.limits) == AxisStatus::ok ? a.min_duration() : known;
+  }
   [[nodiscard]] std::size_t blocked_count(int axis) const noexcept { return blocked_count_[idx(axis)]; }
   [[nodiscard]] const Interval& blocked(int axis, std::size_t i) const noexcept {
     return blocked_[idx(axis)][i];
@@ -142,6 +153,10 @@ class Trajectory {
     }
     return false;
   }
+  // The longest of the enabled axes' shortest durations (+infinity when a search failed). Without
+  // synchronisation every axis's is searched; otherwise only those of the axes that could set it.
+  [[nodiscard]] static double longest_min_duration(const Input<N>& in,
+                                                   const std::array<AxisProfile, kN>& axes) noexcept;
   // Time synchronisation: `common` moved out of every axis's blocked intervals. Then each enabled
   // axis prepared (AxisProfile::prepare) at `common`, or at its own shortest duration without
   // synchronisation; false, with `error_axis`, when one misses its target (only with a non-zero
@@ -150,8 +165,9 @@ class Trajectory {
                                        Synchronization sync, double& common,
                                        std::array<AxisProfile::Built, kN>& built, int& error_axis) noexcept;
   // The prepared axes written: profiles, shortest durations, blocked intervals, the duration.
-  void store(const Input<N>& in, const std::array<AxisProfile, kN>& axes,
-             const std::array<AxisProfile::Built, kN>& built, double common) noexcept;
+  void store(const Input<N>& in, const std::array<AxisLimits, kN>& limits,
+             const std::array<AxisProfile, kN>& axes, const std::array<AxisProfile::Built, kN>& built,
+             double common) noexcept;
   // A disabled axis as a fresh trajectory has it.
   void clear_axis(std::size_t i) noexcept {
     profiles_[i] = JerkProfile();
@@ -168,7 +184,15 @@ class Trajectory {
   // Default-initialised, not value-initialised ({}): that zeroed every profile's unused segment
   // slots on each plan (see JerkSegment).
   std::array<JerkProfile, kN> profiles_;
+  // An axis's shortest duration, NaN where calculate() did not need it: its problem (start, target,
+  // limits) is then kept in problems_ (the others' slots are not read).
+  struct AxisProblem {
+    MotionState start;
+    MotionState target;
+    AxisLimits limits;
+  };
   std::array<double, kN> min_duration_{};
+  std::array<AxisProblem, kN> problems_;
   std::array<std::array<Interval, AxisProfile::kMaxBlocked>, kN> blocked_;  // the first blocked_count_ set
   std::array<std::size_t, kN> blocked_count_{};
   AxisArray<N> enabled_{};
@@ -371,6 +395,35 @@ bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, const std::array<AxisL
 }
 
 template <int N>
+double Trajectory<N>::longest_min_duration(const Input<N>& in,
+                                           const std::array<AxisProfile, kN>& axes) noexcept {
+  double common = 0.0;
+  int likeliest = -1;  // of the axes whose shortest duration is not known yet
+  double guess = -kInf;
+  for (int i = 0; i < N; ++i) {
+    if (!in.enabled[idx(i)]) continue;
+    const AxisProfile& a = axes[idx(i)];
+    if (a.min_duration_known() || in.synchronization == Synchronization::none) {
+      common = std::max(common, a.min_duration());
+      continue;
+    }
+    // Selected without a branch: which axis guesses longest is a coin toss.
+    const double g = a.min_duration_guess();
+    likeliest = g > guess ? i : likeliest;
+    guess = std::max(g, guess);
+  }
+  if (likeliest < 0) return common;
+  common = std::max(common, axes[idx(likeliest)].min_duration());
+  // Each other axis raises it only if it cannot get to its target by then (see reaches_by); a raise
+  // cannot undo an earlier answer (what is reachable at one duration is at every longer one).
+  for (int i = 0; i < N; ++i) {
+    if (in.enabled[idx(i)] && !axes[idx(i)].reaches_by(common))
+      common = std::max(common, axes[idx(i)].min_duration());
+  }
+  return common;
+}
+
+template <int N>
 bool Trajectory<N>::build_axes(const Input<N>& in, const std::array<AxisProfile, kN>& axes,
                                Synchronization sync, double& common,
                                std::array<AxisProfile::Built, kN>& built, int& error_axis) noexcept {
@@ -402,7 +455,8 @@ bool Trajectory<N>::build_axes(const Input<N>& in, const std::array<AxisProfile,
 }
 
 template <int N>
-void Trajectory<N>::store(const Input<N>& in, const std::array<AxisProfile, kN>& axes,
+void Trajectory<N>::store(const Input<N>& in, const std::array<AxisLimits, kN>& limits,
+                          const std::array<AxisProfile, kN>& axes,
                           const std::array<AxisProfile::Built, kN>& built, double common) noexcept {
   for (int i = 0; i < N; ++i) {
     if (!in.enabled[idx(i)]) {
@@ -411,7 +465,9 @@ void Trajectory<N>::store(const Input<N>& in, const std::array<AxisProfile, kN>&
     }
     const AxisProfile& a = axes[idx(i)];
     a.write(built[idx(i)], profiles_[idx(i)]);
-    min_duration_[idx(i)] = a.min_duration();
+    // Not searched for (it did not set the duration): kept to be searched if asked.
+    min_duration_[idx(i)] = a.min_duration_if_known();
+    problems_[idx(i)] = {start_of(in, i), target_of(in, i), limits[idx(i)]};
     blocked_count_[idx(i)] = a.blocked_count();
     for (std::size_t b = 0; b < a.blocked_count(); ++b) blocked_[idx(i)][b] = a.blocked(b);
   }
@@ -506,7 +562,17 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
         if (st == AxisStatus::target_outside_limits) refused_target(i);
         return status_result(st);
       }
-      common = std::max(common, axes[idx(i)].min_duration());
+    }
+    common = longest_min_duration(in, axes);
+    if (!std::isfinite(common)) {
+      // A search for an axis's shortest duration failed (a safety net: none seen in millions of
+      // random problems).
+      for (int i = 0; i < N; ++i) {
+        if (in.enabled[idx(i)] && axes[idx(i)].min_duration_known() &&
+            !std::isfinite(axes[idx(i)].min_duration()))
+          error_axis = i;
+      }
+      return Result::unsupported_target;
     }
     return Result::working;
   };
@@ -517,7 +583,7 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
     if (const Result r = plan_axes(); is_error(r)) return r;
     if (!build_axes(in, axes, in.synchronization, common, built, error_axis))
       return Result::unsupported_target;
-    out.store(in, axes, built, common);
+    out.store(in, limits, axes, built, common);
     out.synchronization_ = in.synchronization;
     out.note_ = {};
     return Result::working;
@@ -546,7 +612,7 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
     if (!planned) {
       if (!build_axes(in, axes, t.synchronization_, common, built, error_axis))
         return Result::unsupported_target;
-      t.store(in, axes, built, common);
+      t.store(in, limits, axes, built, common);
     }
     double longer = 0.0;
     const Result r = t.keep_travel(in, limits, axes, planned, error_axis, excess, longer);

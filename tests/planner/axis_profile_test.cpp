@@ -262,6 +262,61 @@ TEST(AxisProfileBlend, ATargetWhereTheFastestStopEndsIsThatStopHeld) {
   }
 }
 
+// A synchronised axis asks reaches_by() whether its shortest duration is at most the common one
+// before it searches for it (Trajectory::longest_min_duration): the answer must be the search's,
+// from moving starts (braked ones too) to targets at rest and to moving ones (whose shortest
+// duration plan() knows). And the evaluation it keeps for build() must give the same profile, bit
+// for bit, as one built without it, at that duration and at another.
+TEST(AxisProfileReachesBy, AnswersAsTheSearchForTheShortestDuration) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> stretch(1.0, 3.0);
+  int unknown = 0;  // plans that left the search to min_duration()
+  for (int n = 0; n < 4000; ++n) {
+    const Target kind = n % 4 == 0 ? Target::moving : Target::at_rest;
+    const oracle::Problem p = testing::random_problem(rng, Start::moving, kind);
+    const std::string what = describe(p, n, 29);
+    const AxisLimits l = limits_of(p);
+    const MotionState start{p.p0, p.v0, p.a0};
+    const MotionState target{p.pf, p.vf, p.af};
+    AxisProfile searched;
+    ASSERT_EQ(searched.plan(start, target, l), AxisStatus::ok) << what;
+    const double m = searched.min_duration();
+    const auto fresh = [&](double T, bool expected) {
+      AxisProfile axis;
+      EXPECT_EQ(axis.plan(start, target, l), AxisStatus::ok) << what;
+      unknown += axis.min_duration_known() ? 0 : 1;
+      EXPECT_EQ(axis.reaches_by(T), expected) << what << ": at " << T << " s, the shortest is " << m;
+      return axis;
+    };
+    fresh(m * (1.0 + 1e-9) + 1e-12, true);
+    fresh(std::nextafter(m, 0.0) * (1.0 - 1e-6), false);
+    double longer = m * stretch(rng) + 1e-3;
+    for (std::size_t b = 0; b < searched.blocked_count(); ++b) {
+      if (searched.blocked(b).contains(longer)) longer = searched.blocked(b).hi;
+    }
+    const AxisProfile asked = fresh(longer, true);
+    JerkProfile with_check;
+    JerkProfile without;
+    ASSERT_TRUE(asked.build(longer, with_check)) << what;
+    ASSERT_TRUE(searched.build(longer, without)) << what;
+    ASSERT_EQ(with_check.size(), without.size()) << what;
+    for (std::size_t i = 0; i < without.size(); ++i) {
+      EXPECT_EQ(with_check.segment(i).jerk, without.segment(i).jerk) << what << " segment " << i;
+      EXPECT_EQ(with_check.segment(i).duration, without.segment(i).duration) << what << " segment " << i;
+    }
+    // At another duration than the one checked, the kept evaluation is not taken.
+    JerkProfile other;
+    const double later = longer + 0.25;
+    if (!searched.feasible(later)) continue;
+    ASSERT_TRUE(asked.build(later, other)) << what;
+    ASSERT_TRUE(searched.build(later, without)) << what;
+    EXPECT_EQ(other.end().position, without.end().position) << what;
+    EXPECT_EQ(other.duration(), without.duration()) << what;
+    if (::testing::Test::HasFailure()) break;
+  }
+  EXPECT_GT(unknown, 6000);
+}
+
 class AxisProfileRandom : public ::testing::TestWithParam<int> {};
 
 // 4 x 35 000 problems and 10 000 starts beyond the limits, each in kParts parts

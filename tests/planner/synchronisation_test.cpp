@@ -55,6 +55,33 @@ TEST(TimeSync, SixAxesFromMovingStatesAtTheIndependentOptimum) {
   random_time_sync<6>(testing::Start::moving, 10000, 6);
 }
 
+// An axis that did not set the common duration is not searched for its own shortest one in
+// calculate() (AxisProfile::reaches_by): asked, the trajectory searches it then, and it is the one
+// the axis planned alone has; the common duration is the longest of them.
+TEST(TimeSync, AnAxisShortestDurationIsItsOwnWhenAsked) {
+  std::mt19937_64 rng(31);
+  for (int c = 0; c < 1000; ++c) {
+    std::vector<oracle::Problem> axes;
+    for (int i = 0; i < 6; ++i) axes.push_back(testing::random_problem(rng, testing::Start::moving));
+    const Input<6> in = testing::input_of<6>(axes);
+    Trajectory<6> t;
+    int axis = -1;
+    ASSERT_EQ(Trajectory<6>::calculate(in, t, axis), Result::working) << to_string(in);
+    double longest = 0.0;
+    for (int i = 0; i < 6; ++i) {
+      const oracle::Problem& p = axes[static_cast<std::size_t>(i)];
+      AxisProfile alone;
+      ASSERT_EQ(alone.plan({p.p0, p.v0, p.a0}, {p.pf, p.vf, p.af},
+                           {p.limits.vmax, p.limits.vmin, p.limits.amax, p.limits.amin, p.limits.jerk}),
+                AxisStatus::ok);
+      EXPECT_EQ(t.axis_min_duration(i), alone.min_duration()) << "case " << c << " axis " << i;
+      longest = std::max(longest, alone.min_duration());
+    }
+    EXPECT_EQ(t.duration(), longest) << "case " << c << "\n" << to_string(in);
+    if (::testing::Test::HasFailure()) break;
+  }
+}
+
 TEST(TimeSync, SkipsAnAxisBlockedInterval) {
   // Axis 0 cruises at -2 (its min velocity) and must arrive 2 further at -2: 1 s at once, or
   // slower by braking a little, up to 1.2835 s; then nothing until it can turn around (3.1165 s).
