@@ -58,9 +58,7 @@ class Trajectory {
   Trajectory& operator=(const Trajectory& other) noexcept {
     profiles_ = other.profiles_;
     min_duration_ = other.min_duration_;
-    for (std::size_t i = 0; i < kN; ++i) {
-      if (std::isnan(min_duration_[i])) problems_[i] = other.problems_[i];
-    }
+    input_ = other.input_;
     blocked_count_ = other.blocked_count_;
     for (std::size_t i = 0; i < kN; ++i) {
       for (std::size_t b = 0; b < blocked_count_[i]; ++b) blocked_[i][b] = other.blocked_[i][b];
@@ -100,9 +98,9 @@ class Trajectory {
   [[nodiscard]] double axis_min_duration(int axis) const noexcept {
     const double known = min_duration_[idx(axis)];
     if (!std::isnan(known)) return known;
-    const AxisProblem& p = problems_[idx(axis)];
     AxisProfile a;
-    return a.plan(p.start, p.target, p.limits) == AxisStatus::ok ? a.min_duration() : known;
+    const AxisStatus s = a.plan(start_of(input_, axis), target_of(input_, axis), limits_of(input_, axis));
+    return s == AxisStatus::ok ? a.min_duration() : known;
   }
   [[nodiscard]] std::size_t blocked_count(int axis) const noexcept { return blocked_count_[idx(axis)]; }
   [[nodiscard]] const Interval& blocked(int axis, std::size_t i) const noexcept {
@@ -165,9 +163,8 @@ class Trajectory {
                                        Synchronization sync, double& common,
                                        std::array<AxisProfile::Built, kN>& built, int& error_axis) noexcept;
   // The prepared axes written: profiles, shortest durations, blocked intervals, the duration.
-  void store(const Input<N>& in, const std::array<AxisLimits, kN>& limits,
-             const std::array<AxisProfile, kN>& axes, const std::array<AxisProfile::Built, kN>& built,
-             double common) noexcept;
+  void store(const Input<N>& in, const std::array<AxisProfile, kN>& axes,
+             const std::array<AxisProfile::Built, kN>& built, double common) noexcept;
   // A disabled axis as a fresh trajectory has it.
   void clear_axis(std::size_t i) noexcept {
     profiles_[i] = JerkProfile();
@@ -184,15 +181,10 @@ class Trajectory {
   // Default-initialised, not value-initialised ({}): that zeroed every profile's unused segment
   // slots on each plan (see JerkSegment).
   std::array<JerkProfile, kN> profiles_;
-  // An axis's shortest duration, NaN where calculate() did not need it: its problem (start, target,
-  // limits) is then kept in problems_ (the others' slots are not read).
-  struct AxisProblem {
-    MotionState start;
-    MotionState target;
-    AxisLimits limits;
-  };
+  // An axis's shortest duration, NaN where calculate() did not need it: axis_min_duration() then
+  // searches it from the input kept (one copy of it cost less than gathering each such axis's part).
   std::array<double, kN> min_duration_{};
-  std::array<AxisProblem, kN> problems_;
+  Input<N> input_;
   std::array<std::array<Interval, AxisProfile::kMaxBlocked>, kN> blocked_;  // the first blocked_count_ set
   std::array<std::size_t, kN> blocked_count_{};
   AxisArray<N> enabled_{};
@@ -455,8 +447,7 @@ bool Trajectory<N>::build_axes(const Input<N>& in, const std::array<AxisProfile,
 }
 
 template <int N>
-void Trajectory<N>::store(const Input<N>& in, const std::array<AxisLimits, kN>& limits,
-                          const std::array<AxisProfile, kN>& axes,
+void Trajectory<N>::store(const Input<N>& in, const std::array<AxisProfile, kN>& axes,
                           const std::array<AxisProfile::Built, kN>& built, double common) noexcept {
   for (int i = 0; i < N; ++i) {
     if (!in.enabled[idx(i)]) {
@@ -467,12 +458,12 @@ void Trajectory<N>::store(const Input<N>& in, const std::array<AxisLimits, kN>& 
     a.write(built[idx(i)], profiles_[idx(i)]);
     // Not searched for (it did not set the duration): kept to be searched if asked.
     min_duration_[idx(i)] = a.min_duration_if_known();
-    problems_[idx(i)] = {start_of(in, i), target_of(in, i), limits[idx(i)]};
     blocked_count_[idx(i)] = a.blocked_count();
     for (std::size_t b = 0; b < a.blocked_count(); ++b) blocked_[idx(i)][b] = a.blocked(b);
   }
   enabled_ = in.enabled;
   duration_ = common;
+  input_ = in;
 }
 
 template <int N>
@@ -583,7 +574,7 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
     if (const Result r = plan_axes(); is_error(r)) return r;
     if (!build_axes(in, axes, in.synchronization, common, built, error_axis))
       return Result::unsupported_target;
-    out.store(in, limits, axes, built, common);
+    out.store(in, axes, built, common);
     out.synchronization_ = in.synchronization;
     out.note_ = {};
     return Result::working;
@@ -612,7 +603,7 @@ Result Trajectory<N>::calculate(const Input<N>& in, Trajectory& out, int& error_
     if (!planned) {
       if (!build_axes(in, axes, t.synchronization_, common, built, error_axis))
         return Result::unsupported_target;
-      t.store(in, limits, axes, built, common);
+      t.store(in, axes, built, common);
     }
     double longer = 0.0;
     const Result r = t.keep_travel(in, limits, axes, planned, error_axis, excess, longer);
