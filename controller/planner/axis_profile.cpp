@@ -389,13 +389,17 @@ void AxisProfile::settle_min_duration() const noexcept {
 }
 
 bool AxisProfile::reaches_by(double T) const noexcept {
-  if (min_known_) return min_duration_ <= T;
+  // To a target at rest (not from rest to rest with symmetric limits, which prepare() does in
+  // closed form) the extreme is evaluated whether the shortest duration is known or not: prepare()
+  // at T then takes it, whichever axis set T (branching on that cost a coin toss per axis).
+  if (min_side_ < 0 || symmetric_) return min_duration_ <= T;
   // In the mirrored frame (side 1) the target is at -target_offset_.
   const auto side = static_cast<std::size_t>(min_side_);
   const double target = (1.0 - 2.0 * static_cast<double>(side)) * target_offset_;
   checked_main_ = std::max(T - brake_.duration(), reach_);
   checked_position_ = extreme(side).position(checked_main_, checked_);
-  return checked_position_ >= target;
+  const std::array<bool, 2> answer{checked_position_ >= target, min_duration_ <= T};
+  return answer[min_known_ ? 1 : 0];
 }
 
 double AxisProfile::min_duration_guess() const noexcept {

@@ -102,7 +102,8 @@ class AxisProfile {
   // Whether min_duration() is known without a search; and it if so, else NaN (without a branch).
   [[nodiscard]] bool min_duration_known() const noexcept { return min_known_; }
   [[nodiscard]] double min_duration_if_known() const noexcept {
-    return min_known_ ? min_duration_ : std::numeric_limits<double>::quiet_NaN();
+    const std::array<double, 2> known{std::numeric_limits<double>::quiet_NaN(), min_duration_};
+    return known[min_known_ ? 1 : 0];
   }
   // Whether the shortest duration is at most T, answered without searching for it. A synchronised
   // axis needs its own shortest duration only if it could be the longest: to a target at rest the

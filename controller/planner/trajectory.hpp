@@ -406,8 +406,9 @@ double Trajectory<N>::longest_min_duration(const Input<N>& in,
   }
   if (likeliest < 0) return common;
   common = std::max(common, axes[idx(likeliest)].min_duration());
-  // Each other axis raises it only if it cannot get to its target by then (see reaches_by); a raise
-  // cannot undo an earlier answer (what is reachable at one duration is at every longer one).
+  // Each other axis raises it only if it cannot get to its target by then (see reaches_by, asked of
+  // every axis: it keeps what prepare() needs); a raise cannot undo an earlier answer (what is
+  // reachable at one duration is at every longer one).
   for (int i = 0; i < N; ++i) {
     if (in.enabled[idx(i)] && !axes[idx(i)].reaches_by(common))
       common = std::max(common, axes[idx(i)].min_duration());
