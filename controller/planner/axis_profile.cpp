@@ -95,6 +95,9 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
     min_side_ = p > target_offset_ ? 1 : 0;
     min_duration_ = brake + reach_;
     min_known_ = p == target_offset_;
+    // Its extreme is evaluated in every case (reaches_by, prepare): constructed now, so that the
+    // test for it later is always passed (after a search it was, without one not: a coin toss).
+    static_cast<void>(extreme(static_cast<std::size_t>(min_side_)));
     return AxisStatus::ok;
   }
   // A target acceleration may leave a gap of durations with no way to its velocity and
@@ -142,13 +145,12 @@ const FarthestProfile& AxisProfile::extreme(std::size_t side) const noexcept {
   if (!constructed_[side]) {
     // Constructed in place: one built elsewhere and copied in is read back with wide loads straight
     // after its narrow stores, a stalled store forward per piece.
-    const double v = main_start_.velocity;
-    const double a = main_start_.acceleration;
-    if (side == 0) {
-      std::construct_at(&extremes_[0], v, a, target_.velocity, target_.acceleration, limits_);
-    } else {
-      std::construct_at(&extremes_[1], -v, -a, -target_.velocity, -target_.acceleration, limits_.mirrored());
-    }
+    // Side 1 is the mirrored frame; which side is data (a coin toss to a target at rest), so it is
+    // not branched on.
+    const double sign = 1.0 - 2.0 * static_cast<double>(side);
+    const std::array<AxisLimits, 2> frame{limits_, limits_.mirrored()};
+    std::construct_at(&extremes_[side], sign * main_start_.velocity, sign * main_start_.acceleration,
+                      sign * target_.velocity, sign * target_.acceleration, frame[side]);
     constructed_[side] = true;
   }
   return extremes_[side];
@@ -379,11 +381,12 @@ bool AxisProfile::feasible(double T) const noexcept {
 }
 
 void AxisProfile::settle_min_duration() const noexcept {
-  const double from = reach_;
-  const double p = stop_.position;
-  const double t =
-      min_side_ == 0 ? shortest(extreme(0), target_offset_, limits_.max_velocity, from, p - target_offset_)
-                     : shortest(extreme(1), -target_offset_, -limits_.min_velocity, from, target_offset_ - p);
+  // In the frame of the target's side (mirrored for side 1), without a branch on which it is.
+  const auto side = static_cast<std::size_t>(min_side_);
+  const double sign = 1.0 - 2.0 * static_cast<double>(side);
+  const std::array<double, 2> speed{limits_.max_velocity, -limits_.min_velocity};
+  const double t = shortest(extreme(side), sign * target_offset_, speed[side], reach_,
+                            sign * (stop_.position - target_offset_));
   min_duration_ = brake_.duration() + t;
   min_known_ = true;
 }

@@ -15,7 +15,8 @@ double tolerance(double bound) noexcept {
 bool over_max(double v, double a, const AxisLimits& l) noexcept {
   // Beyond max_velocity, or bound to cross it (a > 0): one test on v plus the ramp, zero for a <= 0
   // (v + ramp >= v, so it covers both; a branch on the sign of a was a misprediction in two).
-  const double rising = std::max(0.0, a);
+  // max(0, a) exactly, without the branch g++ made of std::max there (folding the square into it).
+  const double rising = 0.5 * (a + std::abs(a));
   return v + rising * rising / (2.0 * l.jerk) > l.max_velocity + tolerance(l.max_velocity);
 }
 
@@ -38,7 +39,8 @@ void brake_velocity(JerkProfile& profile, const AxisLimits& l, double sign) noex
   // Where the boundary (ramping out ends at min_velocity) meets max_velocity.
   const double boundary_at_max = -std::sqrt(2.0 * j * (l.max_velocity - l.min_velocity));
   std::array<JerkSegment, 3> segments{};
-  const double ramp_end = std::max({at_max, on_boundary, l.min_acceleration});
+  // Nested, not the initializer-list max: that one loops, with a branch per value.
+  const double ramp_end = std::max(std::max(at_max, on_boundary), l.min_acceleration);
   segments[0] = {-sign * j, std::max(0.0, (a - ramp_end) / j)};
   if (ramp_end == on_boundary && on_boundary > at_max) {
     segments[1] = {sign * j, (boundary_at_max - on_boundary) / j};
