@@ -77,11 +77,16 @@ class JerkProfile {
   // first): keeps `segment` in `kept` (the first n set) unless it is empty, and moves `r` on by it as
   // append() does (the same end, bit for bit, the state kept in registers); append_kept() then
   // copies them in at once.
+  // Without a branch on whether it is empty (in a profile's pieces that is data): written and
+  // integrated over max(duration, 0) (which changes nothing for an empty one), counted if not empty.
+  // Precondition: room for one more slot after the n kept.
   static void keep(JerkSegment* kept, std::size_t& n, Reached& r, JerkSegment segment) noexcept {
-    if (!(segment.duration > 0.0)) return;
-    kept[n++] = segment;
-    r.end = integrate(r.end, segment.jerk, segment.duration);
-    r.time += segment.duration;
+    const bool counted = segment.duration > 0.0;
+    const double duration = counted ? segment.duration : 0.0;
+    kept[n] = {segment.jerk, duration};
+    n += counted ? 1U : 0U;
+    r.end = integrate(r.end, segment.jerk, duration);
+    r.time += duration;
   }
 
   // Adds segments after the last one; zero-length segments are dropped. Precondition: they fit in
