@@ -111,7 +111,8 @@ class AxisProfile {
   // tells whether this axis could raise it (searching cost about 200 instructions per axis, 490 where
   // it takes Newton steps; a time-synchronised plan of N axes to targets at rest now searches about
   // one). Exact where min_duration() is known; otherwise true when the extreme on the target's side
-  // gets to the target at T (false says only that the search must decide).
+  // gets to the target at T (false says only that the search must decide). To a target at rest it
+  // keeps that evaluation for prepare() at T, known or not.
   [[nodiscard]] bool reaches_by(double T) const noexcept;
   // For an axis whose min_duration() is not known, a guess at it, for the order in which axes are
   // searched: the brake, the fastest stop, and the distance from its end to the target at the
