@@ -85,6 +85,8 @@ enum class AxisStatus : std::uint8_t {
              1e-9 * (1.0 + l.max_acceleration - l.min_acceleration);
 }
 
+// Used by one thread at a time: its const queries (min_duration(), reaches_by(), prepare()) fill
+// caches of what plan() determined (mutable members), as a search or an evaluation is needed.
 class AxisProfile {
  public:
   static constexpr std::size_t kMaxBlocked = 3;
@@ -92,9 +94,10 @@ class AxisProfile {
   // Plans; on a status other than ok nothing else is meaningful.
   AxisStatus plan(const MotionState& start, const MotionState& target, const AxisLimits& limits) noexcept;
 
-  // The shortest duration, brake included [s]; +infinity when the search for it failed (then no
-  // duration is planned: unsupported_target). To a target at rest it is searched on the first call
-  // (see reaches_by).
+  // The shortest duration, brake included [s]; +infinity when the search for it failed (no profile
+  // is built at it: a plan whose common duration it would set is refused as unsupported_target; one
+  // whose axes all reach their targets by a longer duration never asks it). To a target at rest it
+  // is searched on the first call (see reaches_by); const, it writes a cache: see the class comment.
   [[nodiscard]] double min_duration() const noexcept {
     if (!min_known_) settle_min_duration();
     return min_duration_;
@@ -111,8 +114,9 @@ class AxisProfile {
   // tells whether this axis could raise it (searching cost about 200 instructions per axis, 490 where
   // it takes Newton steps; a time-synchronised plan of N axes to targets at rest now searches about
   // one). Exact where min_duration() is known; otherwise true when the extreme on the target's side
-  // gets to the target at T (false says only that the search must decide). To a target at rest it
-  // keeps that evaluation for prepare() at T, known or not.
+  // gets beyond the target at T by more than rounding (false says only that the search must decide).
+  // To a target at rest (but from rest to rest with symmetric limits, built in closed form) it keeps
+  // that evaluation for prepare() at T, known or not.
   [[nodiscard]] bool reaches_by(double T) const noexcept;
   // For an axis whose min_duration() is not known, a guess at it, for the order in which axes are
   // searched: the brake, the fastest stop, and the distance from its end to the target at the
@@ -176,10 +180,9 @@ class AxisProfile {
   double target_offset_ = 0.0;  // target position - main start position
   AxisLimits limits_;
   // Farthest in the positive direction (side 0), and in the mirrored frame (side 1: the nearest
-  // profile), constructed on first use: a plan to a target at rest needs one side only, and so does
-  // its build at the shortest duration (a third of the axes of a 3-DoF time-synchronised plan); each
-  // construction cost about 180 instructions. Mutable: a cache of what plan() determined, built by
-  // the const queries (an AxisProfile is used by one thread).
+  // profile), constructed on first use, or by plan() to a target at rest (which needs that side
+  // only); each construction cost about 180 instructions. Mutable: a cache of what plan()
+  // determined, built by the const queries.
   [[nodiscard]] const FarthestProfile& extreme(std::size_t side) const noexcept;
   // Not {}: that zeroed them (a rep stos) for every axis planned.
   mutable std::array<FarthestProfile, 2> extremes_;

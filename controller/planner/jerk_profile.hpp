@@ -78,7 +78,8 @@ class JerkProfile {
   // append() does (the same end, bit for bit, the state kept in registers); append_kept() then
   // copies them in at once.
   // Without a branch on whether it is empty (in a profile's pieces that is data): written and
-  // integrated over max(duration, 0) (which changes nothing for an empty one), counted if not empty.
+  // integrated over max(duration, 0) (which changes nothing for an empty one but a position of -0.0
+  // into +0.0), counted if not empty.
   // Precondition: room for one more slot after the n kept.
   static void keep(JerkSegment* kept, std::size_t& n, Reached& r, JerkSegment segment) noexcept {
     const bool counted = segment.duration > 0.0;

@@ -93,8 +93,8 @@ class Trajectory {
     return profiles_[idx(axis)].extrema();
   }
   // Each axis on its own: its shortest duration and the durations it cannot do (brake included).
-  // An axis's shortest duration that did not set the common one is searched on this call (calculate()
-  // leaves it, see AxisProfile::reaches_by).
+  // An axis's shortest duration that did not set the common one is searched on each call (calculate()
+  // leaves it, see AxisProfile::reaches_by; nothing is written, so concurrent readers are safe).
   [[nodiscard]] double axis_min_duration(int axis) const noexcept {
     const double known = min_duration_[idx(axis)];
     if (!std::isnan(known)) return known;
@@ -162,7 +162,8 @@ class Trajectory {
   [[nodiscard]] static bool build_axes(const Input<N>& in, const std::array<AxisProfile, kN>& axes,
                                        Synchronization sync, double& common,
                                        std::array<AxisProfile::Built, kN>& built, int& error_axis) noexcept;
-  // The prepared axes written: profiles, shortest durations, blocked intervals, the duration.
+  // The prepared axes written: profiles, shortest durations (NaN where not searched, the input kept
+  // for axis_min_duration()), blocked intervals, the duration.
   void store(const Input<N>& in, const std::array<AxisProfile, kN>& axes,
              const std::array<AxisProfile::Built, kN>& built, double common) noexcept;
   // A disabled axis as a fresh trajectory has it.

@@ -57,27 +57,47 @@ TEST(TimeSync, SixAxesFromMovingStatesAtTheIndependentOptimum) {
 
 // An axis that did not set the common duration is not searched for its own shortest one in
 // calculate() (AxisProfile::reaches_by): asked, the trajectory searches it then, and it is the one
-// the axis planned alone has; the common duration is the longest of them.
+// the axis planned alone has (whose search the random axis tests check against the independent
+// optimum); the common duration is the longest of them. Time synchronisation with and without a
+// travel (the scratch trajectory copied into the caller's), none, a disabled axis, and the answers
+// of a copy of the trajectory, assigned over one that held another plan.
 TEST(TimeSync, AnAxisShortestDurationIsItsOwnWhenAsked) {
   std::mt19937_64 rng(31);
-  for (int c = 0; c < 1000; ++c) {
+  Trajectory<6> earlier;  // holds the plan before, overwritten by each copy
+  for (int c = 0; c < 2000; ++c) {
     std::vector<oracle::Problem> axes;
     for (int i = 0; i < 6; ++i) axes.push_back(testing::random_problem(rng, testing::Start::moving));
-    const Input<6> in = testing::input_of<6>(axes);
+    Input<6> in = testing::input_of<6>(axes);
+    const int variant = c % 4;
+    if (variant == 1) {
+      for (int i = 0; i < 6; ++i) {  // a travel far wider than any motion here
+        in.min_position[i] = std::min(in.current_position[i], in.target_position[i]) - 100.0;
+        in.max_position[i] = std::max(in.current_position[i], in.target_position[i]) + 100.0;
+      }
+    }
+    if (variant == 2) in.synchronization = Synchronization::none;
+    if (variant == 3) in.enabled[4] = false;
+    const std::string what = "case " + std::to_string(c) + "\n" + to_string(in);
     Trajectory<6> t;
     int axis = -1;
-    ASSERT_EQ(Trajectory<6>::calculate(in, t, axis), Result::working) << to_string(in);
+    ASSERT_EQ(Trajectory<6>::calculate(in, t, axis), Result::working) << what;
+    earlier = t;
     double longest = 0.0;
     for (int i = 0; i < 6; ++i) {
+      if (!in.enabled[static_cast<std::size_t>(i)]) {
+        EXPECT_EQ(earlier.axis_min_duration(i), 0.0) << what;
+        continue;
+      }
       const oracle::Problem& p = axes[static_cast<std::size_t>(i)];
       AxisProfile alone;
       ASSERT_EQ(alone.plan({p.p0, p.v0, p.a0}, {p.pf, p.vf, p.af},
                            {p.limits.vmax, p.limits.vmin, p.limits.amax, p.limits.amin, p.limits.jerk}),
                 AxisStatus::ok);
-      EXPECT_EQ(t.axis_min_duration(i), alone.min_duration()) << "case " << c << " axis " << i;
+      EXPECT_EQ(t.axis_min_duration(i), alone.min_duration()) << what << " axis " << i;
+      EXPECT_EQ(earlier.axis_min_duration(i), alone.min_duration()) << what << " axis " << i << " (copy)";
       longest = std::max(longest, alone.min_duration());
     }
-    EXPECT_EQ(t.duration(), longest) << "case " << c << "\n" << to_string(in);
+    EXPECT_EQ(t.duration(), longest) << what;
     if (::testing::Test::HasFailure()) break;
   }
 }
