@@ -74,13 +74,11 @@ class JerkProfile {
     double time;
   };
   // Segments made before the profile they go to is touched (its caller checks where they lead
-  // first): keeps `segment` in `kept` (the first n set) unless it is empty, and moves `r` on by it as
-  // append() does (the same end, bit for bit, the state kept in registers); append_kept() then
-  // copies them in at once.
-  // Without a branch on whether it is empty (in a profile's pieces that is data): written and
-  // integrated over max(duration, 0) (which changes nothing for an empty one but a position of -0.0
-  // into +0.0), counted if not empty.
-  // Precondition: room for one more slot after the n kept.
+  // first): counts `segment` among the first n of `kept` unless it is empty, and moves `r` on by it
+  // as append() does (the state kept in registers); append_kept() then copies them in at once. No
+  // branch on whether it is empty (in a profile's pieces that is data): it is written in slot n
+  // either way and integrated over max(duration, 0), which for an empty one changes nothing but a
+  // position of -0.0 into +0.0. Precondition: room for one more slot after the n kept.
   static void keep(JerkSegment* kept, std::size_t& n, Reached& r, JerkSegment segment) noexcept {
     const bool counted = segment.duration > 0.0;
     const double duration = counted ? segment.duration : 0.0;

@@ -22,7 +22,7 @@ namespace cellctl::planner {
 // and 3 of the stop's, 10 steps that do not branch on which switch comes next. That order is data:
 // the merge that branched on it left prepare() about 3.9 mispredicts per axis of a moving 3-DoF
 // plan (callgrind), 0.65 so. Where two switches coincide a step makes an empty piece: stored and
-// integrated (which changes nothing) but not counted, as JerkProfile::keep() drops it.
+// integrated (which changes nothing) but not counted, as in JerkProfile::keep().
 template <std::size_t M>
 void blend_with_stop(const SevenDurations& d, double extreme_jerk, const Reach& stop, double stop_jerk,
                      std::array<JerkSegment, M>& pieces, std::size_t& n, JerkProfile::Reached& r) noexcept {
