@@ -32,6 +32,9 @@ double linear_root(const FarthestProfile& f, double target, double slope, double
 }
 
 bool target_within(const MotionState& target, const AxisLimits& l) noexcept {
+  // At rest, the commonest target, it is within any limits (min < 0 < max): without the test's
+  // division and comparisons.
+  if (target.velocity == 0.0 && target.acceleration == 0.0) return true;
   return std::isfinite(target.velocity) && std::isfinite(target.acceleration) &&
          target_excess(target, l).limit == TargetLimit::none;
 }

@@ -281,6 +281,7 @@ double FarthestProfile::position_of(const SevenDurations& t, const SevenDuration
   // and its multiplications by the sign were half its cost.
 #pragma GCC unroll 7
   for (std::size_t i = 0; i < kFarthestJerkSigns.size(); ++i) {
+    if (i == 3) continue;  // the cruise: zero in every profile summed here (see the header)
     const double sign = kFarthestJerkSigns[i];
     const double d = t[i];
     if (sign == 0.0) {

@@ -96,7 +96,8 @@ class FarthestProfile {
 
  private:
   bool no_cruise(double T, SevenDurations& t, SevenDurations* rates) const noexcept;
-  // The end position of the profile with these durations.
+  // The end position of the profile with these durations, whose cruise t[3] is zero (the cruise
+  // shape, and every profile no_cruise() gives): its segment is not summed.
   [[nodiscard]] double position_of(const SevenDurations& t) const noexcept;
   // The same, and with kSlope its slope from `rates` (the durations' derivatives with respect to T).
   template <bool kSlope>
