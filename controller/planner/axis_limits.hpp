@@ -5,12 +5,14 @@
 
 namespace cellctl::planner {
 
+// A plain aggregate (AxisLimits{} is zero; no default member values): limits held for later
+// (an axis's, a trajectory's per axis) are then not zeroed on every plan before they are set.
 struct AxisLimits {
-  double max_velocity = 0.0;
-  double min_velocity = 0.0;  // < 0
-  double max_acceleration = 0.0;
-  double min_acceleration = 0.0;  // < 0
-  double jerk = 0.0;
+  double max_velocity;
+  double min_velocity;  // < 0
+  double max_acceleration;
+  double min_acceleration;  // < 0
+  double jerk;
 
   // Symmetric limits ±velocity, ±acceleration.
   [[nodiscard]] static constexpr AxisLimits symmetric(double velocity, double acceleration,

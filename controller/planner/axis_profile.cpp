@@ -76,7 +76,7 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   if (rest_to_rest) {
     // From rest to rest: closed form, and never a blocked interval.
     reach_ = 0.0;
-    stop_ = Reach{};  // at rest already: the stop is all hold
+    stop_ = Reach{0.0, 0.0, 1.0, 0.0, 0.0, 0.0};  // at rest already: the stop is all hold
     min_duration_ = brake_.duration() + rest_to_rest_time(target_offset_, limits);
     min_side_ = target_offset_ >= 0.0 ? 0 : 1;
     return AxisStatus::ok;

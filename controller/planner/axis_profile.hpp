@@ -91,7 +91,7 @@ class AxisProfile {
  public:
   static constexpr std::size_t kMaxBlocked = 3;
 
-  // Plans; on a status other than ok nothing else is meaningful.
+  // Plans; on a status other than ok nothing else is meaningful, nor is anything before the first plan.
   AxisStatus plan(const MotionState& start, const MotionState& target, const AxisLimits& limits) noexcept;
 
   // The shortest duration, brake included [s]; +infinity when the search for it failed (no profile
@@ -174,10 +174,13 @@ class AxisProfile {
   // they miss it, -infinity when T has no extreme profile.
   [[nodiscard]] double margin(double T) const noexcept;
 
+  // Without default values (nor have their types): plan() sets each before it is read, and the axes
+  // constructed for every plan zeroed them first (with the state's, limits' and stop's types, 2 % of
+  // a moving plan).
   JerkProfile brake_;
   MotionState main_start_;
   MotionState target_;
-  double target_offset_ = 0.0;  // target position - main start position
+  double target_offset_;  // target position - main start position
   AxisLimits limits_;
   // Farthest in the positive direction (side 0), and in the mirrored frame (side 1: the nearest
   // profile), constructed on first use, or by plan() to a target at rest (which needs that side
@@ -186,25 +189,25 @@ class AxisProfile {
   [[nodiscard]] const FarthestProfile& extreme(std::size_t side) const noexcept;
   // Not {}: that zeroed them (a rep stos) for every axis planned.
   mutable std::array<FarthestProfile, 2> extremes_;
-  mutable std::array<bool, 2> constructed_{};
-  bool symmetric_ = false;  // the second extreme is the first one mirrored: computed once
-  int min_side_ = -1;       // the extreme whose profile is the shortest duration's (-1: a blend)
-  double reach_ = 0.0;
+  mutable std::array<bool, 2> constructed_;
+  bool symmetric_;  // the second extreme is the first one mirrored: computed once
+  int min_side_;    // the extreme whose profile is the shortest duration's (-1: a blend)
+  double reach_;
   // To a target at rest: the fastest stop from the main start (the reach profile; none from rest),
   // which prepare() blends with the extreme on the target's side.
   Reach stop_;
   // The search for the shortest duration to a target at rest (plan() leaves it to min_duration()).
   void settle_min_duration() const noexcept;
   // Mutable: a cache of what plan() determined, searched by the const queries.
-  mutable double min_duration_ = 0.0;  // brake included
-  mutable bool min_known_ = true;
+  mutable double min_duration_;  // brake included
+  mutable bool min_known_;
   // reaches_by's evaluation of the extreme (its durations and position after `main` s from the main
   // start), which prepare() at the same duration takes instead of evaluating it again.
-  mutable double checked_main_ = -1.0;
-  mutable double checked_position_ = 0.0;
+  mutable double checked_main_;
+  mutable double checked_position_;
   mutable SevenDurations checked_;
-  std::array<Interval, kMaxBlocked> blocked_{};  // brake included
-  std::size_t blocked_count_ = 0;
+  std::array<Interval, kMaxBlocked> blocked_;  // brake included
+  std::size_t blocked_count_;
 };
 
 }  // namespace cellctl::planner

@@ -32,13 +32,15 @@ using SevenDurations = std::array<double, 7>;
 // The profile itself is kept too (an axis blends its stop to rest with an extreme, see
 // AxisProfile::prepare): jerk direction * J for ramp_in, its peak acceleration held for `hold`,
 // -direction * J for ramp_out (direction -1 when the acceleration falls first).
+// A plain aggregate (no default member values): an axis's stop is then not zeroed for every axis
+// planned before plan() sets it.
 struct Reach {
-  double time = 0.0;
-  double position = 0.0;
-  double direction = 1.0;
-  double ramp_in = 0.0;
-  double hold = 0.0;
-  double ramp_out = 0.0;
+  double time;
+  double position;
+  double direction;
+  double ramp_in;
+  double hold;
+  double ramp_out;
 };
 [[nodiscard]] Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept;
 

@@ -11,10 +11,12 @@
 
 namespace cellctl::planner {
 
+// A plain aggregate (MotionState{} is zero; no default member values): an axis's planning state
+// is then not zeroed for every axis planned before plan() sets it.
 struct MotionState {
-  double position = 0.0;
-  double velocity = 0.0;
-  double acceleration = 0.0;
+  double position;
+  double velocity;
+  double acceleration;
 };
 
 // A plain aggregate (JerkSegment{} is zero; no default member values): a profile's unused segment
@@ -136,8 +138,8 @@ class JerkProfile {
   [[nodiscard]] PositionExtrema extrema() const noexcept;
 
  private:
-  MotionState start_;
-  MotionState end_;
+  MotionState start_{};
+  MotionState end_{};
   std::array<JerkSegment, kMaxSegments> segments_;  // the first count_ are set (see JerkSegment)
   std::size_t count_ = 0;
   double duration_ = 0.0;
