@@ -140,8 +140,7 @@ class AxisProfile {
   };
   [[nodiscard]] bool prepare(double T, Built& built) const noexcept;
   void write(const Built& built, JerkProfile& out) const noexcept {
-    out = brake_;
-    out.append_kept(built.pieces, built.n, built.reached);
+    out.assign_kept(brake_, built.pieces, built.n, built.reached);
   }
   [[nodiscard]] const JerkProfile& brake() const noexcept { return brake_; }
 

@@ -77,7 +77,7 @@ class JerkProfile {
   };
   // Segments made before the profile they go to is touched (its caller checks where they lead
   // first): counts `segment` among the first n of `kept` unless it is empty, and moves `r` on by it
-  // as append() does (the state kept in registers); append_kept() then copies them in at once. No
+  // as append() does (the state kept in registers); assign_kept() then copies them in at once. No
   // branch on whether it is empty (in a profile's pieces that is data): it is written in slot n
   // either way and integrated over max(duration, 0), which for an empty one changes nothing but a
   // position of -0.0 into +0.0. Precondition: room for one more slot after the n kept.
@@ -111,16 +111,20 @@ class JerkProfile {
     count_ = count;
   }
   void append(JerkSegment segment) noexcept { append(&segment, 1); }
-  // The first n of `segments` kept by keep() from this profile's end, which took it to `r`: all M
-  // slots copied at once (a fixed-size copy; a loop over them, each tested for its duration, cost as
-  // much as building them), the first n kept. Precondition: size() + M <= kMaxSegments.
+  // Becomes `head` followed by the first n of `segments`, kept by keep() from head's end, which
+  // took it to `r` (head's end, duration and count are not copied first). All M slots copied at
+  // once (a fixed-size copy; a loop over them, each tested for its duration, cost as much as
+  // building them), the first n kept. Precondition: head.size() + M <= kMaxSegments.
   template <std::size_t M>
-  void append_kept(const std::array<JerkSegment, M>& segments, std::size_t n, const Reached& r) noexcept {
-    assert(count_ + M <= kMaxSegments && n <= M);
-    std::memcpy(&segments_[count_], segments.data(), sizeof(segments));
+  void assign_kept(const JerkProfile& head, const std::array<JerkSegment, M>& segments, std::size_t n,
+                   const Reached& r) noexcept {
+    assert(head.count_ + M <= kMaxSegments && n <= M);
+    start_ = head.start_;
+    for (std::size_t i = 0; i < head.count_; ++i) segments_[i] = head.segments_[i];
+    std::memcpy(&segments_[head.count_], segments.data(), sizeof(segments));
     end_ = r.end;
     duration_ = r.time;
-    count_ += n;
+    count_ = head.count_ + n;
   }
 
   [[nodiscard]] const MotionState& start() const noexcept { return start_; }

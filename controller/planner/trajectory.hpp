@@ -208,8 +208,11 @@ Result Trajectory<N>::validate(const Input<N>& in, int& axis, std::array<AxisLim
     const AxisLimits l = limits_of(in, i);
     const double bounds = l.max_velocity * 0.0 + l.min_velocity * 0.0 + l.max_acceleration * 0.0 +
                           l.min_acceleration * 0.0 + l.jerk * 0.0;
-    const double least =
-        std::min({l.max_velocity, -l.min_velocity, l.max_acceleration, -l.min_acceleration, l.jerk});
+    // Nested, not the initializer-list min: that one loops, with a branch per value (which bound is
+    // the least is a coin toss).
+    const double least = std::min(std::min(std::min(l.max_velocity, -l.min_velocity),
+                                           std::min(l.max_acceleration, -l.min_acceleration)),
+                                  l.jerk);
     // Every bound finite and > 0; the travel's ends not NaN (infinite: no travel limit) and ordered.
     if (!(bounds == 0.0 && least > 0.0 && in.min_position[i] <= in.max_position[i]))
       return Result::invalid_limits;
@@ -375,8 +378,7 @@ bool Trajectory<N>::plan_rest_to_rest(const Input<N>& in, const std::array<AxisL
       out.clear_axis(idx(i));
       continue;
     }
-    p = JerkProfile(start_of(in, i));
-    p.append_kept(kept[idx(i)], kept_count[idx(i)], reached[idx(i)]);
+    p.assign_kept(JerkProfile(start_of(in, i)), kept[idx(i)], kept_count[idx(i)], reached[idx(i)]);
     out.min_duration_[idx(i)] = shortest[idx(i)];
     out.blocked_count_[idx(i)] = 0;
   }
