@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -32,8 +33,10 @@ double linear_root(const FarthestProfile& f, double target, double slope, double
 }
 
 bool target_within(const MotionState& target, const AxisLimits& l) noexcept {
-  // At rest, the commonest target, it is within any limits (min < 0 < max): without the test's
-  // division and comparisons.
+  // At rest, the commonest target, it is within any valid limits (min <= 0 <= max; Trajectory's
+  // input check refuses others): without the test's division and comparisons.
+  assert(l.min_velocity <= 0.0 && 0.0 <= l.max_velocity && l.min_acceleration <= 0.0 &&
+         0.0 <= l.max_acceleration);
   if (target.velocity == 0.0 && target.acceleration == 0.0) return true;
   return std::isfinite(target.velocity) && std::isfinite(target.acceleration) &&
          target_excess(target, l).limit == TargetLimit::none;
@@ -45,11 +48,15 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
                              const AxisLimits& limits) noexcept {
   limits_ = limits;
   blocked_count_ = 0;
-  // Nothing of an earlier plan kept, even when this one is refused at once.
+  // Nothing of an earlier plan kept, even when this one is refused at once; a refused plan's
+  // shortest duration is infinite, at which nothing is built.
   min_known_ = true;
+  min_duration_ = kInfinity;
+  symmetric_ = false;
   min_side_ = -1;
   constructed_ = {false, false};
   checked_main_ = -1.0;  // no evaluation kept (main durations are >= 0)
+  checked_position_ = 0.0;
   if (!target_within(target, limits)) return AxisStatus::target_outside_limits;
   // Every start has a brake into the safe states: none is refused (see brake.hpp). A start at rest
   // needs none (the limits are > 0): not asked, the commonest start.
@@ -70,8 +77,9 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   // the same one: the nearest profile is the farthest one negated.
   symmetric_ = rest_to_rest && limits.min_velocity == -limits.max_velocity &&
                limits.min_acceleration == -limits.max_acceleration;
-  // The extremes are constructed on first use (extreme()), except the one on the side of a target at
-  // rest, which plan() constructs below; none symmetric from rest to rest (build() has them in closed
+  // The extremes are constructed on first use (extreme()), except to a target at rest, where plan()
+  // constructs the one on the target's side of the stop (and the one on the side of the target
+  // itself, the same as a rule) below; none symmetric from rest to rest (build() has them in closed
   // form, rest_to_rest_farthest).
   if (rest_to_rest) {
     // From rest to rest: closed form, and never a blocked interval.

@@ -173,17 +173,19 @@ class AxisProfile {
   // they miss it, -infinity when T has no extreme profile.
   [[nodiscard]] double margin(double T) const noexcept;
 
-  // Without default values (nor have their types): plan() sets each before it is read, and the axes
-  // constructed for every plan zeroed them first (with the state's, limits' and stop's types, 2 % of
-  // a moving plan).
+  // No default values (nor have the state's, limits' and stop's types): an axis is constructed for
+  // every plan, and zeroing its members first cost 2 % of a moving plan. plan() sets every member
+  // its queries read (even when it refuses: the shortest duration infinite), except those set on
+  // demand: the extremes (extreme()), the kept evaluation (reaches_by(), read only at the duration
+  // it was made for) and the blocked intervals past their count.
   JerkProfile brake_;
   MotionState main_start_;
   MotionState target_;
   double target_offset_;  // target position - main start position
   AxisLimits limits_;
   // Farthest in the positive direction (side 0), and in the mirrored frame (side 1: the nearest
-  // profile), constructed on first use, or by plan() to a target at rest (which needs that side
-  // only); each construction cost about 180 instructions. Mutable: a cache of what plan()
+  // profile), constructed on first use, or by plan() to a target at rest (the side it needs, see
+  // plan()); each construction cost about 180 instructions. Mutable: a cache of what plan()
   // determined, built by the const queries.
   [[nodiscard]] const FarthestProfile& extreme(std::size_t side) const noexcept;
   // Not {}: that zeroed them (a rep stos) for every axis planned.

@@ -1,6 +1,7 @@
 #include "planner/farthest_profile.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -262,6 +263,7 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t, SevenDurations* rat
 template <bool kSlope>
 double FarthestProfile::position_of(const SevenDurations& t, const SevenDurations& rates,
                                     double& slope) const noexcept {
+  assert(t[3] == 0.0);
   // Lengthening segment i by dt moves the state at its end by (v, a, jerk) dt, which the rest of
   // the profile (r long, its jerks unchanged) carries to the end as (v + a r + jerk r^2 / 2) dt of
   // position: the slope is the sum of these weighted by the rates.

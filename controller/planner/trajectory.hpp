@@ -487,6 +487,8 @@ Result Trajectory<N>::keep_travel(const Input<N>& in, const std::array<AxisLimit
       if (x.by < least.by) least = x;
       return x.by <= slack;
     };
+    // After a phase plan (`planned`) the axes were never planned: only what `!planned` guards first
+    // may ask them anything.
     const AxisProfile& a = axes[idx(i)];
     const double T = p.duration();
     const bool at_rest = in.target_velocity[i] == 0.0 && in.target_acceleration[i] == 0.0;
