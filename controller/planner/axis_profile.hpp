@@ -22,7 +22,10 @@
 // span of durations after the reach time (velocity_gap, in closed form): the search then runs
 // before the gap (a window) and after it, and the gap lies in a blocked interval. The built
 // profile is checked to arrive; a miss would be refused as unsupported_target rather than
-// followed (none seen in millions of random problems).
+// followed (none seen in millions of random problems). To a target at rest the pieces are not
+// integrated again: the check is on the blend's position and on the extreme's solved durations
+// ending at rest (FarthestProfile::position), and the profile's stated end is the target's state
+// (see prepare()).
 //
 // To a target at rest, plan() leaves the search for the shortest duration to the first
 // min_duration() call: time synchronisation asks only the axes that could set the common duration
@@ -131,8 +134,8 @@ class AxisProfile {
   [[nodiscard]] bool build(double T, JerkProfile& out) const noexcept;
   // build() in two steps, so that a caller can check every axis before it writes one (a trajectory
   // then plans straight into the caller's, without a scratch copy): prepare() makes the pieces after
-  // the brake (none empty) and integrates them as it goes, false when they miss the target; write()
-  // stores the brake and them.
+  // the brake (none empty) and checks where they end (integrating them as it goes, or to a target at
+  // rest from its parts' ends), false when they miss the target; write() stores the brake and them.
   struct Built {
     std::array<JerkSegment, 2 * kFarthestJerkSigns.size() - 1> pieces;  // the first n are set
     std::size_t n;

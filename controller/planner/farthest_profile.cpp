@@ -135,7 +135,7 @@ FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
   cruise_from_ = from;
   half_jerk_ = j / 2.0;
   sixth_jerk_ = j / 6.0;
-  cruise_position_ = position_of(t);
+  cruise_position_ = position_of<false>(t);
 }
 
 bool FarthestProfile::durations(double T, SevenDurations& t, SevenDurations* rates) const noexcept {
@@ -260,7 +260,7 @@ bool FarthestProfile::no_cruise(double T, SevenDurations& t, SevenDurations* rat
   return false;
 }
 
-template <bool kSlope>
+template <bool kSlope, bool kArrival>
 double FarthestProfile::position_of(const SevenDurations& t, const SevenDurations& rates,
                                     double& slope) const noexcept {
   assert(t[3] == 0.0);
@@ -305,6 +305,12 @@ double FarthestProfile::position_of(const SevenDurations& t, const SevenDuration
     }
   }
   if constexpr (kSlope) slope = sum_slope;
+  if constexpr (kArrival) {
+    // AxisProfile's arrival check's tolerances (the spans are the same in either frame).
+    if (!(std::abs(v - vf_) <= 1e-9 * (1.0 + lim_.max_velocity - lim_.min_velocity) &&
+          std::abs(a - af_) <= 1e-9 * (1.0 + lim_.max_acceleration - lim_.min_acceleration)))
+      return std::numeric_limits<double>::quiet_NaN();
+  }
   return p;
 }
 
@@ -399,21 +405,23 @@ double FarthestProfile::duration_to_rest(double target) const noexcept {
   return at_root(newton_root(gap, lo, g_lo, hi, g_hi, start));
 }
 
+template <bool kArrival>
 double FarthestProfile::position_of(const SevenDurations& t) const noexcept {
   double unused = 0.0;
-  return position_of<false>(t, t, unused);
+  return position_of<false, kArrival>(t, t, unused);
 }
 
 double FarthestProfile::position(double T) const noexcept {
   // Cruising, linear in T (as position(T, t) has it, without the durations).
   if (T >= cruise_from_) return cruise_position_ + lim_.max_velocity * (T - cruise_from_);
   SevenDurations t;
-  return position(T, t);
+  if (!durations(T, t)) return std::numeric_limits<double>::quiet_NaN();
+  return position_of<false>(t);
 }
 
 double FarthestProfile::position(double T, SevenDurations& t) const noexcept {
   if (!durations(T, t)) return std::numeric_limits<double>::quiet_NaN();
-  return T >= cruise_from_ ? cruise_position_ + lim_.max_velocity * t[3] : position_of(t);
+  return T >= cruise_from_ ? cruise_position_ + lim_.max_velocity * t[3] : position_of<true>(t);
 }
 
 double FarthestProfile::position_and_slope(double T, double& slope) const noexcept {
@@ -424,7 +432,7 @@ double FarthestProfile::position_and_slope(double T, double& slope) const noexce
     slope = lim_.max_velocity;
     return cruise_position_ + lim_.max_velocity * t[3];
   }
-  return position_of<true>(t, rates, slope);
+  return position_of<true, false>(t, rates, slope);
 }
 
 }  // namespace cellctl::planner

@@ -76,7 +76,10 @@ class FarthestProfile {
   [[nodiscard]] bool durations(double T, SevenDurations& t, SevenDurations* rates = nullptr) const noexcept;
   // The end position of the farthest profile of duration T (NaN when durations() fails).
   [[nodiscard]] double position(double T) const noexcept;
-  // The same, and the durations in `t` (unusable when NaN is returned).
+  // The same, and the durations in `t` (unusable when NaN is returned); NaN too where durations
+  // solved below the cruise end more than rounding away from (vf, af) (AxisProfile's arrival
+  // tolerances): the arrival check of the profiles to a target at rest, which AxisProfile::prepare
+  // does not integrate again.
   [[nodiscard]] double position(double T, SevenDurations& t) const noexcept;
   // The same and its derivative with respect to T, for a Newton step on the shortest duration
   // (NaN when durations() fails). The slope is that of the case of active bounds that fits T; where
@@ -99,10 +102,13 @@ class FarthestProfile {
  private:
   bool no_cruise(double T, SevenDurations& t, SevenDurations* rates) const noexcept;
   // The end position of the profile with these durations, whose cruise t[3] is zero (the cruise
-  // shape, and every profile no_cruise() gives): its segment is not summed.
+  // shape, and every profile no_cruise() gives): its segment is not summed. With kArrival NaN where
+  // they end more than rounding away from (vf, af).
+  template <bool kArrival>
   [[nodiscard]] double position_of(const SevenDurations& t) const noexcept;
-  // The same, and with kSlope its slope from `rates` (the durations' derivatives with respect to T).
-  template <bool kSlope>
+  // The same (unchecked), and with kSlope its slope from `rates` (the durations' derivatives with
+  // respect to T).
+  template <bool kSlope, bool kArrival>
   [[nodiscard]] double position_of(const SevenDurations& t, const SevenDurations& rates,
                                    double& slope) const noexcept;
   [[nodiscard]] bool peak_within_velocity(double a1, double t2) const noexcept;

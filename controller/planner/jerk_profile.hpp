@@ -82,12 +82,18 @@ class JerkProfile {
   // either way and integrated over max(duration, 0), which for an empty one changes nothing but a
   // position of -0.0 into +0.0. Precondition: room for one more slot after the n kept.
   static void keep(JerkSegment* kept, std::size_t& n, Reached& r, JerkSegment segment) noexcept {
+    const double duration = segment.duration > 0.0 ? segment.duration : 0.0;
+    keep_timed(kept, n, r.time, segment);
+    r.end = integrate(r.end, segment.jerk, duration);
+  }
+  // keep() without the integration, `time` moved on: for pieces whose end state the caller knows
+  // otherwise (AxisProfile::prepare).
+  static void keep_timed(JerkSegment* kept, std::size_t& n, double& time, JerkSegment segment) noexcept {
     const bool counted = segment.duration > 0.0;
     const double duration = counted ? segment.duration : 0.0;
     kept[n] = {segment.jerk, duration};
     n += counted ? 1U : 0U;
-    r.end = integrate(r.end, segment.jerk, duration);
-    r.time += duration;
+    time += duration;
   }
 
   // Adds segments after the last one; zero-length segments are dropped. Precondition: they fit in

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "planner/brake_oracle.hpp"
+#include "planner/segments_end.hpp"
 #include "planner/trajectory.hpp"
 
 namespace cellctl::planner {
@@ -18,9 +19,13 @@ inline void expect_arrives_together(const Trajectory<N>& t, const Input<N>& in, 
   for (int i = 0; i < N; ++i) {
     const JerkProfile& p = t.profile(i);
     EXPECT_NEAR(p.duration(), t.duration(), 1e-9 * (1.0 + t.duration())) << what << " axis " << i;
-    EXPECT_NEAR(p.end().position, in.target_position[i], 1e-8) << what << " axis " << i;
-    EXPECT_NEAR(p.end().velocity, in.target_velocity[i], 1e-8) << what << " axis " << i;
-    EXPECT_NEAR(p.end().acceleration, 0.0, 1e-8) << what << " axis " << i;
+    const MotionState e = segments_end(p);
+    EXPECT_NEAR(e.position, in.target_position[i], 1e-8) << what << " axis " << i;
+    EXPECT_NEAR(e.velocity, in.target_velocity[i], 1e-8) << what << " axis " << i;
+    EXPECT_NEAR(e.acceleration, 0.0, 1e-8) << what << " axis " << i;
+    // The end the profile states (its state from then on) is where its segments lead.
+    EXPECT_NEAR(p.end().position, e.position, 1e-8) << what << " axis " << i;
+    EXPECT_NEAR(p.end().velocity, e.velocity, 1e-8) << what << " axis " << i;
     // Within the limits from the end of a brake on: once a state from which they can be kept.
     const oracle::Limits l{in.max_velocity[i], -in.max_velocity[i], in.max_acceleration[i],
                            -in.max_acceleration[i], in.max_jerk[i]};

@@ -13,6 +13,7 @@
 #include "planner/farthest_profile.hpp"
 #include "planner/optimum_oracle.hpp"
 #include "planner/random_problems.hpp"
+#include "planner/segments_end.hpp"
 
 namespace cellctl::planner {
 namespace {
@@ -40,9 +41,10 @@ JerkProfile plan_checked(const MotionState& start, const MotionState& target, co
   EXPECT_TRUE(oracle::confirms_min_duration(after_brake, axis.min_duration() - brake, 1e-9))
       << what << ": planned " << axis.min_duration() - brake << " s after the brake, the optimum is "
       << oracle::min_duration(after_brake, 1.01 * (axis.min_duration() - brake) + 1e-9);
-  EXPECT_NEAR(profile.end().position, target.position, 1e-8 * (1 + std::abs(target.position))) << what;
-  EXPECT_NEAR(profile.end().velocity, target.velocity, 1e-8) << what;
-  EXPECT_NEAR(profile.end().acceleration, target.acceleration, 1e-8) << what;
+  const MotionState e = segments_end(profile);
+  EXPECT_NEAR(e.position, target.position, 1e-8 * (1 + std::abs(target.position))) << what;
+  EXPECT_NEAR(e.velocity, target.velocity, 1e-8) << what;
+  EXPECT_NEAR(e.acceleration, target.acceleration, 1e-8) << what;
   const double tol_v = 1e-9 * (1 + l.max_velocity);
   const double tol_a = 1e-9 * (1 + l.max_acceleration);
   for (int k = 0; k <= 1000; ++k) {
@@ -69,7 +71,7 @@ Interval expect_one_oracle_blocked_interval(const AxisProfile& axis, const oracl
   for (const double T : {b.lo, b.hi}) {
     JerkProfile profile;
     EXPECT_TRUE(axis.build(T, profile)) << T;
-    EXPECT_NEAR(profile.end().position, target.position, 1e-8) << T;
+    EXPECT_NEAR(segments_end(profile).position, target.position, 1e-8) << T;
   }
   return b;
 }
@@ -211,9 +213,10 @@ TEST(BlockedInterval, RightAfterAShortReachIsFound) {
     JerkProfile profile;
     ASSERT_TRUE(axis.build(T, profile)) << T;
     EXPECT_NEAR(profile.duration(), T, 1e-12) << T;
-    EXPECT_NEAR(profile.end().position, target.position, 1e-8) << T;
-    EXPECT_NEAR(profile.end().velocity, target.velocity, 1e-8) << T;
-    EXPECT_NEAR(profile.end().acceleration, 0.0, 1e-8) << T;
+    const MotionState e = segments_end(profile);
+    EXPECT_NEAR(e.position, target.position, 1e-8) << T;
+    EXPECT_NEAR(e.velocity, target.velocity, 1e-8) << T;
+    EXPECT_NEAR(e.acceleration, 0.0, 1e-8) << T;
   }
   plan_checked(start, target, l, "problem 258555 of seed 3");
 }
@@ -319,9 +322,10 @@ TEST(VelocityGap, ATargetAccelerationIsReachedBeforeAndAfterItsGap) {
       for (const double T : {b.lo, b.hi, 2.0 * b.hi}) {
         JerkProfile profile;
         ASSERT_TRUE(axis.build(T, profile)) << what << " T " << T;
-        EXPECT_NEAR(profile.end().position, pf, 1e-9) << what << " T " << T;
-        EXPECT_NEAR(profile.end().velocity, 0.02, 1e-9) << what << " T " << T;
-        EXPECT_NEAR(profile.end().acceleration, 1.0, 1e-9) << what << " T " << T;
+        const MotionState e = segments_end(profile);
+        EXPECT_NEAR(e.position, pf, 1e-9) << what << " T " << T;
+        EXPECT_NEAR(e.velocity, 0.02, 1e-9) << what << " T " << T;
+        EXPECT_NEAR(e.acceleration, 1.0, 1e-9) << what << " T " << T;
       }
     } else {
       EXPECT_GT(axis.min_duration(), gap.hi) << what;

@@ -16,6 +16,7 @@
 #include "planner/optimum_oracle.hpp"
 #include "planner/planner.hpp"
 #include "planner/random_problems.hpp"
+#include "planner/segments_end.hpp"
 #include "support/allocation_counter.hpp"
 
 namespace cellctl::planner {
@@ -200,7 +201,7 @@ TEST(PhaseSync, MovingOnTheLineKeepsTheLine) {
     const double time = t.duration() * k / 100.0;
     EXPECT_NEAR(t.profile(0).at(time).position, 2.0 * t.profile(1).at(time).position, 1e-12);
   }
-  EXPECT_NEAR(t.profile(0).end().position, 2.0, 1e-9);
+  EXPECT_NEAR(segments_end(t.profile(0)).position, 2.0, 1e-9);
 }
 
 TEST(PhaseSync, OffTheLineFallsBackToTimeSyncWithANote) {
@@ -238,8 +239,8 @@ TEST(PhaseSync, ATargetBeyondTheLinesLimitsFallsBackToTimeSyncWithANote) {
   EXPECT_EQ(t.synchronization(), Synchronization::time);
   EXPECT_EQ(t.note(), kPhaseLimitsNote);
   for (int i = 0; i < 2; ++i) {
-    EXPECT_NEAR(t.profile(i).end().position, 1.0, 1e-9);
-    EXPECT_NEAR(t.profile(i).end().acceleration, 0.5, 1e-9);
+    EXPECT_NEAR(segments_end(t.profile(i)).position, 1.0, 1e-9);
+    EXPECT_NEAR(segments_end(t.profile(i)).acceleration, 0.5, 1e-9);
     EXPECT_NEAR(t.profile(i).duration(), t.duration(), 1e-12);
   }
 }
@@ -267,7 +268,7 @@ TEST(PhaseSync, AStartBeyondTheLinesLimitsBrakesEachAxisWithinItsOwn) {
     fastest = std::max(fastest, t.profile(1).at(t.duration() * k / 20000.0).velocity);
   }
   EXPECT_LE(fastest, 0.01 + 1e-9);
-  EXPECT_NEAR(t.profile(1).end().position, 1.0, 1e-9);
+  EXPECT_NEAR(segments_end(t.profile(1)).position, 1.0, 1e-9);
 }
 
 TEST(PhaseSync, NoDisplacementButMovingIsTimeSynchronisedWithANote) {
