@@ -53,14 +53,18 @@ void blend_with_stop(const SevenDurations& d, double extreme_jerk, const Reach& 
   std::size_t is = 0;
   double from = 0.0;
   for (std::size_t k = 0; k < kSteps; ++k) {
-    const double to = std::min(extreme_ends[ie], stop_ends[is]);
+    const double e = extreme_ends[ie];
+    const double s = stop_ends[is];
+    const double to = std::min(e, s);
     const double piece = to - from;
     const double jerk = extreme_jerks[ie] + stop_jerks[is];
     pieces[n] = {jerk, piece};
     n += piece > 0.0 ? 1U : 0U;
     time += piece;
-    ie += extreme_ends[ie] <= to ? 1U : 0U;
-    is += stop_ends[is] <= to ? 1U : 0U;
+    // Which switch comes next, from the two switches themselves (e <= s is e <= min(e, s)): the
+    // indices feed the next step's loads, and the minimum is not waited for.
+    ie += e <= s ? 1U : 0U;
+    is += s <= e ? 1U : 0U;
     from = to;
   }
 }
