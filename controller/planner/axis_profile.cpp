@@ -505,21 +505,21 @@ bool AxisProfile::prepare(double T, Built& built) const noexcept {
     // stop and the cruise are closed forms, and both end at rest to rounding (the tests integrate
     // every profile's segments). So the arrival check here is on the position alone, and the
     // profile's stated end is the target's state.
-    const auto arrived = [&](double offset) {
+    const auto at_target = [&] {
       built.n = n;
       built.reached = {target_, r.time};
-      return std::abs(offset - target_offset_) <= 1e-9 * (1.0 + std::abs(target_offset_));
     };
     // The shortest duration is the extreme profile itself: no blend (whose share of the stop would
     // only be rounding). Unless that profile misses the target by more than rounding (the shortest
     // duration lies a few ulps past the root; where the position's slope is steep, 2 in 10^5 problems
-    // missed by 1e-11 m): the blend then ends on the target.
+    // missed by 1e-11 m): the blend then ends on the target. The test is the arrival check, tighter.
     if (min_known_ && T == min_duration_ &&
         std::abs(reached - target_offset_) <= 1e-13 * (1.0 + std::abs(target_offset_))) {
       for (std::size_t i = 0; i < d.size(); ++i) {
         JerkProfile::keep_timed(built.pieces.data(), n, r.time, {sign * kFarthestJerkSigns[i] * j, d[i]});
       }
-      return arrived(reached);
+      at_target();
+      return true;
     }
     if (!std::isnan(reached)) {
       const double p = stop_.position;
@@ -527,7 +527,8 @@ bool AxisProfile::prepare(double T, Built& built) const noexcept {
       const double share = width != 0.0 ? std::clamp((target_offset_ - p) / width, 0.0, 1.0) : 0.0;
       blend_with_stop(d, share * sign * j, stop_, (1.0 - share) * stop_.direction * j, built.pieces, n,
                       r.time);
-      return arrived(p + share * width);
+      at_target();
+      return std::abs(p + share * width - target_offset_) <= 1e-9 * (1.0 + std::abs(target_offset_));
     }
   }
   const double far = extreme(0).position(main, up);

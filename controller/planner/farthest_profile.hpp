@@ -106,8 +106,8 @@ class FarthestProfile {
   // they end more than rounding away from (vf, af).
   template <bool kArrival>
   [[nodiscard]] double position_of(const SevenDurations& t) const noexcept;
-  // The same (unchecked), and with kSlope its slope from `rates` (the durations' derivatives with
-  // respect to T).
+  // The same, and with kSlope its slope from `rates` (the durations' derivatives with respect to
+  // T).
   template <bool kSlope, bool kArrival>
   [[nodiscard]] double position_of(const SevenDurations& t, const SevenDurations& rates,
                                    double& slope) const noexcept;

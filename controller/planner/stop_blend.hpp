@@ -18,8 +18,8 @@ namespace cellctl::planner {
 // `stop_jerk` times the stop's (+1, 0, -1 over its ramps and hold, then 0 at rest until the
 // extreme ends), kept after the first n of `pieces` (empty ones dropped), `time` moved on by them.
 // Not integrated: the dynamics are linear in the jerk, so the blend ends in the same blend of the
-// extreme's and the stop's end states, which prepare() checks (integrating the ten pieces again
-// was 11 % of a moving plan's instructions).
+// extreme's and the stop's end states (at rest, at the blend of their positions, which prepare()
+// checks; integrating the ten pieces again was 11 % of a moving plan's instructions).
 //
 // The two switching sequences are merged in time order, one switch per step: 7 of the extreme's
 // and 3 of the stop's, 10 steps that do not branch on which switch comes next. That order is data:
