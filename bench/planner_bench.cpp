@@ -9,7 +9,10 @@
 //    means time-optimal), on the first --oracle problems;
 //  - the reference measured in the same run: the oracle's own compute time per DoF, and the
 //    planner's speed-up over it;
-//  - the share of the axes whose start needs a brake.
+//  - the share of the axes whose start needs a brake;
+//  - the core probe (core_probe.hpp) just before and just after the set is timed: on the 2-core VM
+//    about 3.3 ms in its fast state and 3.9–4.4 ms in its slow one, in which the planner takes
+//    1.2–1.3x its fast time (two different readings: the state changed while the set was timed).
 // Usage: planner_bench [--problems N (20000)] [--oracle N (1000)] [--seed S] [--only
 // 3rest|3moving|6rest|6moving]
 // (--only runs one configuration: for a profiler).
@@ -23,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "core_probe.hpp"
 #include "planner/brake.hpp"
 #include "planner/optimum_oracle.hpp"
 #include "planner/random_problems.hpp"
@@ -68,6 +72,7 @@ void run(const Options& o, testing::Start start, const char* name) {
   }
   // Each problem's time is the best of three passes: on a shared machine a single pass also
   // measures the scheduler (preempted problems would dominate the mean and the p99).
+  const double probe_before_ms = cellctl::bench::core_probe_ms();
   std::fill(us.begin(), us.end(), 1e300);
   for (int pass = 0; pass < 3; ++pass) {
     for (std::size_t k = 0; k < inputs.size(); ++k) {
@@ -79,6 +84,7 @@ void run(const Options& o, testing::Start start, const char* name) {
       durations[k] = trajectory.duration();
     }
   }
+  const double probe_after_ms = cellctl::bench::core_probe_ms();
   // The clock's own cost, measured the same way (best of three), is taken off.
   double clock_cost = 0.0;
   for (std::size_t k = 0; k < inputs.size(); ++k) {
@@ -115,10 +121,12 @@ void run(const Options& o, testing::Start start, const char* name) {
                            static_cast<double>(std::max(checked, 1L)) / N;
   std::printf(
       "%d DoF %-7s %6ld problems  mean %.3f  median %.3f  p99 %.3f us/DoF | duration / optimum (%ld): mean "
-      "%.6f max %.6f | reference (oracle) %.0f us/DoF, %.0fx slower | errors %ld | braked %.1f %% of axes\n",
+      "%.6f max %.6f | reference (oracle) %.0f us/DoF, %.0fx slower | errors %ld | braked %.1f %% of axes | "
+      "core probe %.2f / %.2f ms\n",
       N, name, o.problems, mean, p50, p99, checked,
       checked > 0 ? ratio_sum / static_cast<double>(checked) : 0.0, ratio_max, oracle_us, oracle_us / mean,
-      errors, 100.0 * static_cast<double>(braked) / static_cast<double>(o.problems * N));
+      errors, 100.0 * static_cast<double>(braked) / static_cast<double>(o.problems * N), probe_before_ms,
+      probe_after_ms);
 }
 
 }  // namespace
