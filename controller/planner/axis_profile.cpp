@@ -97,7 +97,7 @@ AxisStatus AxisProfile::plan(const MotionState& start, const MotionState& target
   // moving starts; the other one is constructed below where it is not).
   const int target_side = target_offset_ < 0.0 ? 1 : 0;
   if (to_rest) static_cast<void>(extreme(static_cast<std::size_t>(target_side)));
-  stop_ = reach(v, a, target.velocity, target.acceleration, limits);
+  stop_ = to_rest ? stop_to_rest(v, a, limits) : reach(v, a, target.velocity, target.acceleration, limits);
   const Reach& fastest = stop_;
   reach_ = fastest.time;
 

@@ -24,7 +24,8 @@ struct Rise {
   double hold = 0.0;
   double time = std::numeric_limits<double>::infinity();
 };
-Rise rise(double v0, double a0, double vf, double af, double a_cap, double j) noexcept {
+[[gnu::always_inline]] inline Rise rise(double v0, double a0, double vf, double af, double a_cap,
+                                        double j) noexcept {
   const double dv = vf - v0;
   const double floor_peak = std::max(a0, af);
   const double x = (2.0 * j * dv + a0 * a0 + af * af) / 2.0;
@@ -49,7 +50,8 @@ Rise rise(double v0, double a0, double vf, double af, double a_cap, double j) no
 
 // The reach profile made by a rise from (v0, a0) to af, all three given in the frame `direction`
 // (1 ours, -1 mirrored), and the distance it covers, in ours.
-Reach reach_by(const Rise& rise, double v0, double a0, double af, double j, double direction) noexcept {
+[[gnu::always_inline]] inline Reach reach_by(const Rise& rise, double v0, double a0, double af, double j,
+                                             double direction) noexcept {
   const double ramp_in = (rise.peak - a0) / j;
   const double ramp_out = (rise.peak - af) / j;
   MotionState s{0.0, v0, a0};
@@ -84,13 +86,28 @@ Gap velocity_gap(double v0, double a0, double vf, double af, const AxisLimits& l
   return {};
 }
 
-Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept {
+namespace {
+
+// reach() and stop_to_rest() in one: stop_to_rest() is it with the target's zeros known to the
+// compiler.
+[[gnu::always_inline]] inline Reach reach_in(double v0, double a0, double vf, double af,
+                                             const AxisLimits& limits) noexcept {
   const double j = limits.jerk;
   const Rise up = rise(v0, a0, vf, af, limits.max_acceleration, j);
   const Rise down = rise(-v0, -a0, -vf, -af, -limits.min_acceleration, j);
   if (down.time < up.time) return reach_by(down, -v0, -a0, -af, j, -1.0);
   if (std::isinf(up.time)) return {up.time, std::numeric_limits<double>::quiet_NaN(), 1.0, 0.0, 0.0, 0.0};
   return reach_by(up, v0, a0, af, j, 1.0);
+}
+
+}  // namespace
+
+Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept {
+  return reach_in(v0, a0, vf, af, limits);
+}
+
+Reach stop_to_rest(double v0, double a0, const AxisLimits& limits) noexcept {
+  return reach_in(v0, a0, 0.0, 0.0, limits);
 }
 
 FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,

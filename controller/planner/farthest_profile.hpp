@@ -43,6 +43,10 @@ struct Reach {
   double ramp_out;
 };
 [[nodiscard]] Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept;
+// reach() to rest (vf = af = 0), the stop an axis blends to a target at rest: the same values, bit
+// for bit, with the zeros folded in where that keeps the values (34 instructions fewer per axis of a
+// moving plan, of about 1440).
+[[nodiscard]] Reach stop_to_rest(double v0, double a0, const AxisLimits& limits) noexcept;
 
 // Durations (lo, hi) in which (v0, a0) cannot become (vf, af), the position ignored. With a0 and af
 // of one sign, say both >= 0, the least velocity change in T is made by dipping the acceleration

@@ -2,13 +2,16 @@
 // duration relies on: against finite differences on random problems, every case of active bounds.
 // The reach time's distance, which stands for both extremes there. The shortest duration to a
 // target at rest solved over the peak velocity (duration_to_rest), against the duration that made
-// the target.
+// the target. The stop to rest, the same as the reach to a target at rest, bit for bit.
 
 #include "planner/farthest_profile.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "planner/random_problems.hpp"
@@ -55,6 +58,33 @@ TEST(FarthestProfile, BothExtremesAtTheReachTimeAreTheFastestProfile) {
     const double near = -FarthestProfile(-p.v0, -p.a0, -p.vf, -p.af, l.mirrored()).position(r.time);
     EXPECT_NEAR(r.position, far, 1e-10 * (1.0 + std::abs(far))) << n;
     EXPECT_NEAR(r.position, near, 1e-10 * (1.0 + std::abs(near))) << n;
+  }
+}
+
+// stop_to_rest() is reach() with the target's zeros folded in by the compiler: every field the same
+// bits (a fold that changed a value, e.g. of x + 0.0 where x may be -0.0, would show here).
+TEST(FarthestProfile, TheStopToRestIsTheReachToRestBitForBit) {
+  std::mt19937_64 rng(10);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  const auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  for (int n = 0; n < 20000; ++n) {
+    const oracle::Problem p = testing::random_problem(rng, testing::Start::within);
+    const double slower = n % 2 == 0 ? 1.0 : 0.3 + 0.7 * u01(rng);
+    const AxisLimits l{p.limits.vmax, slower * p.limits.vmin, p.limits.amax, slower * p.limits.amin,
+                       p.limits.jerk};
+    // At rest, on a bound, and signed zeros too: the edges where a fold could differ.
+    const std::array<double, 4> v{p.v0, 0.0, -0.0, n % 2 == 0 ? l.max_velocity : l.min_velocity};
+    const std::array<double, 4> a{p.a0, 0.0, -0.0, n % 2 == 0 ? l.min_acceleration : l.max_acceleration};
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const double a0 = std::clamp(a[k], l.min_acceleration, l.max_acceleration);
+      const Reach r = reach(v[k], a0, 0.0, 0.0, l);
+      const Reach s = stop_to_rest(v[k], a0, l);
+      ASSERT_TRUE(same(r.time, s.time) &&
+                  (same(r.position, s.position) || (std::isnan(r.position) && std::isnan(s.position))) &&
+                  same(r.direction, s.direction) && same(r.ramp_in, s.ramp_in) && same(r.hold, s.hold) &&
+                  same(r.ramp_out, s.ramp_out))
+          << "problem " << n << " case " << k << ": v " << v[k] << " a " << a0;
+    }
   }
 }
 
