@@ -1,6 +1,7 @@
 #include "planner/farthest_profile.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -107,7 +108,26 @@ Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits
 }
 
 Reach stop_to_rest(double v0, double a0, const AxisLimits& limits) noexcept {
-  return reach_in(v0, a0, 0.0, 0.0, limits);
+  // Which way the fastest stop goes is the sign of J v_r, v_r the velocity at which ramping the
+  // acceleration out at once leaves the axis (v0 + a0 |a0| / 2J): above zero only the fall (down)
+  // can stop it, below only the rise (up). rise() finds the other one infinite there, by its own
+  // tolerance tol = 1e-12 s (s = |a0| + its acceleration bound): with x = a0^2 / 2 - J v0 its
+  // square, a0 > 0 leaves it below (a0 - tol)^2 once J v_r > 4 tol (a0 + tol), a0 <= 0 below
+  // -1e12 tol^2 once J v_r > 1e12 tol^2; both are below 1.1e-11 s^2, s taken with the larger bound
+  // (so at least either rise's). Past that only the one that can stop is computed: the same values,
+  // bit for bit, and one rise instead of two (whichever is faster was a coin toss too). Nearer the
+  // curve v_r = 0, and for NaN, both, as reach() does.
+  const double j = limits.jerk;
+  const double a0_abs = std::abs(a0);
+  const double drift = j * v0 + 0.5 * a0 * a0_abs;
+  const double s = a0_abs + std::max(limits.max_acceleration, -limits.min_acceleration);
+  if (!(std::abs(drift) > 1.1e-11 * s * s)) return reach_in(v0, a0, 0.0, 0.0, limits);
+  const double sign = std::copysign(1.0, -drift);  // down (mirrored) where it must fall
+  const double cap = drift > 0.0 ? -limits.min_acceleration : limits.max_acceleration;
+  const double zero = sign * 0.0;  // the target at rest in the stop's frame, -0.0 mirrored as in reach()
+  const Rise r = rise(sign * v0, sign * a0, zero, zero, cap, j);
+  if (std::isinf(r.time)) return {r.time, std::numeric_limits<double>::quiet_NaN(), 1.0, 0.0, 0.0, 0.0};
+  return reach_by(r, sign * v0, sign * a0, zero, j, sign);
 }
 
 FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,

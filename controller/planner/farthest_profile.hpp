@@ -44,8 +44,8 @@ struct Reach {
 };
 [[nodiscard]] Reach reach(double v0, double a0, double vf, double af, const AxisLimits& limits) noexcept;
 // reach() to rest (vf = af = 0), the stop an axis blends to a target at rest: the same values, bit
-// for bit, with the zeros folded in where that keeps the values (34 instructions fewer per axis of a
-// moving plan, of about 1440).
+// for bit, with the zeros folded in where that keeps the values, and away from a tie only the rise
+// that can stop worked out (see the definition).
 [[nodiscard]] Reach stop_to_rest(double v0, double a0, const AxisLimits& limits) noexcept;
 
 // Durations (lo, hi) in which (v0, a0) cannot become (vf, af), the position ignored. With a0 and af
