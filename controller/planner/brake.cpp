@@ -12,12 +12,14 @@ double tolerance(double bound) noexcept {
   return 1e-12 * (1.0 + std::abs(bound));
 }
 
-bool over_max(double v, double a, const AxisLimits& l) noexcept {
+// half_inv_jerk is 0.5 / l.jerk: one division for both tests (a division is several
+// multiplications' time).
+bool over_max(double v, double a, const AxisLimits& l, double half_inv_jerk) noexcept {
   // Beyond max_velocity, or bound to cross it (a > 0): one test on v plus the ramp, zero for a <= 0
   // (v + ramp >= v, so it covers both; a branch on the sign of a was a misprediction in two).
   // max(0, a) exactly, without the branch g++ made of std::max there (folding the square into it).
   const double rising = 0.5 * (a + std::abs(a));
-  return v + rising * rising / (2.0 * l.jerk) > l.max_velocity + tolerance(l.max_velocity);
+  return v + rising * rising * half_inv_jerk > l.max_velocity + tolerance(l.max_velocity);
 }
 
 // Brakes a state over max_velocity (the acceleration within its bounds) into the safe states; `sign`
@@ -58,8 +60,9 @@ void brake_velocity(JerkProfile& profile, const AxisLimits& l, double sign) noex
 
 bool is_safe(double v, double a, const AxisLimits& l) noexcept {
   const double ta = tolerance(l.max_acceleration - l.min_acceleration);
-  return a <= l.max_acceleration + ta && a >= l.min_acceleration - ta && !over_max(v, a, l) &&
-         !over_max(-v, -a, l.mirrored());
+  const double half_inv_jerk = 0.5 / l.jerk;
+  return a <= l.max_acceleration + ta && a >= l.min_acceleration - ta && !over_max(v, a, l, half_inv_jerk) &&
+         !over_max(-v, -a, l.mirrored(), half_inv_jerk);
 }
 
 void brake_profile(const MotionState& start, const AxisLimits& l, JerkProfile& profile) noexcept {
@@ -68,8 +71,9 @@ void brake_profile(const MotionState& start, const AxisLimits& l, JerkProfile& p
   if (a > l.max_acceleration) profile.append({-l.jerk, (a - l.max_acceleration) / l.jerk});
   if (a < l.min_acceleration) profile.append({l.jerk, (l.min_acceleration - a) / l.jerk});
   const MotionState s = profile.end();
-  const bool over = over_max(s.velocity, s.acceleration, l);
-  const bool under = over_max(-s.velocity, -s.acceleration, l.mirrored());
+  const double half_inv_jerk = 0.5 / l.jerk;
+  const bool over = over_max(s.velocity, s.acceleration, l, half_inv_jerk);
+  const bool under = over_max(-s.velocity, -s.acceleration, l.mirrored(), half_inv_jerk);
   // Beyond one side and bound to cross the other: the acceleration decides (it is what crosses).
   if (over && (!under || s.acceleration > 0.0)) {
     brake_velocity(profile, l, 1.0);
