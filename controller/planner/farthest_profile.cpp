@@ -51,17 +51,24 @@ struct Rise {
   return rise;
 }
 
-// The reach profile made by a rise from (v0, a0) to af, all three given in the frame `direction`
-// (1 ours, -1 mirrored), and the distance it covers, in ours.
-[[gnu::always_inline]] inline Reach reach_by(const Rise& rise, double v0, double a0, double af, double j,
-                                             double inv_j, double direction) noexcept {
+// The reach profile made by a rise from (v0, a0) to (vf, af), all four given in the frame
+// `direction` (1 ours, -1 mirrored), and the distance it covers, in ours. Each piece's distance is
+// taken from a state known without the pieces before it (the ramp in from the start, the ramp out
+// from the end, the hold from the velocities at both its ends), and the three are summed: the stop's
+// position is on the way to every later step of a plan, and integrated piece after piece it was a
+// chain of about 70 cycles.
+[[gnu::always_inline]] inline Reach reach_by(const Rise& rise, double v0, double a0, double vf, double af,
+                                             double j, double inv_j, double direction) noexcept {
   const double ramp_in = (rise.peak - a0) * inv_j;
   const double ramp_out = (rise.peak - af) * inv_j;
-  MotionState s{0.0, v0, a0};
-  s = integrate(s, j, ramp_in);
-  s = integrate(s, 0.0, rise.hold);
-  s = integrate(s, -j, ramp_out);
-  return {rise.time, direction * s.position, direction, ramp_in, rise.hold, ramp_out};
+  const double hold = rise.hold;
+  const double sixth = j * (1.0 / 6.0);
+  const double in = ramp_in * (v0 + ramp_in * (a0 * 0.5 + ramp_in * sixth));
+  const double out = ramp_out * (vf - ramp_out * (af * 0.5 + ramp_out * sixth));
+  const double held_from = v0 + ramp_in * (a0 + ramp_in * (0.5 * j));
+  const double held_to = vf - ramp_out * (af + ramp_out * (0.5 * j));
+  const double held = hold * (0.5 * (held_from + held_to));
+  return {rise.time, direction * ((in + out) + held), direction, ramp_in, hold, ramp_out};
 }
 
 // The gap for a0, af >= 0 (see velocity_gap): dv the velocity change, amin < 0.
@@ -99,9 +106,9 @@ namespace {
   const double inv_j = 1.0 / j;
   const Rise up = rise(v0, a0, vf, af, limits.max_acceleration, j, inv_j);
   const Rise down = rise(-v0, -a0, -vf, -af, -limits.min_acceleration, j, inv_j);
-  if (down.time < up.time) return reach_by(down, -v0, -a0, -af, j, inv_j, -1.0);
+  if (down.time < up.time) return reach_by(down, -v0, -a0, -vf, -af, j, inv_j, -1.0);
   if (std::isinf(up.time)) return {up.time, std::numeric_limits<double>::quiet_NaN(), 1.0, 0.0, 0.0, 0.0};
-  return reach_by(up, v0, a0, af, j, inv_j, 1.0);
+  return reach_by(up, v0, a0, vf, af, j, inv_j, 1.0);
 }
 
 }  // namespace
@@ -131,7 +138,7 @@ Reach stop_to_rest(double v0, double a0, const AxisLimits& limits) noexcept {
   const double inv_j = 1.0 / j;
   const Rise r = rise(sign * v0, sign * a0, zero, zero, cap, j, inv_j);
   if (std::isinf(r.time)) return {r.time, std::numeric_limits<double>::quiet_NaN(), 1.0, 0.0, 0.0, 0.0};
-  return reach_by(r, sign * v0, sign * a0, zero, j, inv_j, sign);
+  return reach_by(r, sign * v0, sign * a0, zero, zero, j, inv_j, sign);
 }
 
 FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
