@@ -183,7 +183,21 @@ FarthestProfile::FarthestProfile(double v0, double a0, double vf, double af,
   cruise_from_ = from;
   half_jerk_ = j / 2.0;
   sixth_jerk_ = j * (1.0 / 6.0);  // a multiplication, not a division (see Rise)
-  cruise_position_ = position_of<false>(t);
+  // The end position at cruise_from_: each piece's distance from a state known without the pieces
+  // before it (the rise's first two from the start, its last ramp and the fall's first two from
+  // (max_velocity, 0), the fall's last from (vf, af)), summed side by side, as in reach_by().
+  const double half = half_jerk_;
+  const double sixth = sixth_jerk_;
+  const double a1 = a0 + j * t[0];
+  const double v1 = v0 + t[0] * (a0 + t[0] * half);
+  const double d0 = t[0] * (v0 + t[0] * (a0 * 0.5 + t[0] * sixth));
+  const double d1 = t[1] * (v1 + t[1] * (a1 * 0.5));
+  const double d2 = t[2] * (vmax - t[2] * t[2] * sixth);
+  const double d4 = t[4] * (vmax - t[4] * t[4] * sixth);
+  const double v4 = vmax - t[4] * t[4] * half;
+  const double d5 = t[5] * (v4 - t[5] * (j * t[4] * 0.5));
+  const double d6 = t[6] * (vf - t[6] * (af * 0.5 - t[6] * sixth));
+  cruise_position_ = ((d0 + d1) + d2) + ((d4 + d5) + d6);
 }
 
 bool FarthestProfile::durations(double T, SevenDurations& t, SevenDurations* rates) const noexcept {
