@@ -31,8 +31,10 @@ namespace cellctl::planner {
 // cycles a step); so a comparison and a selection, 3.5-5 % of a moving plan's time although 85
 // instructions more per axis.
 template <std::size_t M>
-void blend_with_stop(const SevenDurations& d, double extreme_jerk, const Reach& stop, double stop_jerk,
-                     std::array<JerkSegment, M>& pieces, std::size_t& n, double& time) noexcept {
+[[gnu::always_inline]] inline void blend_with_stop(const SevenDurations& d, double extreme_jerk,
+                                                   const Reach& stop, double stop_jerk,
+                                                   std::array<JerkSegment, M>& pieces, std::size_t& n,
+                                                   double& time) noexcept {
   constexpr std::size_t kSteps = kFarthestJerkSigns.size() + 3;
   static_assert(M >= kSteps, "room for every piece of the blend");
   const std::array<double, 4> stop_jerks{stop_jerk, 0.0, -stop_jerk, 0.0};
