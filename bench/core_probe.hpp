@@ -2,7 +2,7 @@
 // How fast the core runs code that needs many instructions per cycle, right now: a loop of eight
 // independent multiply-adds and four integer operations per iteration (about four instructions per
 // cycle), in registers only; its time in milliseconds, best of three. On the 2-core VM the planner's
-// times swing by 1.2–1.3x between a fast and a slow state of the machine, within one process; this
+// times swing by 1.2–1.8x between a fast and a slow state of the machine, within one process; this
 // loop swings with them, a latency-bound one does not (docs/measurements.md, session 18: a core
 // shared with a co-runner, most likely). planner_bench prints it beside each figure, so that a run
 // can be told to be in one state or the other.

@@ -11,8 +11,9 @@
 //    planner's speed-up over it;
 //  - the share of the axes whose start needs a brake;
 //  - the core probe (core_probe.hpp) just before and just after the set is timed: on the 2-core VM
-//    about 3.3 ms in its fast state and 3.6–5.6 ms in its slow one, in which the planner takes
-//    1.2–1.3x its fast time (two different readings: the state changed while the set was timed).
+//    about 3.3 ms in its fast state and 3.6–8.2 ms in its slow one, in which the planner takes
+//    1.2–1.8x its fast time, at most about the probe's own ratio (two different readings: the state
+//    changed while the set was timed).
 // Usage: planner_bench [--problems N (20000)] [--oracle N (1000)] [--seed S] [--only
 // 3rest|3moving|6rest|6moving]
 // (--only runs one configuration: for a profiler).

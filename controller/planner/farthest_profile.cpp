@@ -20,8 +20,8 @@ struct Levels {
 // The shortest velocity change (a0 -> peak >= max(a0, af) -> af) from v0 to vf: its peak and
 // how long that is held (at a_cap, when the peak would exceed it), and its duration; an infinite
 // duration when this shape cannot do it. `inv_j` is 1 / j: a division takes several
-// multiplications' time on a unit both hyperthreads share (four per stop were 2-3 % of a moving
-// plan).
+// multiplications' time, and the stop is on the way to every later step of a plan (its four
+// divisions were 2-3 % of a moving plan's time).
 struct Rise {
   double peak = 0.0;
   double hold = 0.0;
